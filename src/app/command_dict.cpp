@@ -1,0 +1,118 @@
+// `glint dict`: generate a dictionary, or load one, then write it, plot it, print its statistics.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <tbb/global_control.h>
+
+#include "commands.h"
+#include "dictionary.h"
+#include "dictionary_plot.h"
+#include "error.h"
+
+namespace glint::app {
+
+namespace {
+
+struct DictOptions {
+  std::string output;
+  std::string from;
+  DictionaryParameters parameters;
+  std::string placement = "stratified";
+  int threads = 0;
+  std::string plot;
+  std::vector<int> plotDistributions = DictionaryPlotOptions{}.distributions;
+  std::vector<int> plotLevels = DictionaryPlotOptions{}.levels;
+  bool stats = false;
+};
+
+void printStatistics(const Dictionary& dictionary) {
+  const DictionaryParameters& p = dictionary.parameters();
+  std::printf("level  lobes  integral(min..max)   std(min..mean..max) / target %.5f   mean-marginal L1\n",
+              targetStd(p));
+  const auto levels = computeStatistics(dictionary);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const LevelStatistics& s = levels[l];
+    std::printf("%5zu  %5u  %.5f..%.5f   %.5f..%.5f..%.5f                  %.4f\n", l, 1u << l, s.minIntegral,
+                s.maxIntegral, s.minStd, s.meanStd, s.maxStd, s.meanMarginalL1);
+  }
+}
+
+void runDict(const DictOptions& options, const CLI::App& command) {
+  if (options.output.empty() && options.plot.empty() && !options.stats) {
+    throw Error("glint dict: nothing to do; give -o FILE, --plot PNG or --stats");
+  }
+  std::optional<tbb::global_control> threadLimit;
+  if (options.threads > 0) {
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<Dictionary> dictionary;
+  if (!options.from.empty()) {
+    for (const char* name : {"--levels", "--distributions", "--texels", "--alpha", "--lobe-std", "--seed", "--placement"}) {
+      if (command.count(name) > 0) {
+        throw Error(std::string("glint dict: ") + name + " cannot be combined with --from (the parameters come from the file)");
+      }
+    }
+    dictionary = std::make_unique<Dictionary>(Dictionary::loadAny(options.from));
+  } else {
+    DictionaryParameters parameters = options.parameters;
+    parameters.placement = lobePlacementFromString(options.placement);
+    dictionary = std::make_unique<Dictionary>(generateDictionary(parameters));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const DictionaryParameters& p = dictionary->parameters();
+  std::fprintf(stderr, "glint: %s dictionary: %d levels x %d distributions x %d texels, alpha %g, lobe std %g, %s",
+               options.from.empty() ? "generated" : "loaded", p.numLevels, p.numDistributions,
+               p.texelsPerDistribution, p.alpha, p.lobeStd, toString(p.placement));
+  if (p.placement != LobePlacement::Imported) std::fprintf(stderr, ", seed %llu", static_cast<unsigned long long>(p.seed));
+  std::fprintf(stderr, " (%.2f s)\n", seconds);
+
+  if (!options.output.empty()) {
+    dictionary->save(options.output);
+    std::fprintf(stderr, "glint: wrote %s (%zu KiB of binary16 texels)\n", options.output.c_str(),
+                 dictionary->halfTexels().size() * 2 / 1024);
+  }
+  if (!options.plot.empty()) {
+    writePng(options.plot, plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels}));
+    std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
+  }
+  if (options.stats) printStatistics(*dictionary);
+}
+
+}  // namespace
+
+void registerDictCommand(CLI::App& app) {
+  auto options = std::make_shared<DictOptions>();
+  CLI::App* command = app.add_subcommand(
+      "dict", "Generate a dictionary of multi-level slope distributions (or load one), write, plot, measure it");
+  command->add_option("-o,--output", options->output, "Write the dictionary to this file (binary, docs/dictionary.md)");
+  command->add_option("--from", options->from,
+                      "Load instead of generating: a dictionary file, or the authors' EXR folder dict_L_N_R_alpha_s");
+  DictionaryParameters& p = options->parameters;
+  command->add_option("--levels", p.numLevels, "L: levels; level l has 2^l lobes per distribution")->capture_default_str();
+  command->add_option("--distributions", p.numDistributions, "N: distributions per level")->capture_default_str();
+  command->add_option("--texels", p.texelsPerDistribution, "R: texels per distribution")->capture_default_str();
+  command->add_option("--alpha", p.alpha, "alpha_d: the dictionary's Beckmann roughness")->capture_default_str();
+  command->add_option("--lobe-std", p.lobeStd, "s: standard deviation of each lobe")->capture_default_str();
+  command->add_option("--seed", p.seed, "Seed of the PCG32 streams; same seed, same bytes")->capture_default_str();
+  command->add_option("--placement", options->placement,
+                      "Lobe means: 'stratified' (unbiased mean at every level) or 'independent' (the paper's)")
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Worker threads (0: all cores); the output does not depend on it")
+      ->capture_default_str();
+  command->add_option("--plot", options->plot, "Draw chosen distributions at several levels to this PNG");
+  command->add_option("--plot-distributions", options->plotDistributions, "Distributions to draw")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--plot-levels", options->plotLevels, "Levels to draw, one panel each")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_flag("--stats", options->stats,
+                    "Print per level: integrals, standard deviations, L1 distance of the mean marginal to the limit");
+  command->callback([options, command] { runDict(*options, *command); });
+}
+
+}  // namespace glint::app

@@ -1,0 +1,12 @@
+// The subcommands of `glint`. Each registers its options and a callback; callbacks report user
+// errors by throwing glint::Error, which main prints as one line.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace glint::app {
+
+void registerDictCommand(CLI::App& app);
+void registerEvalCommand(CLI::App& app);
+
+}  // namespace glint::app

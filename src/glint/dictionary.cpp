@@ -1,0 +1,353 @@
+#include "dictionary.h"
+
+#include <cmath>
+#include <cstring>
+#include <regex>
+#include <sstream>
+
+#include <tinyexr.h>
+#include <zlib.h>
+
+#include "error.h"
+#include "file_io.h"
+#include "half.h"
+#include "kernel/glint_brdf.h"
+
+namespace glint {
+
+namespace {
+
+constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'D', 'I', 'C'};
+constexpr std::uint32_t kFormatVersion = 1;
+constexpr std::uint32_t kHeaderBytes = 64;
+constexpr std::uint32_t kTexelFormatBinary16 = 1;
+
+std::string formatFloat(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+template <typename T>
+void requireInRange(const char* field, T value, T low, T high) {
+  if (!(value >= low && value <= high)) {  // also rejects NaN
+    throw Error("dictionary parameter " + std::string(field) + " must be in [" + formatFloat(low) + ", " +
+                formatFloat(high) + "], got " + formatFloat(value));
+  }
+}
+
+std::uint32_t crc32Of(std::span<const std::byte> bytes) {
+  return static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size())));
+}
+
+// Little-endian field access, independent of the host's byte order.
+void putU32(std::byte* at, std::uint32_t value) {
+  for (int i = 0; i < 4; ++i) at[i] = static_cast<std::byte>((value >> (8 * i)) & 0xFFu);
+}
+void putU64(std::byte* at, std::uint64_t value) {
+  for (int i = 0; i < 8; ++i) at[i] = static_cast<std::byte>((value >> (8 * i)) & 0xFFu);
+}
+std::uint32_t getU32(const std::byte* at) {
+  std::uint32_t value = 0;
+  for (int i = 0; i < 4; ++i) value |= static_cast<std::uint32_t>(at[i]) << (8 * i);
+  return value;
+}
+std::uint64_t getU64(const std::byte* at) {
+  std::uint64_t value = 0;
+  for (int i = 0; i < 8; ++i) value |= static_cast<std::uint64_t>(at[i]) << (8 * i);
+  return value;
+}
+
+}  // namespace
+
+const char* toString(LobePlacement placement) {
+  switch (placement) {
+    case LobePlacement::Independent: return "independent";
+    case LobePlacement::Stratified: return "stratified";
+    case LobePlacement::Imported: return "imported";
+  }
+  return "unknown";
+}
+
+LobePlacement lobePlacementFromString(const std::string& name) {
+  if (name == "independent") return LobePlacement::Independent;
+  if (name == "stratified") return LobePlacement::Stratified;
+  throw Error("lobe placement must be 'stratified' or 'independent', got '" + name + "'");
+}
+
+float DictionaryParameters::sigma() const { return alpha / std::sqrt(2.0f); }
+float DictionaryParameters::slopeDomain() const { return 4.0f * sigma(); }
+float DictionaryParameters::texelSpacing() const { return slopeDomain() / static_cast<float>(texelsPerDistribution); }
+
+void DictionaryParameters::validate() const {
+  // 16 levels at most: the kernel's 32-bit cell seed holds 2^16 level-0 cells per axis
+  // (kernel/glint_brdf.h, kCellIndexMask).
+  requireInRange("levels", numLevels, 1, 16);
+  // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellP22).
+  requireInRange("distributions", numDistributions, 1, 4096);
+  requireInRange("texels", texelsPerDistribution, 2, 4096);
+  requireInRange("alpha", alpha, 0.01f, 2.0f);
+  requireInRange("lobe-std", lobeStd, 1e-4f, 1.0f);
+  const double lobes = std::ldexp(static_cast<double>(numDistributions), numLevels - 1);
+  if (lobes > 1 << 25) {
+    throw Error("dictionary parameters: distributions x 2^(levels-1) = " + formatFloat(lobes) +
+                " lobes, more than the supported 2^25");
+  }
+  if (placement != LobePlacement::Independent && placement != LobePlacement::Stratified &&
+      placement != LobePlacement::Imported) {
+    throw Error("dictionary parameter placement has unknown value " +
+                std::to_string(static_cast<std::uint32_t>(placement)));
+  }
+}
+
+Dictionary::Dictionary(const DictionaryParameters& parameters, std::span<const float> values)
+    : parameters_(parameters) {
+  parameters_.validate();
+  const std::size_t expected = static_cast<std::size_t>(parameters.numLevels) * parameters.numDistributions *
+                               parameters.texelsPerDistribution;
+  if (values.size() != expected) {
+    throw Error("dictionary: " + std::to_string(values.size()) + " texels given, " + std::to_string(expected) +
+                " expected");
+  }
+  halves_.resize(expected);
+  values_.resize(expected);
+  for (std::size_t i = 0; i < expected; ++i) {
+    if (!(std::isfinite(values[i]) && values[i] >= 0.0f)) {
+      throw Error("dictionary: texel " + std::to_string(i) + " is " + formatFloat(values[i]) +
+                  ", expected a finite non-negative density");
+    }
+    halves_[i] = floatToHalf(values[i]);
+    values_[i] = halfToFloat(halves_[i]);
+  }
+}
+
+kernel::DictionaryView Dictionary::view() const {
+  return {values_.data(), parameters_.numLevels, parameters_.numDistributions, parameters_.texelsPerDistribution,
+          parameters_.alpha};
+}
+
+float Dictionary::texel(int level, int distribution, int texel) const {
+  return kernel::glintDictionaryTexel(view(), level, distribution, texel);
+}
+
+float Dictionary::marginal(int level, int distribution, float slope) const {
+  const float absSlope = std::abs(slope);
+  if (!(absSlope < parameters_.slopeDomain())) {
+    return 0.0f;
+  }
+  return kernel::glintMarginal(view(), level, distribution, absSlope);
+}
+
+std::vector<std::byte> Dictionary::serialise() const {
+  const std::size_t payloadBytes = halves_.size() * 2;
+  std::vector<std::byte> bytes(kHeaderBytes + payloadBytes);
+  std::byte* payload = bytes.data() + kHeaderBytes;
+  for (std::size_t i = 0; i < halves_.size(); ++i) {
+    payload[2 * i] = static_cast<std::byte>(halves_[i] & 0xFFu);
+    payload[2 * i + 1] = static_cast<std::byte>(halves_[i] >> 8);
+  }
+  std::byte* header = bytes.data();
+  std::memcpy(header, kMagic, sizeof kMagic);
+  putU32(header + 8, kFormatVersion);
+  putU32(header + 12, kHeaderBytes);
+  putU32(header + 16, static_cast<std::uint32_t>(parameters_.numLevels));
+  putU32(header + 20, static_cast<std::uint32_t>(parameters_.numDistributions));
+  putU32(header + 24, static_cast<std::uint32_t>(parameters_.texelsPerDistribution));
+  putU32(header + 28, std::bit_cast<std::uint32_t>(parameters_.alpha));
+  putU32(header + 32, std::bit_cast<std::uint32_t>(parameters_.lobeStd));
+  putU32(header + 36, static_cast<std::uint32_t>(parameters_.placement));
+  putU64(header + 40, parameters_.seed);
+  putU32(header + 48, kTexelFormatBinary16);
+  putU32(header + 52, static_cast<std::uint32_t>(payloadBytes));
+  putU32(header + 56, crc32Of({payload, payloadBytes}));
+  putU32(header + 60, crc32Of({header, 60}));
+  return bytes;
+}
+
+Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::string& name) {
+  auto fail = [&](const std::string& problem) { return Error(name + ": " + problem); };
+  if (bytes.size() < kHeaderBytes) {
+    throw fail("truncated: " + std::to_string(bytes.size()) + " bytes, a dictionary header needs " +
+               std::to_string(kHeaderBytes));
+  }
+  const std::byte* header = bytes.data();
+  if (std::memcmp(header, kMagic, sizeof kMagic) != 0) {
+    throw fail("not a glint dictionary (bad magic)");
+  }
+  const std::uint32_t version = getU32(header + 8);
+  if (version != kFormatVersion) {
+    throw fail("unsupported dictionary format version " + std::to_string(version) + " (this build reads " +
+               std::to_string(kFormatVersion) + ")");
+  }
+  if (getU32(header + 60) != crc32Of({header, 60})) {
+    throw fail("corrupt header (checksum mismatch)");
+  }
+  if (getU32(header + 12) != kHeaderBytes || getU32(header + 48) != kTexelFormatBinary16) {
+    throw fail("unsupported header size or texel format");
+  }
+  DictionaryParameters parameters;
+  parameters.numLevels = static_cast<int>(getU32(header + 16));
+  parameters.numDistributions = static_cast<int>(getU32(header + 20));
+  parameters.texelsPerDistribution = static_cast<int>(getU32(header + 24));
+  parameters.alpha = std::bit_cast<float>(getU32(header + 28));
+  parameters.lobeStd = std::bit_cast<float>(getU32(header + 32));
+  parameters.placement = static_cast<LobePlacement>(getU32(header + 36));
+  parameters.seed = getU64(header + 40);
+  try {
+    parameters.validate();
+  } catch (const Error& e) {
+    throw fail(e.what());
+  }
+  const std::size_t count = static_cast<std::size_t>(parameters.numLevels) * parameters.numDistributions *
+                            parameters.texelsPerDistribution;
+  const std::size_t payloadBytes = getU32(header + 52);
+  if (payloadBytes != 2 * count) {
+    throw fail("header says " + std::to_string(payloadBytes) + " payload bytes, the parameters need " +
+               std::to_string(2 * count));
+  }
+  if (bytes.size() != kHeaderBytes + payloadBytes) {
+    throw fail((bytes.size() < kHeaderBytes + payloadBytes ? "truncated: " : "trailing data: ") +
+               std::to_string(bytes.size()) + " bytes, expected " + std::to_string(kHeaderBytes + payloadBytes));
+  }
+  const std::span<const std::byte> payload = bytes.subspan(kHeaderBytes);
+  if (getU32(header + 56) != crc32Of(payload)) {
+    throw fail("corrupt payload (checksum mismatch)");
+  }
+  std::vector<float> values(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    values[i] = halfToFloat(static_cast<std::uint16_t>(static_cast<unsigned>(payload[2 * i]) |
+                                                       static_cast<unsigned>(payload[2 * i + 1]) << 8));
+  }
+  try {
+    return Dictionary(parameters, values);
+  } catch (const Error& e) {
+    throw fail(e.what());
+  }
+}
+
+void Dictionary::save(const std::filesystem::path& path) const {
+  const std::vector<std::byte> bytes = serialise();
+  writeFileAtomically(path, bytes);
+}
+
+Dictionary Dictionary::load(const std::filesystem::path& path) {
+  return deserialise(readFile(path), path.string());
+}
+
+Dictionary Dictionary::loadAuthorsExr(const std::filesystem::path& folder) {
+  // The folder's name carries the parameters: dict_<L>_<N>_<R>_<alpha>_<s>, 'p' for the point.
+  const std::string name = std::filesystem::path(folder).lexically_normal().filename().string().empty()
+                               ? folder.lexically_normal().parent_path().filename().string()
+                               : folder.lexically_normal().filename().string();
+  const std::regex pattern(R"(dict_(\d+)_(\d+)_(\d+)_(\d+p\d+)_(\d+p\d+))");
+  std::smatch match;
+  if (!std::regex_match(name, match, pattern)) {
+    throw Error(folder.string() + ": not an EXR dictionary folder (expected a name like dict_16_192_64_0p5_0p02)");
+  }
+  auto decimal = [](std::string text) {
+    text[text.find('p')] = '.';
+    return std::stof(text);
+  };
+  DictionaryParameters parameters;
+  parameters.numLevels = std::stoi(match[1]);
+  parameters.numDistributions = std::stoi(match[2]);
+  parameters.texelsPerDistribution = std::stoi(match[3]);
+  parameters.alpha = decimal(match[4]);
+  parameters.lobeStd = decimal(match[5]);
+  parameters.seed = 0;
+  parameters.placement = LobePlacement::Imported;
+  try {
+    parameters.validate();
+  } catch (const Error& e) {
+    throw Error(folder.string() + ": " + e.what());
+  }
+  if (parameters.numDistributions % 3 != 0) {
+    throw Error(folder.string() + ": the distribution count must be a multiple of 3 (RGB triplets)");
+  }
+  const int R = parameters.texelsPerDistribution;
+  const int N = parameters.numDistributions;
+  std::vector<float> values(static_cast<std::size_t>(parameters.numLevels) * N * R);
+  for (int triplet = 0; triplet < N / 3; ++triplet) {
+    for (int level = 0; level < parameters.numLevels; ++level) {
+      char suffix[32];
+      std::snprintf(suffix, sizeof suffix, "_%04d_%04d.exr", triplet, level);
+      const std::filesystem::path file = folder / (name + suffix);
+      float* rgba = nullptr;
+      int width = 0;
+      int height = 0;
+      const char* message = nullptr;
+      if (LoadEXR(&rgba, &width, &height, file.string().c_str(), &message) != TINYEXR_SUCCESS) {
+        const std::string reason = message ? message : "unreadable";
+        FreeEXRErrorMessage(message);
+        throw Error(file.string() + ": " + reason);
+      }
+      if (width != R || height != 1) {
+        std::free(rgba);
+        throw Error(file.string() + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+                    ", expected " + std::to_string(R) + "x1");
+      }
+      for (int channel = 0; channel < 3; ++channel) {
+        float* row = &values[(static_cast<std::size_t>(level) * N + 3 * triplet + channel) * R];
+        for (int x = 0; x < R; ++x) row[x] = rgba[4 * x + channel];
+      }
+      std::free(rgba);
+    }
+  }
+  try {
+    return Dictionary(parameters, values);
+  } catch (const Error& e) {
+    throw Error(folder.string() + ": " + e.what());
+  }
+}
+
+Dictionary Dictionary::loadAny(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::is_directory(path, ec) ? loadAuthorsExr(path) : load(path);
+}
+
+double targetStd(const DictionaryParameters& parameters) {
+  const double sigma = parameters.sigma();
+  return std::sqrt(sigma * sigma + static_cast<double>(parameters.lobeStd) * parameters.lobeStd);
+}
+
+std::vector<LevelStatistics> computeStatistics(const Dictionary& dictionary) {
+  // Midpoint quadrature of the interpolated marginal, 64 samples per texel over the whole domain:
+  // independent of the trapezoid sum the generator normalises with.
+  const DictionaryParameters& p = dictionary.parameters();
+  const int samples = 64 * p.texelsPerDistribution;
+  const double domain = p.slopeDomain();
+  const double step = 2.0 * domain / (2 * samples);
+  const double target = targetStd(p);
+  std::vector<LevelStatistics> levels;
+  for (int level = 0; level < p.numLevels; ++level) {
+    LevelStatistics stats{1e30, -1e30, 1e30, 0.0, -1e30, 0.0};
+    std::vector<double> mean(static_cast<std::size_t>(2 * samples), 0.0);
+    for (int n = 0; n < p.numDistributions; ++n) {
+      double integral = 0.0;
+      double second = 0.0;
+      for (int i = 0; i < 2 * samples; ++i) {
+        const double x = -domain + (i + 0.5) * step;
+        const double density = dictionary.marginal(level, n, static_cast<float>(x));
+        integral += density * step;
+        second += x * x * density * step;
+        mean[static_cast<std::size_t>(i)] += density / p.numDistributions;
+      }
+      const double std = std::sqrt(second / integral);
+      stats.minIntegral = std::min(stats.minIntegral, integral);
+      stats.maxIntegral = std::max(stats.maxIntegral, integral);
+      stats.minStd = std::min(stats.minStd, std);
+      stats.maxStd = std::max(stats.maxStd, std);
+      stats.meanStd += std / p.numDistributions;
+    }
+    for (int i = 0; i < 2 * samples; ++i) {
+      const double x = -domain + (i + 0.5) * step;
+      const double normal = std::exp(-0.5 * x * x / (target * target)) / (target * std::sqrt(2.0 * M_PI));
+      stats.meanMarginalL1 += std::abs(mean[static_cast<std::size_t>(i)] - normal) * step;
+    }
+    levels.push_back(stats);
+  }
+  return levels;
+}
+
+}  // namespace glint

@@ -1,0 +1,91 @@
+// The dictionary of multi-level 1D slope distributions (model.md section 1, docs/dictionary.md):
+// L levels x N distributions x R texels, each texel a binary16 value of an even density over the
+// slope domain [-4 sigma_d, 4 sigma_d], of which only [0, 4 sigma_d) is stored.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kernel/prelude.h"
+
+namespace glint {
+
+// How the lobe means of the distributions are drawn (docs/dictionary.md, "Lobe placement").
+enum class LobePlacement : std::uint32_t {
+  Independent = 0,  // each distribution draws its own means (the paper's generator)
+  Stratified = 1,   // every level's lobes, over all distributions, stratify the target
+  Imported = 2,     // read from another generator's files (the authors' EXR dictionary)
+};
+
+const char* toString(LobePlacement placement);
+LobePlacement lobePlacementFromString(const std::string& name);  // throws Error
+
+struct DictionaryParameters {
+  int numLevels = 16;               // L; level l has 2^l lobes per distribution
+  int numDistributions = 192;       // N
+  int texelsPerDistribution = 64;   // R
+  float alpha = 0.5f;               // alpha_d: target slope std sigma_d = alpha_d / sqrt(2)
+  float lobeStd = 0.02f;            // s: standard deviation of each lobe
+  std::uint64_t seed = 1;
+  LobePlacement placement = LobePlacement::Stratified;
+
+  float sigma() const;        // sigma_d
+  float slopeDomain() const;  // 4 sigma_d: the stored half-domain
+  float texelSpacing() const; // 4 sigma_d / R: texel k holds the density at slope k * spacing
+  // Throws Error naming the first field out of its documented range.
+  void validate() const;
+};
+
+class Dictionary {
+ public:
+  // `values` holds L * N * R densities, [level][distribution][texel]; each is rounded to binary16.
+  Dictionary(const DictionaryParameters& parameters, std::span<const float> values);
+
+  const DictionaryParameters& parameters() const { return parameters_; }
+  kernel::DictionaryView view() const;
+
+  float texel(int level, int distribution, int texel) const;
+  // The marginal density at any slope, with the kernel's interpolation; 0 outside the domain.
+  float marginal(int level, int distribution, float slope) const;
+
+  std::span<const std::uint16_t> halfTexels() const { return halves_; }  // for GPU upload
+  std::span<const float> texels() const { return values_; }
+
+  // The versioned binary file (docs/dictionary.md, "File format").
+  std::vector<std::byte> serialise() const;
+  static Dictionary deserialise(std::span<const std::byte> bytes, const std::string& name);
+  void save(const std::filesystem::path& path) const;
+  static Dictionary load(const std::filesystem::path& path);
+  // The authors' published dictionary: a folder dict_<L>_<N>_<R>_<alpha>_<s> of EXR files.
+  static Dictionary loadAuthorsExr(const std::filesystem::path& folder);
+  // A folder is read as the authors' EXR dictionary, a file as ours.
+  static Dictionary loadAny(const std::filesystem::path& path);
+
+ private:
+  DictionaryParameters parameters_;
+  std::vector<std::uint16_t> halves_;
+  std::vector<float> values_;  // halves_ converted back: what the kernel reads on the CPU
+};
+
+// Generates a dictionary (model.md section 1) in parallel with oneTBB. The result depends only on
+// the parameters, never on the number of threads.
+Dictionary generateDictionary(const DictionaryParameters& parameters);
+
+// The lobe means |mu| of every distribution, in the order they are added: level l uses the first
+// 2^l of them, which is what makes the levels nested.
+std::vector<std::vector<double>> generateLobeMeans(const DictionaryParameters& parameters);
+
+// Measured properties of a dictionary, per level (docs/dictionary.md, "Statistics").
+struct LevelStatistics {
+  double minIntegral, maxIntegral;  // of the marginals over [-4 sigma_d, 4 sigma_d]
+  double minStd, meanStd, maxStd;   // standard deviations of the marginals
+  double meanMarginalL1;            // L1 distance of the mean marginal to Normal(0, sigma_d^2 + s^2)
+};
+std::vector<LevelStatistics> computeStatistics(const Dictionary& dictionary);
+// The limit every level tends to: sqrt(sigma_d^2 + s^2).
+double targetStd(const DictionaryParameters& parameters);
+
+}  // namespace glint

@@ -1,0 +1,223 @@
+// The glint BRDF of Chermain, Sauvage, Dischler & Dachsbacher 2020, "Procedural Physically based
+// BRDF for Real-Time Rendering of Glints" (Pacific Graphics; CGF 39(7)): the P-SDF over a pixel
+// footprint (model.md section 2), its P-NDF, and the BRDF (model.md section 3).
+// Shared by the CPU library and the GLSL renderer: see prelude.h for the rules.
+#ifndef GLINT_KERNEL_GLINT_BRDF_H
+#define GLINT_KERNEL_GLINT_BRDF_H
+
+#include "prelude.h"
+#include "random.h"
+#include "microfacet.h"
+
+GLINT_KERNEL_BEGIN
+
+GLINT_CONST float kInvLn4 = 0.72134752f;  // 1 / ln(4): log4(n) = ln(n) / ln(4)
+// Gaussian filter of pbrt-v3's EWA: exp(-alpha r^2) - exp(-alpha), alpha = 2.
+GLINT_CONST float kEwaFilterFloor = 0.13533528f;  // exp(-2)
+// The level-0 cell grid wraps after 2^16 cells per axis, which makes the 32-bit cell seed
+// (s | t << 16) collision-free over the whole period; see glintFootprintPeriod().
+GLINT_CONST uint kCellIndexMask = 0xFFFFu;
+
+// The material inputs of the model (model.md section 2), validated by the host.
+struct GlintParameters {
+  vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
+  float logDensity;            // D = ln(microfacets per unit uv area)
+  float relativeArea;          // MRA, in (0, 1]: probability that a cell has microfacets
+  float densityRandomisation;  // zeta: std of the per-cell dictionary level around log4(n)
+  float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
+  uint patternSeed;            // selects an independent glint pattern for the same uv
+};
+
+// The pixel footprint as an ellipse in uv space with its continuous level of detail.
+struct GlintFootprint {
+  vec2 majorAxis;    // uv units, after the anisotropy and size clamps
+  vec2 minorAxis;
+  float lod;         // in [0, L - 1]; level floor(lod) blended with the next one
+  float logDensity;  // the material's, plus the area taken off by the size clamp
+  bool degenerate;   // no area: the smooth Beckmann limit applies
+};
+
+// uv period of the pattern: 2^16 level-0 cells of 2^(L-1) per uv unit (2 uv units for L = 16).
+GLINT_FN float glintFootprintPeriod(int numLevels) {
+  return exp2(float(17 - numLevels));
+}
+
+// Footprint ellipse and continuous LOD (model.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the two
+// uv derivatives are the ellipse's axes; the minor axis is widened so that the anisotropy is at
+// most maxAnisotropy. Going past the paper, a footprint whose minor axis exceeds one uv unit is
+// shrunk to one and the area it loses is added to the density, so the LOD stays within the
+// dictionary and the cost stays bounded, while the number of microfacets seen is unchanged.
+GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotropy, float logDensity,
+                                       int numLevels) {
+  vec2 major = duvdx;
+  vec2 minor = duvdy;
+  if (dot(major, major) < dot(minor, minor)) {
+    major = duvdy;
+    minor = duvdx;
+  }
+  float majorLength = length(major);
+  float minorLength = length(minor);
+  if (minorLength * maxAnisotropy < majorLength && minorLength > 0.0f) {
+    float widen = majorLength / (minorLength * maxAnisotropy);
+    minor = minor * widen;
+    minorLength = minorLength * widen;
+  }
+  GlintFootprint footprint;
+  footprint.logDensity = logDensity;
+  if (minorLength > 1.0f) {
+    float shrink = 1.0f / minorLength;
+    major = major * shrink;
+    minor = minor * shrink;
+    footprint.logDensity = logDensity + 2.0f * log(minorLength);
+    minorLength = 1.0f;
+  }
+  footprint.majorAxis = major;
+  footprint.minorAxis = minor;
+  footprint.degenerate = !(minorLength > 0.0f);
+  footprint.lod = footprint.degenerate ? 0.0f : max(0.0f, float(numLevels - 1) + log2(minorLength));
+  return footprint;
+}
+
+// One tabulated 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R and
+// the marginal falls linearly to 0 at 4 sigma_d (docs/dictionary.md, "Texel convention"). The
+// caller guarantees 0 <= absSlope < 4 sigma_d.
+GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, float absSlope) {
+  float fourSigma = 2.82842712f * dict.alpha;  // 4 alpha_d / sqrt(2)
+  float x = absSlope * (float(dict.texelsPerDistribution) / fourSigma);
+  int k = min(int(x), dict.texelsPerDistribution - 1);
+  float f = x - float(k);
+  float a = glintDictionaryTexel(dict, level, distribution, k);
+  float b = 0.0f;
+  if (k + 1 < dict.texelsPerDistribution) {
+    b = glintDictionaryTexel(dict, level, distribution, k + 1);
+  }
+  return a + f * (b - a);
+}
+
+// P22 of one cell of footprint level `level` (model.md 2.5).
+GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float logDensity, int cellX, int cellY,
+                            int level, vec2 slope) {
+  // Coherent index: the level-0 index of the cell's first child, so that a cell and its
+  // descendants draw the same random numbers (model.md 2.5). Masked to the period, the pair
+  // is a collision-free seed.
+  uint s = (uint(cellX) << uint(level)) & kCellIndexMask;
+  uint t = (uint(cellY) << uint(level)) & kCellIndexMask;
+  uvec4 h = pcg4d(uvec4(s, t, params.patternSeed, 0u));
+
+  // Microfacet relative area: the cell holds microfacets with probability MRA (model.md 2.5).
+  if (hashToUnitOpen(h.x) > params.relativeArea) {
+    return 0.0f;
+  }
+  // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level
+  // is log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L
+  // means "so many microfacets that the smooth limit holds".
+  float log4Count = float(level - (dict.numLevels - 1)) + logDensity * kInvLn4;
+  float randomLevel = log4Count +
+      params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
+  int dictLevel = int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
+  if (dictLevel == dict.numLevels) {
+    return beckmannP22(slope, params.alpha);
+  }
+
+  // Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
+  // random rotation (model.md 2.5).
+  float theta = 2.0f * kPi * hashToUnitOpen(h.z);
+  float c = cos(theta);
+  float sn = sin(theta);
+  vec2 scaled = slope * (vec2(dict.alpha) / params.alpha);
+  float x = c * scaled.x + sn * scaled.y;
+  float y = -sn * scaled.x + c * scaled.y;
+  float fourSigma = 2.82842712f * dict.alpha;
+  if (abs(x) >= fourSigma || abs(y) >= fourSigma) {
+    return 0.0f;
+  }
+  // Two distributions from the 16-bit halves of the last lane: exact integer arithmetic, the
+  // same in both languages.
+  uint n = uint(dict.numDistributions);
+  int i = int(((h.w >> 16u) * n) >> 16u);
+  int j = int(((h.w & 0xFFFFu) * n) >> 16u);
+  // Tensor product of two marginals and the Jacobian of the scaling (model.md 2.5).
+  float jacobian = (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
+  return glintMarginal(dict, dictLevel, i, abs(x)) * glintMarginal(dict, dictLevel, j, abs(y)) * jacobian;
+}
+
+// P22 over the footprint at one level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted
+// by pbrt-v3's EWA Gaussian over the footprint ellipse. Rows are walked between the ellipse's two
+// boundary crossings, so only cells inside the ellipse are visited (no bounding-box waste, no cap).
+GLINT_FN float glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
+                             int level, vec2 slope) {
+  float cellsPerUv = exp2(float(dict.numLevels - 1 - level));
+  vec2 centre = uv * cellsPerUv - vec2(0.5f);  // cell (s, t) is centred on integer (s, t)
+  vec2 a0 = footprint.majorAxis * cellsPerUv;
+  vec2 a1 = footprint.minorAxis * cellsPerUv;
+  // Implicit ellipse A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so it covers at least a cell.
+  float ea = a0.y * a0.y + a1.y * a1.y + 1.0f;
+  float eb = -2.0f * (a0.x * a0.y + a1.x * a1.y);
+  float ec = a0.x * a0.x + a1.x * a1.x + 1.0f;
+  float invF = 1.0f / (ea * ec - 0.25f * eb * eb);
+  ea = ea * invF;
+  eb = eb * invF;
+  ec = ec * invF;
+  float halfHeight = sqrt(4.0f * ea / (4.0f * ea * ec - eb * eb));
+  int t0 = int(ceil(centre.y - halfHeight));
+  int t1 = int(floor(centre.y + halfHeight));
+  float weightSum = 0.0f;
+  float p22Sum = 0.0f;
+  for (int t = t0; t <= t1; ++t) {
+    float dy = float(t) - centre.y;
+    float discriminant = eb * eb * dy * dy - 4.0f * ea * (ec * dy * dy - 1.0f);
+    if (discriminant <= 0.0f) {
+      continue;
+    }
+    float root = sqrt(discriminant);
+    int s0 = int(ceil(centre.x + (-eb * dy - root) / (2.0f * ea)));
+    int s1 = int(floor(centre.x + (-eb * dy + root) / (2.0f * ea)));
+    for (int s = s0; s <= s1; ++s) {
+      float dx = float(s) - centre.x;
+      float r2 = ea * dx * dx + eb * dx * dy + ec * dy * dy;
+      if (r2 < 1.0f) {
+        float weight = exp(-2.0f * r2) - kEwaFilterFloor;
+        weightSum += weight;
+        p22Sum += weight * glintCellP22(dict, params, footprint.logDensity, s, t, level, slope);
+      }
+    }
+  }
+  return weightSum > 0.0f ? p22Sum / weightSum : 0.0f;
+}
+
+// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3).
+GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
+  GlintFootprint footprint =
+      glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
+  if (footprint.degenerate) {
+    return beckmannP22(slope, params.alpha);
+  }
+  float period = glintFootprintPeriod(dict.numLevels);
+  vec2 wrapped = uv - period * floor(uv / period);
+  int level = int(floor(footprint.lod));
+  float blend = footprint.lod - float(level);
+  float p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, slope);
+  if (blend > 0.0f) {
+    p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, slope);
+  }
+  return p22;
+}
+
+// The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4.
+GLINT_FN float glintNdf(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec3 m) {
+  return ndfFromP22(glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(m)), m.z);
+}
+
+// The glint BRDF without Fresnel and colour (F = 1), without the cosine.
+GLINT_FN float glintReflectance(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                                vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    return 0.0f;
+  }
+  vec3 wh = normalize(wo + wi);
+  return microfacetReflectance(wo, wi, wh, glintNdf(dict, params, uv, duvdx, duvdy, wh));
+}
+
+GLINT_KERNEL_END
+
+#endif

@@ -1,0 +1,86 @@
+// Microfacet terms shared by the glint BRDF and the Cook-Torrance baseline, in the local shading
+// frame (z = normal; directions point away from the surface).
+#ifndef GLINT_KERNEL_MICROFACET_H
+#define GLINT_KERNEL_MICROFACET_H
+
+#include "prelude.h"
+
+GLINT_KERNEL_BEGIN
+
+GLINT_CONST float kPi = 3.14159265358979f;
+
+// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (model.md, notation).
+GLINT_FN vec2 slopeFromNormal(vec3 m) {
+  return vec2(-m.x / m.z, -m.y / m.z);
+}
+
+// Anisotropic Beckmann slope distribution P22: a centred Gaussian of standard deviation
+// alpha / sqrt(2) per axis (Walter et al. 2007, Eq. 25 in slope space).
+GLINT_FN float beckmannP22(vec2 slope, vec2 alpha) {
+  vec2 sigma = alpha * 0.70710678f;
+  vec2 t = slope / sigma;
+  return exp(-0.5f * dot(t, t)) / (2.0f * kPi * sigma.x * sigma.y);
+}
+
+// Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m).
+GLINT_FN float ndfFromP22(float p22, float cosThetaM) {
+  float c2 = cosThetaM * cosThetaM;
+  return p22 / (c2 * c2);
+}
+
+// V-cavity masking (Heitz & d'Eon 2014, Eq. 5; the glint paper's choice):
+// G1(w, m) = min(1, 2 (m.z)(w.z) / (w.m)).
+GLINT_FN float vcavityG1(vec3 w, vec3 m) {
+  return min(1.0f, 2.0f * m.z * w.z / dot(w, m));
+}
+
+// The Cook-Torrance frame around any normal distribution value D(wh), Fresnel excluded:
+// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (model.md, section 3). Zero below either horizon and for
+// back-facing microfacets. Without the cosine (docs/conventions.md).
+GLINT_FN float microfacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f || wh.z <= 0.0f || dot(wo, wh) <= 0.0f || dot(wi, wh) <= 0.0f) {
+    return 0.0f;
+  }
+  return vcavityG1(wo, wh) * vcavityG1(wi, wh) * ndf / (4.0f * wo.z * wi.z);
+}
+
+// Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering".
+GLINT_FN vec3 fresnelSchlick(vec3 f0, float cosThetaI) {
+  float c = clamp(1.0f - cosThetaI, 0.0f, 1.0f);
+  float c2 = c * c;
+  return f0 + (vec3(1.0f) - f0) * (c2 * c2 * c);
+}
+
+// Fresnel reflectance of a conductor with complex index of refraction eta + i k (relative to the
+// outside medium), unpolarised light; the exact expression of Born & Wolf as written in pbrt-v3
+// (FrConductor), per colour channel.
+GLINT_FN vec3 fresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
+  float c = clamp(cosThetaI, 0.0f, 1.0f);
+  float c2 = c * c;
+  float s2 = 1.0f - c2;
+  vec3 eta2 = eta * eta;
+  vec3 k2 = k * k;
+  vec3 t0 = eta2 - k2 - vec3(s2);
+  vec3 a2plusb2 = sqrt(t0 * t0 + 4.0f * eta2 * k2);
+  vec3 t1 = a2plusb2 + vec3(c2);
+  vec3 a = sqrt(0.5f * (a2plusb2 + t0));
+  vec3 t2 = 2.0f * c * a;
+  vec3 rs = (t1 - t2) / (t1 + t2);
+  vec3 t3 = c2 * a2plusb2 + vec3(s2 * s2);
+  vec3 t4 = t2 * s2;
+  vec3 rp = rs * (t3 - t4) / (t3 + t4);
+  return 0.5f * (rp + rs);
+}
+
+// The Cook-Torrance baseline the glint BRDF converges to: Beckmann D, V-cavity G, F = 1.
+GLINT_FN float cookTorranceReflectance(vec2 alpha, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    return 0.0f;
+  }
+  vec3 wh = normalize(wo + wi);
+  return microfacetReflectance(wo, wi, wh, ndfFromP22(beckmannP22(slopeFromNormal(wh), alpha), wh.z));
+}
+
+GLINT_KERNEL_END
+
+#endif

@@ -1,0 +1,57 @@
+// The kernel's language bridge: every file under kernel/ compiles both as C++20 (with glm) and as
+// GLSL 4.50, so that the model's equations are written once (docs/conventions.md, "One model, two
+// languages"). Rules for kernel code:
+//   - every input is a function argument: no uniforms, no derivatives, no globals;
+//   - integer hashing on uint (wrap-around is defined in both languages);
+//   - float literals carry the f suffix, unsigned ones the u suffix;
+//   - no swizzle assignment, no struct constructors (assign fields), no recursion;
+//   - functions are declared with GLINT_FN, out-parameters with GLINT_OUT(T).
+// The dictionary is reached only through glintDictionaryTexel(), which each language defines:
+// below for C++ (a DictionaryView over host memory), in shaders/ for GLSL (a texture array).
+#ifndef GLINT_KERNEL_PRELUDE_H
+#define GLINT_KERNEL_PRELUDE_H
+
+#ifdef __cplusplus
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+#define GLINT_KERNEL_BEGIN \
+  namespace glint::kernel {  \
+  using namespace glm;       \
+  using uint = std::uint32_t;
+#define GLINT_KERNEL_END }
+#define GLINT_FN inline
+#define GLINT_CONST inline constexpr
+#define GLINT_OUT(T) T&
+
+GLINT_KERNEL_BEGIN
+
+// Read-only view of a dictionary in host memory: texels[(level * numDistributions + distribution)
+// * texelsPerDistribution + texel], each a float that is exactly representable as binary16, so the
+// CPU reads the very values the GPU's R16F texture holds.
+struct DictionaryView {
+  const float* texels;
+  int numLevels;
+  int numDistributions;
+  int texelsPerDistribution;
+  float alpha;  // alpha_d, the dictionary's roughness
+};
+
+GLINT_FN float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
+  return dict.texels[(level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel];
+}
+
+GLINT_KERNEL_END
+
+#else  // GLSL
+
+#define GLINT_KERNEL_BEGIN
+#define GLINT_KERNEL_END
+#define GLINT_FN
+#define GLINT_CONST const
+#define GLINT_OUT(T) out T
+
+#endif
+
+#endif

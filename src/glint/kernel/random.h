@@ -1,0 +1,67 @@
+// Hashing and the few special functions the glint kernel draws its per-cell randomness with.
+#ifndef GLINT_KERNEL_RANDOM_H
+#define GLINT_KERNEL_RANDOM_H
+
+#include "prelude.h"
+
+GLINT_KERNEL_BEGIN
+
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)), pcg4d: a bijection of
+// uvec4 (every step is invertible), so distinct inputs never give the same 128-bit output. The
+// glint model feeds it a collision-free cell seed and takes its four lanes as four independent
+// uniform draws.
+GLINT_FN uvec4 pcg4d(uvec4 v) {
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.w;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v.w += v.y * v.z;
+  v = v ^ (v >> 16u);
+  v.x += v.y * v.w;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v.w += v.y * v.z;
+  return v;
+}
+
+// A uniform float in (0, 1) from the top 24 bits of a hash: exactly representable, identical on
+// CPU and GPU, and never 0 or 1 (the half-step offset keeps erfinv below finite).
+GLINT_FN float hashToUnitOpen(uint h) {
+  return (float(h >> 8u) + 0.5f) * (1.0f / 16777216.0f);
+}
+
+// Inverse error function, single precision: Giles 2010, "Approximating the erfinv function"
+// (GPU Computing Gems Jade, ch. 10), relative error below 4e-7 on (-1, 1). Branch on w as in the
+// paper: central and tail polynomials in w = -log((1-x)(1+x)).
+GLINT_FN float erfinvApprox(float x) {
+  float w = -log((1.0f - x) * (1.0f + x));
+  float p;
+  if (w < 5.0f) {
+    w = w - 2.5f;
+    p = 2.81022636e-08f;
+    p = 3.43273939e-07f + p * w;
+    p = -3.5233877e-06f + p * w;
+    p = -4.39150654e-06f + p * w;
+    p = 0.00021858087f + p * w;
+    p = -0.00125372503f + p * w;
+    p = -0.00417768164f + p * w;
+    p = 0.246640727f + p * w;
+    p = 1.50140941f + p * w;
+  } else {
+    w = sqrt(w) - 3.0f;
+    p = -0.000200214257f;
+    p = 0.000100950558f + p * w;
+    p = 0.00134934322f + p * w;
+    p = -0.00367342844f + p * w;
+    p = 0.00573950773f + p * w;
+    p = -0.0076224613f + p * w;
+    p = 0.00943887047f + p * w;
+    p = 1.00167406f + p * w;
+    p = 2.83297682f + p * w;
+  }
+  return p * x;
+}
+
+GLINT_KERNEL_END
+
+#endif
