@@ -1,0 +1,82 @@
+#include "test_support.h"
+
+#include <atomic>
+#include <cmath>
+
+#include <memory>
+#include <unistd.h>
+
+#include <tbb/parallel_for.h>
+
+namespace glint::test {
+
+const Dictionary& defaultDictionary() {
+  static const Dictionary dictionary = generateDictionary(DictionaryParameters{});
+  return dictionary;
+}
+
+std::filesystem::path authorsDictionaryFolder() {
+  return std::filesystem::path(GLINT_SHARED_DIR) / "reference" / "dict_16_192_64_0p5_0p02";
+}
+
+const Dictionary* authorsDictionary() {
+  static const std::unique_ptr<Dictionary> dictionary = []() -> std::unique_ptr<Dictionary> {
+    if (!std::filesystem::is_directory(authorsDictionaryFolder())) return nullptr;
+    return std::make_unique<Dictionary>(Dictionary::loadAuthorsExr(authorsDictionaryFolder()));
+  }();
+  return dictionary.get();
+}
+
+std::filesystem::path temporaryFolder(const std::string& name) {
+  const auto folder = std::filesystem::temp_directory_path() / ("glint_test_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+
+float uniform(Pcg32& rng, float low, float high) {
+  return low + (high - low) * static_cast<float>(rng.nextOpenUnit());
+}
+
+SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength) {
+  auto axis = [&] {
+    const float length = std::exp(uniform(rng, std::log(minLength), std::log(maxLength)));
+    const float angle = uniform(rng, 0.0f, 6.2831853f);
+    return glm::vec2(std::cos(angle), std::sin(angle)) * length;
+  };
+  SurfaceFootprint footprint;
+  footprint.uv = glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f));
+  footprint.duvdx = axis();
+  footprint.duvdy = axis();
+  return footprint;
+}
+
+glm::vec3 directionAt(float theta, float phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, glm::vec2 extent, int cells) {
+  const double hx = 2.0 * extent.x / cells;
+  const double hy = 2.0 * extent.y / cells;
+  // Rows are summed in a fixed order after the parallel part, so the result is deterministic.
+  std::vector<double> rows(static_cast<std::size_t>(cells));
+  tbb::parallel_for(0, cells, [&](int j) {
+    const double y = -extent.y + (j + 0.5) * hy;
+    double row = 0.0;
+    for (int i = 0; i < cells; ++i) {
+      const double x = -extent.x + (i + 0.5) * hx;
+      row += integrand(glm::vec2(static_cast<float>(x), static_cast<float>(y)));
+    }
+    rows[static_cast<std::size_t>(j)] = row;
+  });
+  double sum = 0.0;
+  for (double row : rows) sum += row;
+  return sum * hx * hy;
+}
+
+glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha) {
+  const float support = dictionary.parameters().slopeDomain() * std::sqrt(2.0f) / dictionary.parameters().alpha;
+  return glm::max(alpha * support, 4.0f * alpha) * 1.001f;
+}
+
+}  // namespace glint::test
