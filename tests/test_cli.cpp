@@ -1,1 +1,165 @@
+// The `glint` program as a user meets it: determinism of `glint dict` across runs and thread
+// counts, `glint eval` output, and one-line errors with a non-zero exit for every bad input.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
 #include <gtest/gtest.h>
+
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+using namespace glint::test;
+
+struct RunResult {
+  int exitCode;  // -1 when the process died from a signal
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// Runs `glint ARGS < stdinText` in `folder`.
+RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "") {
+  std::ofstream(folder / "stdin.txt") << stdinText;
+  const std::string command = "cd '" + folder.string() + "' && '" GLINT_EXECUTABLE "' " + arguments +
+                              " < stdin.txt > stdout.txt 2> stderr.txt";
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(folder / "stdout.txt");
+  result.err = slurp(folder / "stderr.txt");
+  return result;
+}
+
+// A bad input: a non-zero exit (not a crash), exactly one line on stderr that contains `problem`.
+void expectOneLineError(const RunResult& result, const std::string& problem) {
+  EXPECT_GT(result.exitCode, 0) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_NE(result.err.find(problem), std::string::npos) << "expected '" << problem << "' in: " << result.err;
+}
+
+TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
+  const auto folder = temporaryFolder("dict_determinism");
+  ASSERT_EQ(runGlint(folder, "dict --seed 7 --threads 1 -o one.gdict").exitCode, 0);
+  ASSERT_EQ(runGlint(folder, "dict --seed 7 --threads 2 -o two.gdict").exitCode, 0);
+  ASSERT_EQ(runGlint(folder, "dict --seed 7 -o again.gdict").exitCode, 0);
+  ASSERT_EQ(runGlint(folder, "dict --seed 8 -o other.gdict").exitCode, 0);
+  const std::string one = slurp(folder / "one.gdict");
+  EXPECT_EQ(one.size(), 64u + 393216u);
+  EXPECT_TRUE(one == slurp(folder / "two.gdict"));
+  EXPECT_TRUE(one == slurp(folder / "again.gdict"));
+  EXPECT_FALSE(one == slurp(folder / "other.gdict"));
+}
+
+TEST(DictCli, WritesAPlotAndStatistics) {
+  const auto folder = temporaryFolder("dict_plot");
+  const RunResult result = runGlint(folder, "dict --levels 8 --plot plot.png --plot-levels 0,3,7 --stats");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string png = slurp(folder / "plot.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_NE(result.out.find("mean-marginal L1"), std::string::npos);
+  EXPECT_EQ(std::count(result.out.begin(), result.out.end(), '\n'), 1 + 8);  // header + one line a level
+}
+
+TEST(DictCli, BadArgumentsGiveOneLineErrors) {
+  const auto folder = temporaryFolder("dict_errors");
+  expectOneLineError(runGlint(folder, "dict --levels 30 -o x.gdict"), "levels must be in [1, 16]");
+  expectOneLineError(runGlint(folder, "dict --alpha nan -o x.gdict"), "alpha");
+  expectOneLineError(runGlint(folder, "dict --placement clumped -o x.gdict"), "lobe placement");
+  expectOneLineError(runGlint(folder, "dict"), "nothing to do");
+  expectOneLineError(runGlint(folder, "dict --from missing.gdict --stats"), "missing.gdict: cannot open");
+  expectOneLineError(runGlint(folder, "dict --from x.gdict --seed 3 --stats"), "cannot be combined with --from");
+  expectOneLineError(runGlint(folder, "dict --plot plot.png --plot-levels 16"), "plot level 16 does not exist");
+  expectOneLineError(runGlint(folder, "dict -o no/such/folder/x.gdict"), "no/such/folder/x.gdict: cannot create");
+  expectOneLineError(runGlint(folder, "dict --no-such-flag"), "no-such-flag");
+  EXPECT_FALSE(std::filesystem::exists(folder / "x.gdict"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "plot.png"));
+}
+
+TEST(DictCli, DamagedDictionaryFilesGiveOneLineErrors) {
+  const auto folder = temporaryFolder("dict_damaged");
+  ASSERT_EQ(runGlint(folder, "dict -o good.gdict").exitCode, 0);
+  const std::string good = slurp(folder / "good.gdict");
+  auto write = [&](const std::string& name, const std::string& bytes) { std::ofstream(folder / name, std::ios::binary) << bytes; };
+  write("truncated.gdict", good.substr(0, good.size() / 2));
+  std::string corrupt = good;
+  corrupt[5000] = static_cast<char>(corrupt[5000] ^ 0x40);
+  write("corrupt.gdict", corrupt);
+  std::string magic = good;
+  magic[0] = 'X';
+  write("magic.gdict", magic);
+  std::string version = good;
+  version[8] = 9;
+  write("version.gdict", version);
+  write("text.gdict", "hello\n");
+  expectOneLineError(runGlint(folder, "eval --dict truncated.gdict", "{}\n"), "truncated.gdict: truncated");
+  expectOneLineError(runGlint(folder, "eval --dict corrupt.gdict", "{}\n"), "corrupt.gdict: corrupt payload");
+  expectOneLineError(runGlint(folder, "eval --dict magic.gdict", "{}\n"), "magic.gdict: not a glint dictionary");
+  expectOneLineError(runGlint(folder, "eval --dict version.gdict", "{}\n"), "unsupported dictionary format version 9");
+  expectOneLineError(runGlint(folder, "dict --from text.gdict --stats"), "text.gdict: truncated");
+  expectOneLineError(runGlint(folder, "eval --dict .", "{}\n"), "not an EXR dictionary folder");
+}
+
+TEST(EvalCli, AnswersOneJsonLinePerInputLine) {
+  const auto folder = temporaryFolder("eval");
+  ASSERT_EQ(runGlint(folder, "dict -o d.gdict").exitCode, 0);
+  const std::string input =
+      R"({"uv":[0.3,0.7],"duvdx":[0.001,0],"duvdy":[0,0.001],"wo":[0.2,0.1,1],"wi":[-0.1,0,1],"alpha":[0.4,0.3],"log_density":22,"relative_area":1})"
+      "\n\n"
+      R"({"wo":[0.2,0.1,1],"wi":[-0.1,0,1],"alpha":[0.4,0.3],"brdf":"cook-torrance"})"
+      "\n"
+      R"({"wo":[0.2,0.1,1],"wi":[-0.1,0,1],"alpha":[0.4,0.3],"log_density":80})"
+      "\n"
+      R"({"wo":[0,0,1],"wi":[0,0,-1]})"
+      "\n";
+  const RunResult result = runGlint(folder, "eval --dict d.gdict", input);
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  std::istringstream lines(result.out);
+  std::vector<std::string> outputs;
+  for (std::string line; std::getline(lines, line);) outputs.push_back(line);
+  ASSERT_EQ(outputs.size(), 4u) << result.out;  // the blank line is skipped
+  for (const std::string& line : outputs) {
+    EXPECT_NE(line.find("\"f\":"), std::string::npos);
+    EXPECT_NE(line.find("\"D\":"), std::string::npos);
+    EXPECT_NE(line.find("\"P22\":"), std::string::npos);
+  }
+  // Cook-Torrance and the glint BRDF at very high density print the same numbers.
+  EXPECT_EQ(outputs[1], outputs[2]);
+  EXPECT_NE(outputs[0], outputs[1]);
+  EXPECT_EQ(outputs[3].find("\"f\":0.0"), outputs[3].find("\"f\":")) << outputs[3];  // wi below the surface
+}
+
+TEST(EvalCli, BadLinesGiveOneLineErrorsWithTheLineNumber) {
+  const auto folder = temporaryFolder("eval_errors");
+  ASSERT_EQ(runGlint(folder, "dict -o d.gdict").exitCode, 0);
+  const std::string ok = "{}\n";
+  auto eval = [&](const std::string& line) { return runGlint(folder, "eval --dict d.gdict", ok + line + "\n"); };
+  expectOneLineError(eval(R"({"uv":[0.5,)"), "stdin line 2: malformed JSON");
+  expectOneLineError(eval(R"({"alpha":[NaN,0.5]})"), "stdin line 2: malformed JSON");
+  expectOneLineError(eval(R"({"alpha":[1e999,0.5]})"), "stdin line 2:");
+  expectOneLineError(eval(R"({"alpha":[0.5,3]})"), "alpha_y must be in [0.005, 2], got 3");
+  expectOneLineError(eval(R"({"relative_area":0})"), "relative_area must be in (0, 1]");
+  expectOneLineError(eval(R"({"log_density":-5})"), "log_density must be in [0, 100]");
+  expectOneLineError(eval(R"({"wo":[0,0,0]})"), "'wo' must be a non-zero direction");
+  expectOneLineError(eval(R"({"uv":[0.5]})"), "'uv' must be an array of 2 numbers");
+  expectOneLineError(eval(R"({"uv":"middle"})"), "'uv' must be an array of 2 numbers");
+  expectOneLineError(eval(R"({"brdf":"phong"})"), "'brdf' must be");
+  expectOneLineError(eval(R"({"alpah":[0.5,0.5]})"), "unknown field 'alpah'");
+  expectOneLineError(eval(R"([1,2,3])"), "expected a JSON object");
+  expectOneLineError(eval(R"({"pattern_seed":-1})"), "pattern_seed");
+  expectOneLineError(runGlint(folder, "eval --dict missing.gdict", ok), "missing.gdict: cannot open");
+}
+
+}  // namespace
+}  // namespace glint

@@ -63,22 +63,22 @@ void runDict(const DictOptions& options, const CLI::App& command) {
     dictionary = std::make_unique<Dictionary>(generateDictionary(parameters));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Outputs first, the report after: a failure prints its one error line and nothing else.
+  std::optional<ImageRgb8> plot;  // drawn before anything is written: it validates its options
+  if (!options.plot.empty()) plot = plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels});
+  if (!options.output.empty()) dictionary->save(options.output);
+  if (plot) writePng(options.plot, *plot);
   const DictionaryParameters& p = dictionary->parameters();
   std::fprintf(stderr, "glint: %s dictionary: %d levels x %d distributions x %d texels, alpha %g, lobe std %g, %s",
                options.from.empty() ? "generated" : "loaded", p.numLevels, p.numDistributions,
                p.texelsPerDistribution, p.alpha, p.lobeStd, toString(p.placement));
   if (p.placement != LobePlacement::Imported) std::fprintf(stderr, ", seed %llu", static_cast<unsigned long long>(p.seed));
   std::fprintf(stderr, " (%.2f s)\n", seconds);
-
   if (!options.output.empty()) {
-    dictionary->save(options.output);
     std::fprintf(stderr, "glint: wrote %s (%zu KiB of binary16 texels)\n", options.output.c_str(),
                  dictionary->halfTexels().size() * 2 / 1024);
   }
-  if (!options.plot.empty()) {
-    writePng(options.plot, plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels}));
-    std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
-  }
+  if (!options.plot.empty()) std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
   if (options.stats) printStatistics(*dictionary);
 }
 

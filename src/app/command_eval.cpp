@@ -111,7 +111,7 @@ void runEval(const std::string& dictionaryPath) {
     json input;
     try {
       input = json::parse(line);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // syntax errors, and numbers beyond double's range
       throw Error("stdin line " + std::to_string(number) + ": malformed JSON (" + e.what() + ")");
     }
     try {
