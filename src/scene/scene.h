@@ -1,0 +1,116 @@
+// A renderable scene, independent of OpenGL: world-space triangle meshes, glTF-style materials
+// with an optional glint layer, lights, an environment and named cameras. Built by the glTF
+// loader (gltf_loader.h) or by the built-in scenes (builtin_scenes.h); drawn by src/gl and traced
+// by src/trace.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace glint::scene {
+
+struct Vertex {
+  glm::vec3 position;  // world space (node transforms are baked in at load time)
+  glm::vec3 normal;    // unit length
+  glm::vec4 tangent;   // xyz unit tangent along +u, w = handedness (+1 or -1); generated when missing
+  glm::vec2 uv;
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;  // triangles
+  int material = 0;                    // index into Scene::materials
+};
+
+// 8-bit RGBA texels, rows from the top of the image (as glTF images are stored).
+struct Texture {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+  bool srgb = false;  // colour textures (base colour, emissive) are sRGB; data textures linear
+};
+
+// The glint layer of a material (docs/scenes.md, "Glint parameters in glTF extras"). When
+// enabled, the material's specular lobe is the glint BRDF; with `--brdf cook-torrance` it is
+// Cook-Torrance with the same roughness.
+struct GlintLayer {
+  bool enabled = false;
+  glm::vec2 alpha{0.5f};          // roughness alpha_x, alpha_y (x along the tangent)
+  float logDensity = 27.0f;
+  float relativeArea = 1.0f;
+  float densityRandomisation = 2.0f;
+  float maxAnisotropy = 8.0f;
+  std::uint32_t patternSeed = 0;
+  float uvScale = 1.0f;            // glint uv = mesh uv * uvScale (density is per glint-uv area)
+  bool randomColours = false;      // each cell's glints get a random hue (car paint)
+  // Optional textures (indices into Scene::textures, -1 for none); each multiplies or replaces
+  // the constant above as documented in docs/scenes.md.
+  int roughnessTexture = -1;       // R channel multiplies alpha (result clamped to [0.01, 2])
+  int logDensityTexture = -1;      // R channel maps linearly onto logDensityRange
+  glm::vec2 logDensityRange{15.0f, 35.0f};
+  int relativeAreaTexture = -1;    // R channel multiplies relativeArea
+};
+
+// glTF 2.0 metal-roughness material.
+struct Material {
+  std::string name;
+  glm::vec4 baseColour{1.0f};
+  int baseColourTexture = -1;
+  float metallic = 0.0f;
+  float roughness = 0.5f;             // perceptual; alpha = roughness^2 for the non-glint specular
+  int metallicRoughnessTexture = -1;  // G = roughness, B = metallic (glTF convention)
+  int normalTexture = -1;
+  float normalScale = 1.0f;
+  glm::vec3 emissive{0.0f};
+  int emissiveTexture = -1;
+  int occlusionTexture = -1;
+  GlintLayer glint;
+};
+
+struct Light {
+  enum class Type { Point, Directional };
+  Type type = Type::Point;
+  glm::vec3 position{0.0f};        // point lights
+  glm::vec3 direction{0, -1, 0};   // directional lights: the direction the light travels
+  glm::vec3 intensity{1.0f};       // point: W/sr (radiant intensity); directional: W/m^2 (irradiance)
+};
+
+// Ambient light: an equirectangular radiance map (linear RGB, rows from the top, +y up); a
+// uniform colour when `pixels` is empty.
+struct Environment {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;
+  glm::vec3 uniform{0.0f};
+  float intensity = 1.0f;
+};
+
+struct Camera {
+  glm::vec3 position{0, 0, 3};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0, 1, 0};
+  float verticalFovDegrees = 45.0f;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  Environment environment;
+  std::map<std::string, Camera> cameras;  // always holds "default"
+  float exposure = 1.0f;
+
+  // Bounds of all vertices.
+  glm::vec3 boundsMin() const;
+  glm::vec3 boundsMax() const;
+};
+
+}  // namespace glint::scene
