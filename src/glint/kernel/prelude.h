@@ -46,6 +46,8 @@ GLINT_KERNEL_END
 
 #else  // GLSL
 
+#include "glint_dictionary.glsl"
+
 #define GLINT_KERNEL_BEGIN
 #define GLINT_KERNEL_END
 #define GLINT_FN

@@ -1,0 +1,32 @@
+// GLSL side of the kernel's dictionary access (the C++ side is in src/glint/kernel/prelude.h):
+// the dictionary is a texture array of R16F texels, one layer per level, one row per distribution,
+// read with texelFetch so the kernel's own interpolation (glintMarginal) is the only one, exactly
+// as on the CPU. Its shape and alpha come from uniforms set from the Dictionary the host loaded.
+#ifndef GLINT_DICTIONARY_GLSL
+#define GLINT_DICTIONARY_GLSL
+
+struct DictionaryView {
+  int numLevels;
+  int numDistributions;
+  int texelsPerDistribution;
+  float alpha;
+};
+
+layout(binding = 0) uniform sampler2DArray uGlintDictionary;
+uniform ivec3 uGlintDictionaryShape;  // L, N, R
+uniform float uGlintDictionaryAlpha;  // alpha_d
+
+DictionaryView glintDictionary() {
+  DictionaryView dict;
+  dict.numLevels = uGlintDictionaryShape.x;
+  dict.numDistributions = uGlintDictionaryShape.y;
+  dict.texelsPerDistribution = uGlintDictionaryShape.z;
+  dict.alpha = uGlintDictionaryAlpha;
+  return dict;
+}
+
+float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
+  return texelFetch(uGlintDictionary, ivec3(texel, distribution, level), 0).r;
+}
+
+#endif

@@ -1,0 +1,29 @@
+// The dictionary on the GPU: a GL_TEXTURE_2D_ARRAY of R16F texels (layer = level, row =
+// distribution), the very binary16 values the CPU evaluates (docs/dictionary.md, "Storage").
+#pragma once
+
+#include <glad/gl.h>
+
+#include "glint/dictionary.h"
+
+namespace glint::gl {
+
+class ShaderProgram;
+
+class DictionaryTexture {
+ public:
+  explicit DictionaryTexture(const Dictionary& dictionary);
+  ~DictionaryTexture();
+  DictionaryTexture(const DictionaryTexture&) = delete;
+  DictionaryTexture& operator=(const DictionaryTexture&) = delete;
+
+  // Binds the texture to unit 0 and sets the shape uniforms of shaders/glint_dictionary.glsl
+  // for `program`, which must be in use.
+  void bind(const ShaderProgram& program) const;
+
+ private:
+  GLuint texture_ = 0;
+  DictionaryParameters parameters_;
+};
+
+}  // namespace glint::gl

@@ -1,0 +1,102 @@
+#include "gl/shader.h"
+
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "glint/error.h"
+
+namespace glint::gl {
+
+namespace {
+
+std::string expand(const std::string& name, std::set<std::string>& stack) {
+  const auto& files = embeddedFiles();
+  const auto file = files.find(name);
+  if (file == files.end()) throw Error("shader source '" + name + "' is not embedded");
+  if (!stack.insert(name).second) throw Error("shader source '" + name + "' includes itself");
+  static const std::regex quoted(R"re(^\s*#\s*include\s+"(?:[^"]*/)?([^"/]+)"\s*$)re");
+  static const std::regex angled(R"(^\s*#\s*include\s+<[^>]*>\s*$)");
+  std::istringstream lines(file->second);
+  std::string out;
+  std::smatch match;
+  for (std::string line; std::getline(lines, line);) {
+    if (std::regex_match(line, match, quoted)) {
+      out += expand(match[1], stack);
+    } else if (!std::regex_match(line, angled)) {
+      out += line;
+    }
+    out += '\n';
+  }
+  stack.erase(name);
+  return out;
+}
+
+// GL info logs run over several lines; an error message is one.
+std::string oneLine(std::string log) {
+  while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
+  for (char& c : log) {
+    if (c == '\n') c = ' ';
+  }
+  return log.size() > 600 ? log.substr(0, 600) + "..." : log;
+}
+
+}  // namespace
+
+std::string expandIncludes(const std::string& name) {
+  std::set<std::string> stack;
+  return expand(name, stack);
+}
+
+ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& stages,
+                             const std::vector<std::pair<std::string, std::string>>& defines) {
+  std::string header = "#version 450 core\n";
+  for (const auto& [name, value] : defines) header += "#define " + name + " " + value + "\n";
+  std::vector<GLuint> shaders;
+  auto cleanUp = [&] {
+    for (GLuint shader : shaders) glDeleteShader(shader);
+  };
+  for (const auto& [type, name] : stages) {
+    const std::string source = header + expandIncludes(name);
+    const GLuint shader = glCreateShader(type);
+    shaders.push_back(shader);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[4096] = {};
+      glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+      cleanUp();
+      throw Error("shader " + name + " does not compile: " + oneLine(log));
+    }
+  }
+  id_ = glCreateProgram();
+  for (GLuint shader : shaders) glAttachShader(id_, shader);
+  glLinkProgram(id_);
+  cleanUp();
+  GLint ok = GL_FALSE;
+  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetProgramInfoLog(id_, sizeof log, nullptr, log);
+    glDeleteProgram(id_);
+    id_ = 0;
+    throw Error("shader program " + stages.front().second + " does not link: " + oneLine(log));
+  }
+}
+
+ShaderProgram::~ShaderProgram() {
+  if (id_) glDeleteProgram(id_);
+}
+
+ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
+  if (this != &other) {
+    if (id_) glDeleteProgram(id_);
+    id_ = std::exchange(other.id_, 0);
+  }
+  return *this;
+}
+
+}  // namespace glint::gl
