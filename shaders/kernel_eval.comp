@@ -30,6 +30,7 @@ void main() {
   params.densityRandomisation = data.randomisationEtc.x;
   params.maxAnisotropy = data.randomisationEtc.y;
   params.patternSeed = uint(data.randomisationEtc.z);
+  params.colouredCells = false;
   vec2 uv = data.uvAndDuvdx.xy;
   vec2 duvdx = data.uvAndDuvdx.zw;
   vec2 duvdy = data.duvdyAndAlpha.xy;

@@ -1,8 +1,6 @@
 // The `glint` program as a user meets it: determinism of `glint dict` across runs and thread
 // counts, `glint eval` output, and one-line errors with a non-zero exit for every bad input.
-#include <sys/wait.h>
-
-#include <cstdlib>
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -14,39 +12,6 @@ namespace glint {
 namespace {
 
 using namespace glint::test;
-
-struct RunResult {
-  int exitCode;  // -1 when the process died from a signal
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-// Runs `glint ARGS < stdinText` in `folder`.
-RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "") {
-  std::ofstream(folder / "stdin.txt") << stdinText;
-  const std::string command = "cd '" + folder.string() + "' && '" GLINT_EXECUTABLE "' " + arguments +
-                              " < stdin.txt > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  RunResult result;
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = slurp(folder / "stdout.txt");
-  result.err = slurp(folder / "stderr.txt");
-  return result;
-}
-
-// A bad input: a non-zero exit (not a crash), exactly one line on stderr that contains `problem`.
-void expectOneLineError(const RunResult& result, const std::string& problem) {
-  EXPECT_GT(result.exitCode, 0) << result.err;
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
-  EXPECT_NE(result.err.find(problem), std::string::npos) << "expected '" << problem << "' in: " << result.err;
-}
 
 TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
   const auto folder = temporaryFolder("dict_determinism");

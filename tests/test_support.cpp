@@ -1,11 +1,17 @@
 #include "test_support.h"
 
-#include <atomic>
-#include <cmath>
-
-#include <memory>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
 namespace glint::test {
@@ -32,6 +38,31 @@ std::filesystem::path temporaryFolder(const std::string& name) {
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   return folder;
+}
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText) {
+  std::ofstream(folder / "stdin.txt") << stdinText;
+  const std::string command = "cd '" + folder.string() + "' && '" GLINT_EXECUTABLE "' " + arguments +
+                              " < stdin.txt > stdout.txt 2> stderr.txt";
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = slurp(folder / "stdout.txt");
+  result.err = slurp(folder / "stderr.txt");
+  return result;
+}
+
+void expectOneLineError(const RunResult& result, const std::string& problem) {
+  EXPECT_GT(result.exitCode, 0) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_NE(result.err.find(problem), std::string::npos) << "expected '" << problem << "' in: " << result.err;
 }
 
 float uniform(Pcg32& rng, float low, float high) {

@@ -22,6 +22,19 @@ std::filesystem::path authorsDictionaryFolder();
 // A fresh, empty temporary folder for one test.
 std::filesystem::path temporaryFolder(const std::string& name);
 
+// The `glint` program, for the *Cli suites.
+struct RunResult {
+  int exitCode;  // -1 when the process died from a signal
+  std::string out;
+  std::string err;
+};
+// A whole file's bytes ("" when it cannot be read).
+std::string slurp(const std::filesystem::path& path);
+// Runs `glint ARGS < stdinText` in `folder`.
+RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "");
+// A bad input: a non-zero exit (not a crash), exactly one line on stderr that contains `problem`.
+void expectOneLineError(const RunResult& result, const std::string& problem);
+
 // Uniform in [low, high) from a PCG32 stream.
 float uniform(Pcg32& rng, float low, float high);
 // A random footprint: uv in [0, 1)^2, derivatives of log-uniform length in [minLength, maxLength]

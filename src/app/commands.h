@@ -8,5 +8,7 @@ namespace glint::app {
 
 void registerDictCommand(CLI::App& app);
 void registerEvalCommand(CLI::App& app);
+void registerDiffCommand(CLI::App& app);
+void registerRenderCommand(CLI::App& app);
 
 }  // namespace glint::app

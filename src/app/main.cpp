@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "glint 0.1.0");
   glint::app::registerDictCommand(app);
   glint::app::registerEvalCommand(app);
+  glint::app::registerDiffCommand(app);
+  glint::app::registerRenderCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -36,6 +36,7 @@ GlintParameters defaultGlintParameters() {
   p.densityRandomisation = 2.0f;
   p.maxAnisotropy = 8.0f;
   p.patternSeed = 0u;
+  p.colouredCells = false;
   return p;
 }
 

@@ -26,6 +26,7 @@ struct GlintParameters {
   float densityRandomisation;  // zeta: std of the per-cell dictionary level around log4(n)
   float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
   uint patternSeed;            // selects an independent glint pattern for the same uv
+  bool colouredCells;          // each cell reflects a random hue (car paint's coloured flakes)
 };
 
 // The pixel footprint as an ellipse in uv space with its continuous level of detail.
@@ -94,9 +95,18 @@ GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, f
   return a + f * (b - a);
 }
 
-// P22 of one cell of footprint level `level` (model.md 2.5).
-GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float logDensity, int cellX, int cellY,
-                            int level, vec2 slope) {
+// A saturated random hue for a cell (the paper's "cheap iridescence"), from its own hash so that
+// the four draws of the model stay untouched; its mean over cells is a neutral grey of 0.55.
+GLINT_FN vec3 glintCellColour(uvec4 h) {
+  float hue = hashToUnitOpen(pcg4d(h).x) * 6.0f;
+  vec3 rgb = clamp(vec3(abs(hue - 3.0f) - 1.0f, 2.0f - abs(hue - 2.0f), 2.0f - abs(hue - 4.0f)), 0.0f, 1.0f);
+  return mix(vec3(1.0f), rgb, 0.7f);
+}
+
+// P22 of one cell of footprint level `level` (model.md 2.5), in .w; .rgb is P22 times the
+// cell's colour (white unless params.colouredCells).
+GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float logDensity, int cellX, int cellY,
+                           int level, vec2 slope) {
   // Coherent index: the level-0 index of the cell's first child, so that a cell and its
   // descendants draw the same random numbers (model.md 2.5). Masked to the period, the pair
   // is a collision-free seed.
@@ -106,8 +116,9 @@ GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float l
 
   // Microfacet relative area: the cell holds microfacets with probability MRA (model.md 2.5).
   if (hashToUnitOpen(h.x) > params.relativeArea) {
-    return 0.0f;
+    return vec4(0.0f);
   }
+  vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
   // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level
   // is log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L
   // means "so many microfacets that the smooth limit holds".
@@ -116,7 +127,8 @@ GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float l
       params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
   int dictLevel = int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
   if (dictLevel == dict.numLevels) {
-    return beckmannP22(slope, params.alpha);
+    float smoothP22 = beckmannP22(slope, params.alpha);
+    return vec4(colour * smoothP22, smoothP22);
   }
 
   // Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
@@ -129,7 +141,7 @@ GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float l
   float y = -sn * scaled.x + c * scaled.y;
   float fourSigma = 2.82842712f * dict.alpha;
   if (abs(x) >= fourSigma || abs(y) >= fourSigma) {
-    return 0.0f;
+    return vec4(0.0f);
   }
   // Two distributions from the 16-bit halves of the last lane: exact integer arithmetic, the
   // same in both languages.
@@ -138,13 +150,14 @@ GLINT_FN float glintCellP22(DictionaryView dict, GlintParameters params, float l
   int j = int(((h.w & 0xFFFFu) * n) >> 16u);
   // Tensor product of two marginals and the Jacobian of the scaling (model.md 2.5).
   float jacobian = (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
-  return glintMarginal(dict, dictLevel, i, abs(x)) * glintMarginal(dict, dictLevel, j, abs(y)) * jacobian;
+  float p22 = glintMarginal(dict, dictLevel, i, abs(x)) * glintMarginal(dict, dictLevel, j, abs(y)) * jacobian;
+  return vec4(colour * p22, p22);
 }
 
 // P22 over the footprint at one level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted
 // by pbrt-v3's EWA Gaussian over the footprint ellipse. Rows are walked between the ellipse's two
 // boundary crossings, so only cells inside the ellipse are visited (no bounding-box waste, no cap).
-GLINT_FN float glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
+GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                              int level, vec2 slope) {
   float cellsPerUv = exp2(float(dict.numLevels - 1 - level));
   vec2 centre = uv * cellsPerUv - vec2(0.5f);  // cell (s, t) is centred on integer (s, t)
@@ -162,7 +175,7 @@ GLINT_FN float glintLevelP22(DictionaryView dict, GlintParameters params, GlintF
   int t0 = int(ceil(centre.y - halfHeight));
   int t1 = int(floor(centre.y + halfHeight));
   float weightSum = 0.0f;
-  float p22Sum = 0.0f;
+  vec4 p22Sum = vec4(0.0f);
   for (int t = t0; t <= t1; ++t) {
     float dy = float(t) - centre.y;
     float discriminant = eb * eb * dy * dy - 4.0f * ea * (ec * dy * dy - 1.0f);
@@ -182,25 +195,31 @@ GLINT_FN float glintLevelP22(DictionaryView dict, GlintParameters params, GlintF
       }
     }
   }
-  return weightSum > 0.0f ? p22Sum / weightSum : 0.0f;
+  return weightSum > 0.0f ? p22Sum / weightSum : vec4(0.0f);
 }
 
-// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3).
-GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
+// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3), in .w;
+// .rgb weighted by the cells' colours (equal to .w unless params.colouredCells).
+GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                               vec2 slope) {
   GlintFootprint footprint =
       glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
   if (footprint.degenerate) {
-    return beckmannP22(slope, params.alpha);
+    return vec4(beckmannP22(slope, params.alpha));
   }
   float period = glintFootprintPeriod(dict.numLevels);
   vec2 wrapped = uv - period * floor(uv / period);
   int level = int(floor(footprint.lod));
   float blend = footprint.lod - float(level);
-  float p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, slope);
+  vec4 p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, slope);
   if (blend > 0.0f) {
     p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, slope);
   }
   return p22;
+}
+
+GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
+  return glintP22Coloured(dict, params, uv, duvdx, duvdy, slope).w;
 }
 
 // The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4.

@@ -1,0 +1,138 @@
+// Forward shading of glTF metal-roughness materials whose specular lobe is the glint BRDF (or
+// Cook-Torrance), lit by point and directional lights and an environment (diffuse by spherical
+// harmonics, specular by a pre-filtered map, both without glints).
+#include "glint_brdf.h"
+
+in vec3 vPosition;
+in vec3 vNormal;
+in vec4 vTangent;
+in vec2 vUv;
+
+layout(location = 0) out vec4 outRadiance;
+
+// Texture units; unit 0 is the dictionary (glint_dictionary.glsl).
+layout(binding = 1) uniform sampler2D uBaseColourTexture;
+layout(binding = 2) uniform sampler2D uMetallicRoughnessTexture;
+layout(binding = 3) uniform sampler2D uNormalTexture;
+layout(binding = 4) uniform sampler2D uEmissiveTexture;
+layout(binding = 5) uniform sampler2D uOcclusionTexture;
+layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
+layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
+layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
+layout(binding = 9) uniform sampler2D uEnvironment;
+
+uniform vec3 uCameraPosition;
+uniform vec4 uBaseColour;
+uniform float uMetallic;
+uniform float uRoughness;
+uniform float uNormalScale;
+uniform vec3 uEmissive;
+
+uniform bool uGlintLayer;   // the material has a glint layer (its roughness is the layer's)
+uniform bool uGlintBrdf;    // ... and the glint BRDF is selected (else Cook-Torrance)
+uniform vec2 uGlintAlpha;
+uniform float uGlintLogDensity;
+uniform float uGlintRelativeArea;
+uniform float uGlintDensityRandomisation;
+uniform float uGlintMaxAnisotropy;
+uniform uint uGlintPatternSeed;
+uniform bool uGlintColoured;
+uniform float uGlintUvScale;
+uniform bool uGlintHasLogDensityTexture;
+uniform vec2 uGlintLogDensityRange;
+
+#define MAX_LIGHTS 8
+uniform int uLightCount;
+uniform vec4 uLightPosition[MAX_LIGHTS];  // w = 1: point at xyz; w = 0: xyz = unit direction towards the light
+uniform vec3 uLightIntensity[MAX_LIGHTS];
+
+uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
+uniform float uEnvironmentIntensity;
+uniform float uEnvironmentMaxLod;
+
+vec3 irradiance(vec3 n) {
+  return uIrradianceSh[0] * 0.282095f + uIrradianceSh[1] * (0.488603f * n.y) + uIrradianceSh[2] * (0.488603f * n.z) +
+         uIrradianceSh[3] * (0.488603f * n.x) + uIrradianceSh[4] * (1.092548f * n.x * n.y) +
+         uIrradianceSh[5] * (1.092548f * n.y * n.z) + uIrradianceSh[6] * (0.315392f * (3.0f * n.z * n.z - 1.0f)) +
+         uIrradianceSh[7] * (1.092548f * n.x * n.z) + uIrradianceSh[8] * (0.546274f * (n.x * n.x - n.y * n.y));
+}
+
+vec3 environmentRadiance(vec3 d, float alpha) {
+  vec2 uv = vec2(atan(d.x, -d.z) / (2.0f * kPi) + 0.5f, acos(clamp(d.y, -1.0f, 1.0f)) / kPi);
+  float lod = clamp(log2(max(alpha, 1e-3f) * float(textureSize(uEnvironment, 0).x)), 0.0f, uEnvironmentMaxLod);
+  return textureLod(uEnvironment, uv, lod).rgb * uEnvironmentIntensity;
+}
+
+void main() {
+  // The glint footprint: screen-space derivatives of the glint uv, taken first, in uniform
+  // control flow, before any branch that pixels of a quad could take differently.
+  vec2 glintUv = vUv * uGlintUvScale;
+  vec2 duvdx = dFdx(glintUv);
+  vec2 duvdy = dFdy(glintUv);
+
+  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, vUv);
+  vec4 metallicRoughness = texture(uMetallicRoughnessTexture, vUv);
+  float metallic = uMetallic * metallicRoughness.b;
+  float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);
+  vec3 emissive = uEmissive * texture(uEmissiveTexture, vUv).rgb;
+  float occlusion = texture(uOcclusionTexture, vUv).r;
+
+  // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
+  // from behind (curtains) are shaded on the side facing the camera.
+  vec3 view = normalize(uCameraPosition - vPosition);
+  vec3 n = normalize(vNormal);
+  vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
+  vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
+  vec3 mapped = texture(uNormalTexture, vUv).xyz * 2.0f - 1.0f;
+  mapped.xy *= uNormalScale;
+  n = normalize(mat3(t, b, n) * mapped);
+  if (dot(n, view) < 0.0f) {
+    n = -n;
+  }
+  t = normalize(t - n * dot(n, t));
+  b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
+  vec3 wo = vec3(dot(view, t), dot(view, b), max(dot(view, n), 1e-4f));
+
+  GlintParameters params;
+  params.alpha = clamp(uGlintAlpha * texture(uGlintRoughnessTexture, vUv).r, 0.01f, 2.0f);
+  params.logDensity = uGlintHasLogDensityTexture
+                          ? mix(uGlintLogDensityRange.x, uGlintLogDensityRange.y, texture(uGlintLogDensityTexture, vUv).r)
+                          : uGlintLogDensity;
+  params.relativeArea = clamp(uGlintRelativeArea * texture(uGlintRelativeAreaTexture, vUv).r, 1e-4f, 1.0f);
+  params.densityRandomisation = uGlintDensityRandomisation;
+  params.maxAnisotropy = uGlintMaxAnisotropy;
+  params.patternSeed = uGlintPatternSeed;
+  params.colouredCells = uGlintColoured;
+  DictionaryView dict = glintDictionary();
+
+  vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);
+  vec3 diffuse = baseColour.rgb * (1.0f - metallic) / kPi;
+  vec2 specularAlpha = uGlintLayer ? params.alpha : vec2(roughness * roughness);
+
+  vec3 radiance = emissive;
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 toLight = uLightPosition[i].xyz - vPosition * uLightPosition[i].w;
+    float distance2 = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
+    vec3 l = normalize(toLight);
+    vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, n));
+    if (wi.z <= 0.0f) {
+      continue;
+    }
+    vec3 wh = normalize(wo + wi);
+    vec3 fresnel = fresnelSchlick(f0, dot(wo, wh));
+    vec3 specular;
+    if (uGlintLayer && uGlintBrdf) {
+      vec4 p22 = glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slopeFromNormal(wh));
+      vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
+      specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
+    } else {
+      specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+    }
+    radiance += (diffuse + specular) * wi.z * uLightIntensity[i] / distance2;
+  }
+  vec3 reflected = reflect(-view, n);
+  vec3 ambient = diffuse * irradiance(n) +
+                 fresnelSchlick(f0, wo.z) * environmentRadiance(reflected, max(specularAlpha.x, specularAlpha.y));
+  radiance += ambient * occlusion;
+  outRadiance = vec4(radiance, 1.0f);
+}

@@ -1,0 +1,59 @@
+// `glint diff`: error metrics of a test image against a reference, and a false-colour picture of
+// where they differ (docs/cli.md).
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "error.h"
+#include "image_io.h"
+
+namespace glint::app {
+
+namespace {
+
+struct DiffOptions {
+  std::string test;
+  std::string reference;
+  std::string output;
+  float scale = 0.0f;
+};
+
+void runDiff(const DiffOptions& options) {
+  // Checked before any work, so that a wrong name costs nothing and leaves no file.
+  if (!options.output.empty() && lowercaseExtension(options.output) != ".png") {
+    throw Error(options.output + ": the difference picture is a PNG; give -o a .png name");
+  }
+  const ImageRgbF test = readImage(options.test);
+  const ImageRgbF reference = readImage(options.reference);
+  ImageError error;
+  try {
+    error = compareImages(test, reference);
+  } catch (const Error& e) {
+    throw Error(options.test + " vs " + options.reference + ": " + e.what());
+  }
+  // The picture first: a run that fails prints nothing but its error.
+  if (!options.output.empty()) writePng(options.output, falseColourDifference(test, reference, options.scale));
+  std::printf("rmse %.6g\nrelmse %.6g\n", error.rmse, error.relmse);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+void registerDiffCommand(CLI::App& app) {
+  auto options = std::make_shared<DiffOptions>();
+  CLI::App* command =
+      app.add_subcommand("diff", "Compare image A against reference B (PNG or EXR): RMSE, relative MSE, a picture");
+  command->add_option("A", options->test, "The image under test (PNG or EXR)")->required();
+  command->add_option("B", options->reference, "The reference image (PNG or EXR)")->required();
+  CLI::Option* output =
+      command->add_option("-o,--output", options->output, "Write a false-colour picture of mean |A - B| to this PNG");
+  command
+      ->add_option("--scale", options->scale,
+                   "The |A - B| at the top of the colour map (0: the 99th percentile of the differences)")
+      ->capture_default_str()
+      ->needs(output);
+  command->callback([options] { runDiff(*options); });
+}
+
+}  // namespace glint::app

@@ -1,0 +1,112 @@
+// `glint render`: one frame of the real-time renderer, headless, to PNG or EXR (docs/cli.md).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <regex>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "app/scene_options.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "glint/error.h"
+#include "glint/image_io.h"
+#include "glint/kernel/tonemap.h"
+
+namespace glint::app {
+
+namespace {
+
+struct RenderOptions {
+  SceneOptions scene;
+  std::string output;
+  std::string size = "512x512";
+  std::string brdf = "glint";
+  int spp = 1;
+  float exposure = 1.0f;
+};
+
+std::pair<int, int> parseSize(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) throw Error("--size must look like 512x512, got '" + text + "'");
+  const int w = std::stoi(match[1]);
+  const int h = std::stoi(match[2]);
+  if (w < 1 || h < 1 || w > 8192 || h > 8192) throw Error("--size must be between 1x1 and 8192x8192, got " + text);
+  return {w, h};
+}
+
+void runRender(const RenderOptions& options) {
+  const auto [width, height] = parseSize(options.size);
+  const gl::BrdfModel brdf = gl::brdfModelFromString(options.brdf);
+  const std::string extension = lowercaseExtension(options.output);
+  if (extension != ".png" && extension != ".exr") {
+    throw Error(options.output + ": the output must end in .png or .exr");
+  }
+  if (options.spp < 1 || options.spp > 65536) throw Error("--spp must be in [1, 65536]");
+  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
+  const scene::Scene scene = options.scene.loadScene();
+  const Dictionary dictionary = options.scene.loadDictionary();
+  const auto start = std::chrono::steady_clock::now();
+
+  gl::HeadlessContext context;
+  gl::Renderer renderer(scene, dictionary);
+  gl::FrameSettings frame;
+  frame.width = width;
+  frame.height = height;
+  frame.brdf = brdf;
+  frame.camera = options.scene.findCamera(scene);
+  // Supersampling: the mean of jittered frames, in linear radiance (the anti-aliasing paper's
+  // reference protocol renders 1,024 of them).
+  std::vector<double> sum(static_cast<std::size_t>(width) * height * 4, 0.0);
+  const bool progress = options.spp > 1 && isatty(STDERR_FILENO);
+  for (int k = 0; k < options.spp; ++k) {
+    frame.jitter = gl::supersampleJitter(k);
+    renderer.renderFrame(frame);
+    const std::vector<float> pixels = renderer.readRadiance();
+    for (std::size_t i = 0; i < pixels.size(); ++i) sum[i] += pixels[i];
+    if (progress) std::fprintf(stderr, "\rglint: sample %d/%d", k + 1, options.spp);
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  std::vector<float> mean(sum.size());
+  for (std::size_t i = 0; i < sum.size(); ++i) mean[i] = static_cast<float>(sum[i] / options.spp);
+  ImageRgbF image = fromRgbaFloat(width, height, mean.data(), true);
+  if (extension == ".exr") {
+    writeExr(options.output, image);
+  } else {
+    ImageRgb8 display(width, height, {0, 0, 0});
+    const float exposure = scene.exposure * options.exposure;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const glm::vec3 encoded = kernel::displayEncode(image.at(x, y), exposure);
+        display.at(x, y) = {static_cast<std::uint8_t>(std::lround(encoded.r * 255.0f)),
+                            static_cast<std::uint8_t>(std::lround(encoded.g * 255.0f)),
+                            static_cast<std::uint8_t>(std::lround(encoded.b * 255.0f))};
+      }
+    }
+    writePng(options.output, display);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, %.2f s on %s)\n", options.output.c_str(),
+               options.scene.scene.c_str(), width, height, options.spp, gl::toString(brdf), seconds,
+               gl::currentContextInfo().renderer.c_str());
+}
+
+}  // namespace
+
+void registerRenderCommand(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* command = app.add_subcommand("render", "Render one frame headless (OpenGL 4.5 through EGL) to PNG or EXR");
+  options->scene.addTo(*command);
+  command->add_option("-o,--output", options->output, "Output image: .png (tone-mapped sRGB) or .exr (linear radiance)")
+      ->required();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint or cook-torrance")
+      ->capture_default_str();
+  command->add_option("--spp", options->spp, "Jittered samples per pixel, averaged: a supersampled reference")
+      ->capture_default_str();
+  command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
+  command->callback([options] { runRender(*options); });
+}
+
+}  // namespace glint::app

@@ -1,0 +1,56 @@
+#include "app/scene_options.h"
+
+#include "glint/error.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+
+namespace glint::app {
+
+void SceneOptions::addTo(CLI::App& command) {
+  std::string builtins;
+  for (const std::string& name : scene::builtinSceneNames()) builtins += (builtins.empty() ? "" : ", ") + name;
+  command.add_option("scene", scene, "A built-in scene (" + builtins + ") or a glTF 2.0 file")->capture_default_str();
+  command.add_option("--camera", camera, "Camera preset of the scene (see docs/scenes.md)")->capture_default_str();
+  command.add_option("--dict", dictionary,
+                     "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
+  command.add_option("--glint-material", glintMaterials,
+                     "Put a glint layer on this material of a glTF scene ('*' for all); repeatable");
+  command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY")->delimiter(',');
+  command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
+  command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
+}
+
+scene::Scene SceneOptions::loadScene() const {
+  scene::Scene s = scene::loadScene(scene);
+  if (!glintMaterials.empty()) scene::applyGlint(s, glintMaterials, scene::GlintLayer{});
+  if (alpha.size() > 2) throw Error("--alpha takes one or two values");
+  for (scene::Material& m : s.materials) {
+    if (!m.glint.enabled) continue;
+    if (!alpha.empty()) m.glint.alpha = glm::vec2(alpha.front(), alpha.back());
+    if (logDensity) m.glint.logDensity = *logDensity;
+    if (relativeArea) m.glint.relativeArea = *relativeArea;
+    try {
+      scene::validateGlintLayer(m.glint, s.textures.size());
+    } catch (const Error& e) {
+      throw Error("material '" + m.name + "': " + e.what());
+    }
+  }
+  findCamera(s);
+  return s;
+}
+
+const scene::Camera& SceneOptions::findCamera(const scene::Scene& s) const {
+  const auto it = s.cameras.find(camera);
+  if (it == s.cameras.end()) {
+    std::string names;
+    for (const auto& [name, c] : s.cameras) names += (names.empty() ? "" : ", ") + name;
+    throw Error("scene '" + scene + "' has no camera '" + camera + "' (cameras: " + names + ")");
+  }
+  return it->second;
+}
+
+Dictionary SceneOptions::loadDictionary() const {
+  return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionary);
+}
+
+}  // namespace glint::app

@@ -1,0 +1,33 @@
+// Options shared by the commands that draw a scene (render, view): which scene, which camera,
+// which dictionary, and glint layers or parameter overrides applied to its materials.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "glint/dictionary.h"
+#include "scene/scene.h"
+
+namespace glint::app {
+
+struct SceneOptions {
+  std::string scene = "showroom";
+  std::string camera = "default";
+  std::string dictionary;
+  std::vector<std::string> glintMaterials;
+  std::vector<float> alpha;
+  std::optional<float> logDensity;
+  std::optional<float> relativeArea;
+
+  void addTo(CLI::App& command);
+  // Loads the scene, applies --glint-material and the overrides (validated like the file's own
+  // parameters), and checks the camera; throws Error with one line.
+  scene::Scene loadScene() const;
+  const scene::Camera& findCamera(const scene::Scene& scene) const;
+  Dictionary loadDictionary() const;
+};
+
+}  // namespace glint::app

@@ -1,0 +1,278 @@
+#include "gl/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gl/dictionary_texture.h"
+#include "gl/environment.h"
+#include "gl/shader.h"
+#include "glint/error.h"
+
+namespace glint::gl {
+
+namespace {
+
+constexpr int kMaxLights = 8;  // MAX_LIGHTS in shaders/forward.frag
+
+struct GpuMesh {
+  GLuint vertexArray = 0;
+  GLuint vertexBuffer = 0;
+  GLuint indexBuffer = 0;
+  GLsizei indexCount = 0;
+  int material = 0;
+};
+
+GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, GLenum type, const void* pixels,
+                   bool mipmaps, bool repeat) {
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  const int levels = mipmaps ? 1 + static_cast<int>(std::floor(std::log2(std::max(width, height)))) : 1;
+  glTextureStorage2D(texture, levels, internalFormat, width, height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(texture, 0, 0, 0, width, height, format, type, pixels);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (mipmaps) glGenerateTextureMipmap(texture);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
+}  // namespace
+
+BrdfModel brdfModelFromString(const std::string& name) {
+  if (name == "glint") return BrdfModel::Glint;
+  if (name == "cook-torrance") return BrdfModel::CookTorrance;
+  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance)");
+}
+
+const char* toString(BrdfModel model) {
+  switch (model) {
+    case BrdfModel::Glint: return "glint";
+    case BrdfModel::CookTorrance: return "cook-torrance";
+  }
+  return "unknown";
+}
+
+glm::vec2 supersampleJitter(int k) {
+  if (k == 0) return glm::vec2(0.0f);
+  // R2: the fractional parts of k / g and k / g^2, g the plastic number.
+  constexpr double g = 1.32471795724474602596;
+  const double x = std::fmod(0.5 + k / g, 1.0);
+  const double y = std::fmod(0.5 + k / (g * g), 1.0);
+  return glm::vec2(static_cast<float>(x - 0.5), static_cast<float>(y - 0.5));
+}
+
+glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm::vec2 jitter, glm::vec3 boundsMin,
+                         glm::vec3 boundsMax) {
+  const glm::vec3 centre = 0.5f * (boundsMin + boundsMax);
+  const float radius = std::max(0.5f * glm::length(boundsMax - boundsMin), 1e-3f);
+  const float distance = glm::length(centre - camera.position);
+  const float farPlane = distance + 2.0f * radius;
+  const float nearPlane = std::max(farPlane * 1e-4f, (distance - radius) * 0.5f);
+  glm::mat4 projection = glm::perspective(glm::radians(camera.verticalFovDegrees),
+                                          static_cast<float>(width) / static_cast<float>(height), nearPlane, farPlane);
+  // A translation in normalised device coordinates: 2 / size per pixel.
+  projection[2][0] += 2.0f * jitter.x / static_cast<float>(width);
+  projection[2][1] += 2.0f * jitter.y / static_cast<float>(height);
+  return projection * glm::lookAt(camera.position, camera.target, camera.up);
+}
+
+struct Renderer::Gpu {
+  ShaderProgram forward{{{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}}};
+  std::unique_ptr<DictionaryTexture> dictionary;
+  std::vector<GpuMesh> meshes;
+  std::vector<GLuint> textures;
+  GLuint white = 0;
+  GLuint flatNormal = 0;
+  GLuint environment = 0;
+  float environmentMaxLod = 0.0f;
+  std::array<glm::vec3, 9> irradiance{};
+  GLuint framebuffer = 0;
+  GLuint radiance = 0;
+  GLuint depth = 0;
+  int width = 0;
+  int height = 0;
+
+  ~Gpu() {
+    for (const GpuMesh& m : meshes) {
+      glDeleteVertexArrays(1, &m.vertexArray);
+      glDeleteBuffers(1, &m.vertexBuffer);
+      glDeleteBuffers(1, &m.indexBuffer);
+    }
+    glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
+    glDeleteTextures(1, &white);
+    glDeleteTextures(1, &flatNormal);
+    glDeleteTextures(1, &environment);
+    releaseTarget();
+  }
+
+  void releaseTarget() {
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &radiance);
+    glDeleteRenderbuffers(1, &depth);
+    framebuffer = radiance = depth = 0;
+  }
+
+  void resizeTarget(int w, int h) {
+    if (w == width && h == height && framebuffer) return;
+    releaseTarget();
+    width = w;
+    height = h;
+    glCreateTextures(GL_TEXTURE_2D, 1, &radiance);
+    glTextureStorage2D(radiance, 1, GL_RGBA32F, w, h);
+    glTextureParameteri(radiance, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(radiance, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glCreateRenderbuffers(1, &depth);
+    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, w, h);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, radiance, 0);
+    glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw Error("OpenGL: cannot make a " + std::to_string(w) + "x" + std::to_string(h) + " RGBA32F render target");
+    }
+  }
+};
+
+Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
+    : scene_(scene), materials_(scene.materials), gpu_(std::make_unique<Gpu>()) {
+  Gpu& g = *gpu_;
+  g.dictionary = std::make_unique<DictionaryTexture>(dictionary);
+  const std::uint8_t white[4] = {255, 255, 255, 255};
+  const std::uint8_t flat[4] = {128, 128, 255, 255};
+  g.white = makeTexture(1, 1, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, white, false, true);
+  g.flatNormal = makeTexture(1, 1, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, flat, false, true);
+  for (const scene::Texture& t : scene.textures) {
+    g.textures.push_back(makeTexture(t.width, t.height, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_RGBA,
+                                     GL_UNSIGNED_BYTE, t.rgba.data(), true, true));
+  }
+  const scene::Environment& env = scene.environment;
+  if (env.pixels.empty()) {
+    const glm::vec3 uniform[4] = {env.uniform, env.uniform, env.uniform, env.uniform};
+    g.environment = makeTexture(2, 2, GL_RGBA32F, GL_RGB, GL_FLOAT, uniform, false, true);
+  } else {
+    g.environment = makeTexture(env.width, env.height, GL_RGBA32F, GL_RGB, GL_FLOAT, env.pixels.data(), true, true);
+    g.environmentMaxLod = std::floor(std::log2(static_cast<float>(std::max(env.width, env.height))));
+  }
+  g.irradiance = irradianceSh(env);
+  for (const scene::Mesh& mesh : scene.meshes) {
+    GpuMesh m;
+    m.material = mesh.material;
+    m.indexCount = static_cast<GLsizei>(mesh.indices.size());
+    glCreateBuffers(1, &m.vertexBuffer);
+    glNamedBufferStorage(m.vertexBuffer, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(scene::Vertex)),
+                         mesh.vertices.data(), 0);
+    glCreateBuffers(1, &m.indexBuffer);
+    glNamedBufferStorage(m.indexBuffer, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), 0);
+    glCreateVertexArrays(1, &m.vertexArray);
+    glVertexArrayVertexBuffer(m.vertexArray, 0, m.vertexBuffer, 0, sizeof(scene::Vertex));
+    glVertexArrayElementBuffer(m.vertexArray, m.indexBuffer);
+    const struct {
+      GLuint location;
+      GLint size;
+      GLuint offset;
+    } attributes[] = {{0, 3, offsetof(scene::Vertex, position)},
+                      {1, 3, offsetof(scene::Vertex, normal)},
+                      {2, 4, offsetof(scene::Vertex, tangent)},
+                      {3, 2, offsetof(scene::Vertex, uv)}};
+    for (const auto& a : attributes) {
+      glEnableVertexArrayAttrib(m.vertexArray, a.location);
+      glVertexArrayAttribFormat(m.vertexArray, a.location, a.size, GL_FLOAT, GL_FALSE, a.offset);
+      glVertexArrayAttribBinding(m.vertexArray, a.location, 0);
+    }
+    g.meshes.push_back(m);
+  }
+}
+
+Renderer::~Renderer() = default;
+
+GLuint Renderer::radianceTexture() const { return gpu_->radiance; }
+GLuint Renderer::framebuffer() const { return gpu_->framebuffer; }
+
+void Renderer::renderFrame(const FrameSettings& settings) {
+  Gpu& g = *gpu_;
+  g.resizeTarget(settings.width, settings.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer);
+  glViewport(0, 0, settings.width, settings.height);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // sheets such as curtains are seen from both sides
+  glDisable(GL_BLEND);
+  const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+  glClearNamedFramebufferfv(g.framebuffer, GL_COLOR, 0, clear);
+  glClearNamedFramebufferfi(g.framebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+
+  const ShaderProgram& p = g.forward;
+  glUseProgram(p.id());
+  g.dictionary->bind(p);
+  glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE,
+                     &viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
+                                     scene_.boundsMin(), scene_.boundsMax())[0][0]);
+  glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
+  glm::vec4 lightPositions[kMaxLights];
+  glm::vec3 lightIntensities[kMaxLights];
+  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(scene_.lights.size()));
+  for (int i = 0; i < lightCount; ++i) {
+    const scene::Light& light = scene_.lights[static_cast<std::size_t>(i)];
+    lightPositions[i] = light.type == scene::Light::Type::Point ? glm::vec4(light.position, 1.0f)
+                                                                 : glm::vec4(-glm::normalize(light.direction), 0.0f);
+    lightIntensities[i] = light.intensity;
+  }
+  glUniform1i(p.uniform("uLightCount"), lightCount);
+  glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
+  glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
+  glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
+  glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
+  glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
+  glBindTextureUnit(9, g.environment);
+
+  auto texture = [&](int index, GLuint fallback) {
+    return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
+                                                                      : fallback;
+  };
+  for (const GpuMesh& mesh : g.meshes) {
+    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    const scene::GlintLayer& glint = m.glint;
+    glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
+    glUniform1f(p.uniform("uMetallic"), m.metallic);
+    glUniform1f(p.uniform("uRoughness"), m.roughness);
+    glUniform1f(p.uniform("uNormalScale"), m.normalScale);
+    glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+    glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
+    glUniform1i(p.uniform("uGlintBrdf"), settings.brdf == BrdfModel::Glint);
+    glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
+    glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
+    glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
+    glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
+    glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
+    glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
+    glUniform1i(p.uniform("uGlintColoured"), glint.randomColours);
+    glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
+    glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
+    glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
+    glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+    glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
+    glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
+    glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
+    glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
+    glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
+    glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
+    glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
+    glBindVertexArray(mesh.vertexArray);
+    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+std::vector<float> Renderer::readRadiance() const {
+  std::vector<float> pixels(static_cast<std::size_t>(gpu_->width) * gpu_->height * 4);
+  glGetTextureImage(gpu_->radiance, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)),
+                    pixels.data());
+  return pixels;
+}
+
+}  // namespace glint::gl

@@ -1,0 +1,64 @@
+// The real-time glint renderer: forward shading of a scene into a linear HDR target with OpenGL
+// 4.5 (docs/renderer.md). Needs a current context (HeadlessContext or WindowContext).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glad/gl.h>
+#include <glm/glm.hpp>
+
+#include "glint/dictionary.h"
+#include "scene/scene.h"
+
+namespace glint::gl {
+
+enum class BrdfModel { Glint, CookTorrance };
+BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices
+const char* toString(BrdfModel model);
+
+struct FrameSettings {
+  int width = 512;
+  int height = 512;
+  BrdfModel brdf = BrdfModel::Glint;
+  scene::Camera camera;
+  glm::vec2 jitter{0.0f};  // sub-pixel offset of the frame, in pixels (supersampling)
+};
+
+class Renderer {
+ public:
+  // Uploads the scene's meshes and textures and the dictionary; compiles the programs.
+  Renderer(const scene::Scene& scene, const Dictionary& dictionary);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Draws one frame into the HDR target (linear radiance, RGBA32F), resizing it if needed.
+  void renderFrame(const FrameSettings& settings);
+  // The last frame: RGBA floats, rows bottom-up (as GL stores them).
+  std::vector<float> readRadiance() const;
+  GLuint radianceTexture() const;
+  GLuint framebuffer() const;
+
+  // Materials as drawn; the viewer edits them between frames.
+  std::vector<scene::Material>& materials() { return materials_; }
+  const scene::Scene& scene() const { return scene_; }
+
+ private:
+  struct Gpu;
+  const scene::Scene& scene_;
+  std::vector<scene::Material> materials_;
+  std::unique_ptr<Gpu> gpu_;
+};
+
+// The view-projection matrix of a camera for an image of the given size, with an optional
+// sub-pixel jitter in pixels; near and far planes fit the scene's bounds.
+glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm::vec2 jitter, glm::vec3 boundsMin,
+                         glm::vec3 boundsMax);
+
+// The sub-pixel offset of sample k of a supersampled frame: sample 0 at the pixel centre, then
+// the R2 sequence (Roberts 2018), which covers the pixel evenly for any sample count.
+glm::vec2 supersampleJitter(int k);
+
+}  // namespace glint::gl
