@@ -10,5 +10,6 @@ void registerDictCommand(CLI::App& app);
 void registerEvalCommand(CLI::App& app);
 void registerDiffCommand(CLI::App& app);
 void registerRenderCommand(CLI::App& app);
+void registerViewCommand(CLI::App& app);
 
 }  // namespace glint::app

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   glint::app::registerEvalCommand(app);
   glint::app::registerDiffCommand(app);
   glint::app::registerRenderCommand(app);
+  glint::app::registerViewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

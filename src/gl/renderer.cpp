@@ -138,7 +138,7 @@ struct Renderer::Gpu {
 };
 
 Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
-    : scene_(scene), materials_(scene.materials), gpu_(std::make_unique<Gpu>()) {
+    : scene_(scene), materials_(scene.materials), lights_(scene.lights), gpu_(std::make_unique<Gpu>()) {
   Gpu& g = *gpu_;
   g.dictionary = std::make_unique<DictionaryTexture>(dictionary);
   const std::uint8_t white[4] = {255, 255, 255, 255};
@@ -214,9 +214,9 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
   glm::vec4 lightPositions[kMaxLights];
   glm::vec3 lightIntensities[kMaxLights];
-  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(scene_.lights.size()));
+  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size()));
   for (int i = 0; i < lightCount; ++i) {
-    const scene::Light& light = scene_.lights[static_cast<std::size_t>(i)];
+    const scene::Light& light = lights_[static_cast<std::size_t>(i)];
     lightPositions[i] = light.type == scene::Light::Type::Point ? glm::vec4(light.position, 1.0f)
                                                                  : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;

@@ -41,14 +41,16 @@ class Renderer {
   GLuint radianceTexture() const;
   GLuint framebuffer() const;
 
-  // Materials as drawn; the viewer edits them between frames.
+  // Materials and lights as drawn; the viewer edits them between frames.
   std::vector<scene::Material>& materials() { return materials_; }
+  std::vector<scene::Light>& lights() { return lights_; }
   const scene::Scene& scene() const { return scene_; }
 
  private:
   struct Gpu;
   const scene::Scene& scene_;
   std::vector<scene::Material> materials_;
+  std::vector<scene::Light> lights_;
   std::unique_ptr<Gpu> gpu_;
 };
 

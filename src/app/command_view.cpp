@@ -1,0 +1,220 @@
+// `glint view`: the renderer in a window, with Dear ImGui sliders for the glint parameters, the
+// BRDF, the light and the camera, and the frame time (docs/cli.md).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <glad/gl.h>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "app/commands.h"
+#include "app/scene_options.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "gl/shader.h"
+#include "glint/error.h"
+#include "glint/image.h"
+
+namespace glint::app {
+
+namespace {
+
+struct ViewOptions {
+  SceneOptions scene;
+  int width = 1280;
+  int height = 720;
+  int frames = 0;          // 0: until the window closes
+  std::string screenshot;  // written after the last frame
+};
+
+// The parameters the sliders edit, applied to every glint layer of the scene.
+struct Controls {
+  glm::vec2 alpha{0.5f};
+  float logDensity = 27.0f;
+  float relativeArea = 1.0f;
+  int brdf = 0;  // index into kBrdfNames
+  float lightAzimuth = 0.6f;
+  float lightElevation = 0.9f;
+  float lightScale = 1.0f;
+  float exposure = 1.0f;
+  int camera = 0;
+};
+constexpr const char* kBrdfNames[] = {"glint", "cook-torrance"};
+
+class ImGuiSession {
+ public:
+  explicit ImGuiSession(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini written next to the user's files
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 450");
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+};
+
+void writeScreenshot(const std::string& path, int width, int height) {
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  ImageRgb8 image(width, height, {0, 0, 0});
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::uint8_t* p = &rgb[(static_cast<std::size_t>(height - 1 - y) * width + x) * 3];
+      image.at(x, y) = {p[0], p[1], p[2]};
+    }
+  }
+  writePng(path, image);
+}
+
+void runView(const ViewOptions& options) {
+  if (options.width < 64 || options.height < 64 || options.width > 8192 || options.height > 8192) {
+    throw Error("--size must be between 64x64 and 8192x8192");
+  }
+  if (options.frames < 0) throw Error("--frames must be 0 (until closed) or positive");
+  if (!options.screenshot.empty() && options.frames == 0) {
+    throw Error("--screenshot needs --frames N (the screenshot is of frame N)");
+  }
+  const scene::Scene scene = options.scene.loadScene();
+  const Dictionary dictionary = options.scene.loadDictionary();
+  gl::WindowContext window(options.width, options.height, "glint view: " + options.scene.scene);
+  const gl::ContextInfo info = gl::currentContextInfo();
+  gl::Renderer renderer(scene, dictionary);
+  gl::ShaderProgram display({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}});
+  GLuint emptyVertexArray = 0;
+  glCreateVertexArrays(1, &emptyVertexArray);
+  GLuint timer = 0;
+  glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
+  ImGuiSession imgui(window.window());
+
+  Controls controls;
+  for (const scene::Material& m : scene.materials) {
+    if (!m.glint.enabled) continue;
+    controls.alpha = m.glint.alpha;
+    controls.logDensity = m.glint.logDensity;
+    controls.relativeArea = m.glint.relativeArea;
+    break;
+  }
+  std::vector<std::string> cameraNames;
+  for (const auto& [name, camera] : scene.cameras) {
+    if (name == options.scene.camera) controls.camera = static_cast<int>(cameraNames.size());
+    cameraNames.push_back(name);
+  }
+  const std::vector<scene::Light> originalLights = scene.lights;
+  const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
+  const float radius = 0.5f * glm::length(scene.boundsMax() - scene.boundsMin());
+  double gpuMilliseconds = 0.0;
+  double wallMilliseconds = 0.0;
+
+  for (int frameIndex = 0; !glfwWindowShouldClose(window.window()); ++frameIndex) {
+    if (options.frames > 0 && frameIndex >= options.frames) break;
+    glfwPollEvents();
+    for (scene::Material& m : renderer.materials()) {
+      if (!m.glint.enabled) continue;
+      m.glint.alpha = controls.alpha;
+      m.glint.logDensity = controls.logDensity;
+      m.glint.relativeArea = controls.relativeArea;
+    }
+    // The first light is moved by the sliders around the scene's centre; all are scaled.
+    renderer.lights() = originalLights;
+    for (scene::Light& light : renderer.lights()) light.intensity *= controls.lightScale;
+    if (!renderer.lights().empty()) {
+      const glm::vec3 direction(std::cos(controls.lightElevation) * std::sin(controls.lightAzimuth),
+                                std::sin(controls.lightElevation),
+                                std::cos(controls.lightElevation) * std::cos(controls.lightAzimuth));
+      scene::Light& light = renderer.lights().front();
+      if (light.type == scene::Light::Type::Point) {
+        light.position = centre + direction * glm::length(originalLights.front().position - centre);
+      } else {
+        light.direction = -direction;
+      }
+    }
+    int width = 0;
+    int height = 0;
+    glfwGetFramebufferSize(window.window(), &width, &height);
+    if (width <= 0 || height <= 0) continue;  // minimised
+
+    gl::FrameSettings frame;
+    frame.width = width;
+    frame.height = height;
+    frame.brdf = controls.brdf == 0 ? gl::BrdfModel::Glint : gl::BrdfModel::CookTorrance;
+    frame.camera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
+    const auto start = std::chrono::steady_clock::now();
+    glBeginQuery(GL_TIME_ELAPSED, timer);
+    renderer.renderFrame(frame);
+    glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    wallMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    GLuint64 nanoseconds = 0;
+    glGetQueryObjectui64v(timer, GL_QUERY_RESULT, &nanoseconds);
+    gpuMilliseconds = static_cast<double>(nanoseconds) * 1e-6;
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(display.id());
+    glUniform1f(display.uniform("uExposure"), scene.exposure * controls.exposure);
+    glBindTextureUnit(0, renderer.radianceTexture());
+    glBindVertexArray(emptyVertexArray);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::Begin("glint");
+    ImGui::Combo("BRDF", &controls.brdf, kBrdfNames, 2);
+    ImGui::SliderFloat("roughness x", &controls.alpha.x, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("roughness y", &controls.alpha.y, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("log density", &controls.logDensity, 10.0f, 45.0f, "%.1f");
+    ImGui::SliderFloat("relative area", &controls.relativeArea, 0.01f, 1.0f, "%.2f");
+    ImGui::SliderAngle("light azimuth", &controls.lightAzimuth, -180.0f, 180.0f);
+    ImGui::SliderAngle("light elevation", &controls.lightElevation, 5.0f, 90.0f);
+    ImGui::SliderFloat("light intensity", &controls.lightScale, 0.0f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("exposure", &controls.exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    std::vector<const char*> names;
+    for (const std::string& n : cameraNames) names.push_back(n.c_str());
+    ImGui::Combo("camera", &controls.camera, names.data(), static_cast<int>(names.size()));
+    ImGui::Separator();
+    ImGui::Text("%dx%d on %s", width, height, info.renderer.c_str());
+    if (info.softwareRasteriser) {
+      ImGui::Text("frame %.1f ms (wall clock around glFinish;", wallMilliseconds);
+      ImGui::Text("GPU timer queries are meaningless on llvmpipe)");
+    } else {
+      ImGui::Text("frame %.2f ms (GPU timer query), %.1f ms wall", gpuMilliseconds, wallMilliseconds);
+    }
+    ImGui::End();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (options.frames > 0 && frameIndex + 1 == options.frames && !options.screenshot.empty()) {
+      writeScreenshot(options.screenshot, width, height);
+    }
+    glfwSwapBuffers(window.window());
+  }
+  glDeleteQueries(1, &timer);
+  glDeleteVertexArrays(1, &emptyVertexArray);
+}
+
+}  // namespace
+
+void registerViewCommand(CLI::App& app) {
+  auto options = std::make_shared<ViewOptions>();
+  CLI::App* command = app.add_subcommand("view", "Show a scene in a window with sliders (needs a display; xvfb-run works)");
+  options->scene.addTo(*command);
+  command->add_option("--width", options->width, "Window width")->capture_default_str();
+  command->add_option("--height", options->height, "Window height")->capture_default_str();
+  command->add_option("--frames", options->frames, "Close after this many frames (0: when the window is closed)")
+      ->capture_default_str();
+  command->add_option("--screenshot", options->screenshot, "With --frames N: write frame N, sliders included, to a PNG");
+  command->callback([options] { runView(*options); });
+}
+
+}  // namespace glint::app
