@@ -96,11 +96,13 @@ GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, f
 }
 
 // A saturated random hue for a cell (the paper's "cheap iridescence"), from its own hash so that
-// the four draws of the model stay untouched; its mean over cells is a neutral grey of 0.55.
+// the four draws of the model stay untouched. Each channel of the hue wheel averages 1/2 over
+// hues, so mix(1, hue, 0.7) averages 0.65: dividing by it makes the expected colour white, and the
+// mean appearance that of uncoloured glints.
 GLINT_FN vec3 glintCellColour(uvec4 h) {
   float hue = hashToUnitOpen(pcg4d(h).x) * 6.0f;
   vec3 rgb = clamp(vec3(abs(hue - 3.0f) - 1.0f, 2.0f - abs(hue - 2.0f), 2.0f - abs(hue - 4.0f)), 0.0f, 1.0f);
-  return mix(vec3(1.0f), rgb, 0.7f);
+  return mix(vec3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
 }
 
 // P22 of one cell of footprint level `level` (model.md 2.5), in .w; .rgb is P22 times the
@@ -118,7 +120,6 @@ GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float lo
   if (hashToUnitOpen(h.x) > params.relativeArea) {
     return vec4(0.0f);
   }
-  vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
   // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level
   // is log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L
   // means "so many microfacets that the smooth limit holds".
@@ -127,8 +128,8 @@ GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float lo
       params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
   int dictLevel = int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
   if (dictLevel == dict.numLevels) {
-    float smoothP22 = beckmannP22(slope, params.alpha);
-    return vec4(colour * smoothP22, smoothP22);
+    // So many microfacets that the smooth limit holds: their colours average out to white too.
+    return vec4(beckmannP22(slope, params.alpha));
   }
 
   // Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
@@ -151,6 +152,7 @@ GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float lo
   // Tensor product of two marginals and the Jacobian of the scaling (model.md 2.5).
   float jacobian = (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
   float p22 = glintMarginal(dict, dictLevel, i, abs(x)) * glintMarginal(dict, dictLevel, j, abs(y)) * jacobian;
+  vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
   return vec4(colour * p22, p22);
 }
 
