@@ -11,7 +11,6 @@
 #include "gl/renderer.h"
 #include "glint/error.h"
 #include "glint/image_io.h"
-#include "glint/kernel/tonemap.h"
 
 namespace glint::app {
 
@@ -56,35 +55,15 @@ void runRender(const RenderOptions& options) {
   frame.height = height;
   frame.brdf = brdf;
   frame.camera = options.scene.findCamera(scene);
-  // Supersampling: the mean of jittered frames, in linear radiance (the anti-aliasing paper's
-  // reference protocol renders 1,024 of them).
-  std::vector<double> sum(static_cast<std::size_t>(width) * height * 4, 0.0);
   const bool progress = options.spp > 1 && isatty(STDERR_FILENO);
-  for (int k = 0; k < options.spp; ++k) {
-    frame.jitter = gl::supersampleJitter(k);
-    renderer.renderFrame(frame);
-    const std::vector<float> pixels = renderer.readRadiance();
-    for (std::size_t i = 0; i < pixels.size(); ++i) sum[i] += pixels[i];
+  const ImageRgbF image = gl::renderSupersampled(renderer, frame, options.spp, [&](int k) {
     if (progress) std::fprintf(stderr, "\rglint: sample %d/%d", k + 1, options.spp);
-  }
+  });
   if (progress) std::fprintf(stderr, "\n");
-  std::vector<float> mean(sum.size());
-  for (std::size_t i = 0; i < sum.size(); ++i) mean[i] = static_cast<float>(sum[i] / options.spp);
-  ImageRgbF image = fromRgbaFloat(width, height, mean.data(), true);
   if (extension == ".exr") {
     writeExr(options.output, image);
   } else {
-    ImageRgb8 display(width, height, {0, 0, 0});
-    const float exposure = scene.exposure * options.exposure;
-    for (int y = 0; y < height; ++y) {
-      for (int x = 0; x < width; ++x) {
-        const glm::vec3 encoded = kernel::displayEncode(image.at(x, y), exposure);
-        display.at(x, y) = {static_cast<std::uint8_t>(std::lround(encoded.r * 255.0f)),
-                            static_cast<std::uint8_t>(std::lround(encoded.g * 255.0f)),
-                            static_cast<std::uint8_t>(std::lround(encoded.b * 255.0f))};
-      }
-    }
-    writePng(options.output, display);
+    writePng(options.output, displayEncode(image, scene.exposure * options.exposure));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, %.2f s on %s)\n", options.output.c_str(),

@@ -110,7 +110,6 @@ void runView(const ViewOptions& options) {
   }
   const std::vector<scene::Light> originalLights = scene.lights;
   const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
-  const float radius = 0.5f * glm::length(scene.boundsMax() - scene.boundsMin());
   double gpuMilliseconds = 0.0;
   double wallMilliseconds = 0.0;
 

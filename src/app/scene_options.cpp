@@ -22,7 +22,16 @@ void SceneOptions::addTo(CLI::App& command) {
 
 scene::Scene SceneOptions::loadScene() const {
   scene::Scene s = scene::loadScene(scene);
-  if (!glintMaterials.empty()) scene::applyGlint(s, glintMaterials, scene::GlintLayer{});
+  if (!glintMaterials.empty()) {
+    std::vector<bool> hadLayer;
+    for (const scene::Material& m : s.materials) hadLayer.push_back(m.glint.enabled);
+    scene::applyGlint(s, glintMaterials, scene::GlintLayer{});
+    // A new layer takes the material's own roughness (alpha = roughness^2), not a fixed one.
+    for (std::size_t i = 0; i < s.materials.size(); ++i) {
+      scene::Material& m = s.materials[i];
+      if (m.glint.enabled && !hadLayer[i]) m.glint.alpha = glm::vec2(scene::alphaFromRoughness(m.roughness));
+    }
+  }
   if (alpha.size() > 2) throw Error("--alpha takes one or two values");
   for (scene::Material& m : s.materials) {
     if (!m.glint.enabled) continue;

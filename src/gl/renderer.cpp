@@ -268,6 +268,21 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+ImageRgbF renderSupersampled(Renderer& renderer, FrameSettings frame, int spp, const std::function<void(int)>& onSample) {
+  std::vector<double> sum;
+  for (int k = 0; k < spp; ++k) {
+    frame.jitter = supersampleJitter(k);
+    renderer.renderFrame(frame);
+    const std::vector<float> pixels = renderer.readRadiance();
+    sum.resize(pixels.size(), 0.0);
+    for (std::size_t i = 0; i < pixels.size(); ++i) sum[i] += pixels[i];
+    if (onSample) onSample(k);
+  }
+  std::vector<float> mean(sum.size());
+  for (std::size_t i = 0; i < sum.size(); ++i) mean[i] = static_cast<float>(sum[i] / spp);
+  return fromRgbaFloat(frame.width, frame.height, mean.data(), true);
+}
+
 std::vector<float> Renderer::readRadiance() const {
   std::vector<float> pixels(static_cast<std::size_t>(gpu_->width) * gpu_->height * 4);
   glGetTextureImage(gpu_->radiance, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)),

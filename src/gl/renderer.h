@@ -2,6 +2,7 @@
 // 4.5 (docs/renderer.md). Needs a current context (HeadlessContext or WindowContext).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/dictionary.h"
+#include "glint/image_io.h"
 #include "scene/scene.h"
 
 namespace glint::gl {
@@ -53,6 +55,11 @@ class Renderer {
   std::vector<scene::Light> lights_;
   std::unique_ptr<Gpu> gpu_;
 };
+
+// The mean of `spp` jittered frames, in linear radiance (the anti-aliasing paper's reference
+// protocol averages 1,024); `onSample(k)` is called after sample k when given.
+ImageRgbF renderSupersampled(Renderer& renderer, FrameSettings frame, int spp,
+                             const std::function<void(int)>& onSample = {});
 
 // The view-projection matrix of a camera for an image of the given size, with an optional
 // sub-pixel jitter in pixels; near and far planes fit the scene's bounds.

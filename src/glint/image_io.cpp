@@ -18,6 +18,7 @@
 
 #include "error.h"
 #include "file_io.h"
+#include "kernel/tonemap.h"
 
 namespace glint {
 
@@ -242,12 +243,23 @@ float srgbToLinear(float encoded) {
 float linearToSrgb(float linear) {
   if (!(linear > 0.0f)) return 0.0f;  // also NaN
   if (linear >= 1.0f) return 1.0f;
-  const double l = linear;
-  return static_cast<float>(l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055);
+  return kernel::srgbEncode(linear);  // the one sRGB encoding, shared with the shaders
 }
 
 std::uint8_t linearToSrgb8(float linear) {
   return static_cast<std::uint8_t>(std::lround(linearToSrgb(linear) * 255.0f));
+}
+
+ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure) {
+  ImageRgb8 display(radiance.width, radiance.height, {0, 0, 0});
+  for (int y = 0; y < radiance.height; ++y) {
+    for (int x = 0; x < radiance.width; ++x) {
+      const glm::vec3 encoded = kernel::displayEncode(radiance.at(x, y), exposure);
+      auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(v * 255.0f)); };
+      display.at(x, y) = {byte(encoded.r), byte(encoded.g), byte(encoded.b)};
+    }
+  }
+  return display;
 }
 
 std::string lowercaseExtension(const std::filesystem::path& path) {

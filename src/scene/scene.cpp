@@ -1,6 +1,11 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <sstream>
+
+#include "glint/error.h"
 
 namespace glint::scene {
 
@@ -18,6 +23,123 @@ glm::vec3 Scene::boundsMax() const {
     for (const Vertex& v : mesh.vertices) high = glm::max(high, v.position);
   }
   return high;
+}
+
+float alphaFromRoughness(float roughness) { return std::max(roughness * roughness, 0.01f); }
+
+GlintParameters glintParameters(const GlintLayer& layer) {
+  GlintParameters p = defaultGlintParameters();
+  p.alpha = layer.alpha;
+  p.logDensity = layer.logDensity;
+  p.relativeArea = layer.relativeArea;
+  p.densityRandomisation = layer.densityRandomisation;
+  p.maxAnisotropy = layer.maxAnisotropy;
+  p.patternSeed = layer.patternSeed;
+  p.colouredCells = layer.randomColours;
+  return p;
+}
+
+void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount) {
+  validateGlintParameters(glintParameters(layer));
+  if (!(layer.uvScale > 0.0f) || !std::isfinite(layer.uvScale)) {
+    std::ostringstream message;
+    message << "uv_scale must be positive and finite, got " << layer.uvScale;
+    throw Error(message.str());
+  }
+  // The ends of the range are log densities too: check them with the kernel's own rule.
+  for (float end : {layer.logDensityRange.x, layer.logDensityRange.y}) {
+    GlintParameters p = glintParameters(layer);
+    p.logDensity = end;
+    try {
+      validateGlintParameters(p);
+    } catch (const Error& e) {
+      throw Error(std::string("log_density_range: ") + e.what());
+    }
+  }
+  const std::pair<const char*, int> textures[] = {{"roughness_texture", layer.roughnessTexture},
+                                                  {"log_density_texture", layer.logDensityTexture},
+                                                  {"relative_area_texture", layer.relativeAreaTexture}};
+  for (const auto& [field, index] : textures) {
+    if (index < -1 || (index >= 0 && static_cast<std::size_t>(index) >= textureCount)) {
+      std::ostringstream message;
+      message << field << " " << index << " is not a texture (the scene has " << textureCount << ")";
+      throw Error(message.str());
+    }
+  }
+}
+
+void applyGlint(Scene& scene, const std::vector<std::string>& materialNames, const GlintLayer& layer) {
+  validateGlintLayer(layer, scene.textures.size());
+  GlintLayer enabled = layer;
+  enabled.enabled = true;
+  for (const std::string& name : materialNames) {
+    bool found = false;
+    for (Material& material : scene.materials) {
+      if (name == "*" || material.name == name) {
+        material.glint = enabled;
+        found = true;
+      }
+    }
+    if (!found) {
+      std::ostringstream message;
+      message << "no material '" << name << "' in scene '" << scene.name << "' (materials:";
+      for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        message << (i == 0 ? " '" : ", '") << scene.materials[i].name << "'";
+      }
+      if (scene.materials.empty()) message << " none";
+      message << "; '*' names them all)";
+      throw Error(message.str());
+    }
+  }
+}
+
+std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
+  const glm::vec3 centre = 0.5f * (low + high);
+  // At least a millimetre, so that a flat or point-like scene still gets a usable camera.
+  const float radius = std::max(0.5f * glm::length(high - low), 1e-3f);
+  Camera base;
+  base.target = centre;
+  base.verticalFovDegrees = 45.0f;
+  // The sphere is tangent to the view cone at distance radius / sin(fov / 2); 10% more is the margin.
+  const float distance = 1.1f * radius / std::sin(glm::radians(0.5f * base.verticalFovDegrees));
+  auto at = [&](glm::vec3 offset, glm::vec3 up) {
+    Camera camera = base;
+    camera.position = centre + offset;
+    camera.up = up;
+    return camera;
+  };
+  return {
+      {"default", at({0, 0, distance}, {0, 1, 0})},
+      {"front", at({0, 0, distance}, {0, 1, 0})},
+      {"side", at({distance, 0, 0}, {0, 1, 0})},
+      {"top", at({0, distance, 0}, {0, 0, -1})},
+      {"close", at({0, 0, 0.5f * distance}, {0, 1, 0})},
+  };
+}
+
+void addDefaultLighting(Scene& scene) {
+  const glm::vec3 low = scene.boundsMin();
+  const glm::vec3 high = scene.boundsMax();
+  const glm::vec3 centre = 0.5f * (low + high);
+  const float radius = std::max(0.5f * glm::length(high - low), 1e-3f);
+
+  // Irradiance 2 W/m^2 at the centre (inverse square law), so it does not depend on the scene's size.
+  Light point;
+  point.type = Light::Type::Point;
+  const float distance = 3.0f * radius;
+  point.position = centre + distance * glm::normalize(glm::vec3(0.6f, 0.9f, 1.0f));
+  point.intensity = glm::vec3(2.0f * distance * distance);
+  scene.lights.push_back(point);
+
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, -0.5f));
+  sun.intensity = glm::vec3(1.0f, 0.97f, 0.92f);
+  scene.lights.push_back(sun);
+
+  scene.environment = Environment{};
+  scene.environment.uniform = glm::vec3(0.26f, 0.3f, 0.36f);
+  scene.environment.intensity = 1.0f;
 }
 
 }  // namespace glint::scene

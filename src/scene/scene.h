@@ -4,12 +4,15 @@
 // by src/trace.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "glint/bsdf.h"
 
 namespace glint::scene {
 
@@ -112,5 +115,32 @@ struct Scene {
   glm::vec3 boundsMin() const;
   glm::vec3 boundsMax() const;
 };
+
+// The glint roughness of a material whose glint layer gives no alpha: roughness^2 (the glTF
+// convention), at least 0.01 so the glint BRDF stays within its dictionary.
+float alphaFromRoughness(float roughness);
+
+// The kernel parameters of a glint layer (its constants; textures are applied per shading point).
+GlintParameters glintParameters(const GlintLayer& layer);
+
+// Throws Error naming the first field out of range: the kernel's ranges through
+// glint::validateGlintParameters (one place for them), uv_scale > 0, both ends of
+// log_density_range within log_density's range, texture indices below textureCount (or -1).
+void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount);
+
+// Puts `layer` (enabled) on every material named in `materialNames`; "*" names them all. Throws
+// Error, listing the scene's material names, for a name that no material has, and for a layer
+// that validateGlintLayer rejects. Several materials with the same name all get the layer.
+void applyGlint(Scene& scene, const std::vector<std::string>& materialNames, const GlintLayer& layer);
+
+// Named views of the bounding box [low, high]: "default" and "front" look at its centre from +z,
+// far enough that the bounding sphere fits the 45 degree vertical field of view with a 10% margin;
+// "side" from +x, "top" from +y (up = -z), "close" at half the default distance.
+std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high);
+
+// Lighting for a scene that brings none: a point light above, right and in front of the bounding
+// box, a directional light from the upper left, and a uniform grey-blue environment (0.3), scaled
+// so that a white diffuse surface facing the lights is about as bright as 1.
+void addDefaultLighting(Scene& scene);
 
 }  // namespace glint::scene

@@ -1,0 +1,442 @@
+#include "scene/builtin_scenes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "glint/error.h"
+#include "glint/image_io.h"
+#include "glint/kernel/random.h"
+#include "scene/geometry.h"
+#include "scene/gltf_loader.h"
+
+namespace glint::scene {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// ---- Deterministic noise ----------------------------------------------------------------------
+// The kernel's pcg4d is a bijection with fixed integer arithmetic: the same bytes everywhere.
+
+float hashUnit(int x, int y, std::uint32_t seed) {
+  const glm::uvec4 h = kernel::pcg4d(glm::uvec4(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), seed, 0u));
+  return kernel::hashToUnitOpen(h.x);
+}
+
+// Value noise in [0, 1): smoothstep interpolation of lattice hashes.
+float valueNoise(glm::vec2 p, std::uint32_t seed) {
+  const glm::vec2 cell = glm::floor(p);
+  const glm::vec2 f = p - cell;
+  const glm::vec2 w = f * f * (3.0f - 2.0f * f);
+  const int x = static_cast<int>(cell.x);
+  const int y = static_cast<int>(cell.y);
+  const float a = hashUnit(x, y, seed);
+  const float b = hashUnit(x + 1, y, seed);
+  const float c = hashUnit(x, y + 1, seed);
+  const float d = hashUnit(x + 1, y + 1, seed);
+  return glm::mix(glm::mix(a, b, w.x), glm::mix(c, d, w.x), w.y);
+}
+
+// ---- Parquet ----------------------------------------------------------------------------------
+
+constexpr float kPlankWidth = 0.16f;   // metres
+constexpr float kPlankLength = 1.2f;   // metres
+constexpr float kGapWidth = 0.004f;    // metres: about a texel at 128 texels per metre
+constexpr int kTexelsPerMetre = 128;
+
+// Where a floor point (metres, x along the planks) falls: rows of planks, each row shifted by a
+// random offset, so the joints are staggered.
+struct PlankPoint {
+  std::uint32_t id;      // one hash per plank
+  glm::vec2 local;       // metres from the plank's corner
+  float edgeDistance;    // metres to the nearest plank edge
+};
+
+PlankPoint plankAt(glm::vec2 metres) {
+  const int row = static_cast<int>(std::floor(metres.y / kPlankWidth));
+  const float along = metres.x + kPlankLength * hashUnit(row, 0, 11u);
+  const int column = static_cast<int>(std::floor(along / kPlankLength));
+  PlankPoint point;
+  point.id = kernel::pcg4d(glm::uvec4(static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(column), 12u, 0u)).x;
+  point.local = glm::vec2(along - column * kPlankLength, metres.y - row * kPlankWidth);
+  point.edgeDistance = std::min(std::min(point.local.x, kPlankLength - point.local.x),
+                                std::min(point.local.y, kPlankWidth - point.local.y));
+  return point;
+}
+
+// Grain in [0, 1]: streaks along the plank, wavy across it, a different figure on every plank.
+float grainAt(const PlankPoint& plank) {
+  const auto seed = plank.id & 0xffffu;
+  const float warp = 2.5f * valueNoise(plank.local * glm::vec2(1.5f, 20.0f), seed) +
+                     0.8f * valueNoise(plank.local * glm::vec2(6.0f, 60.0f), seed + 1u);
+  const float rings = 0.5f + 0.5f * std::sin(2.0f * kPi * (plank.local.y * 45.0f + warp));
+  return rings * rings * rings;
+}
+
+// The floor's two textures, for a square floor of `metres` on a side. Colour: sRGB wood, a tone
+// per plank, darker grain streaks and joints. Roughness (linear): R = G = the varnish's wear per
+// plank (0.35 to 0.9), rougher along the grain and in the joints; B = 0 (not metallic). R scales
+// the glint alpha, G the base roughness (glTF's metallicRoughness channels).
+std::pair<Texture, Texture> parquetTextures(float metres) {
+  const int size = static_cast<int>(metres * kTexelsPerMetre);
+  Texture colour{"parquet colour", size, size, {}, true};
+  Texture roughness{"parquet roughness", size, size, {}, false};
+  colour.rgba.resize(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 4);
+  roughness.rgba.resize(colour.rgba.size());
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      // Texel centre in metres; texture rows go with v, which the floor quad lays along +z.
+      const glm::vec2 metresAt = (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + 0.5f) * (metres / size);
+      const PlankPoint plank = plankAt(metresAt);
+      const float tone = kernel::hashToUnitOpen(plank.id);
+      const float wear = kernel::hashToUnitOpen(kernel::pcg4d(glm::uvec4(plank.id, 13u, 0u, 0u)).x);
+      const float grain = grainAt(plank);
+      const bool joint = plank.edgeDistance < 0.5f * kGapWidth;
+      const float fine = valueNoise(metresAt * 300.0f, 14u);
+
+      glm::vec3 wood = glm::mix(glm::vec3(0.28f, 0.14f, 0.06f), glm::vec3(0.56f, 0.33f, 0.15f), tone);
+      wood *= (0.72f + 0.28f * (1.0f - grain)) * (0.94f + 0.06f * fine);
+      if (joint) wood *= 0.25f;
+      float rough = (0.35f + 0.55f * wear) * (0.85f + 0.3f * grain);
+      if (joint) rough = 1.0f;
+
+      const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)) * 4;
+      for (int c = 0; c < 3; ++c) colour.rgba[at + static_cast<std::size_t>(c)] = linearToSrgb8(wood[c]);
+      colour.rgba[at + 3] = 255;
+      const auto r = static_cast<std::uint8_t>(std::lround(std::clamp(rough, 0.0f, 1.0f) * 255.0f));
+      roughness.rgba[at + 0] = r;
+      roughness.rgba[at + 1] = r;
+      roughness.rgba[at + 2] = 0;
+      roughness.rgba[at + 3] = 255;
+    }
+  }
+  return {std::move(colour), std::move(roughness)};
+}
+
+// ---- Materials --------------------------------------------------------------------------------
+// Glint densities are chosen from the P-NDF's spread at the footprints of a 256 x 256 render
+// (docs/scenes.md, "Built-in scenes"): a coefficient of variation near 1 reads as clear glints.
+
+GlintLayer glintLayer(float alpha, float logDensity, float uvScale) {
+  GlintLayer layer;
+  layer.enabled = true;
+  layer.alpha = glm::vec2(alpha);
+  layer.logDensity = logDensity;
+  layer.uvScale = uvScale;
+  return layer;
+}
+
+// Roughness consistent with a glint alpha: alpha = roughness^2 (alphaFromRoughness's inverse).
+float roughnessFor(float alpha) { return std::sqrt(alpha); }
+
+Material redGlint() {
+  Material m;
+  m.name = "red glint";
+  m.baseColour = glm::vec4(0.6f, 0.05f, 0.05f, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(0.5f);
+  m.glint = glintLayer(0.5f, 13.0f, 4.0f);
+  return m;
+}
+
+// Uses textures `colourTexture` and `roughnessTexture` from parquetTextures.
+Material parquet(int colourTexture, int roughnessTexture) {
+  Material m;
+  m.name = "parquet";
+  m.baseColourTexture = colourTexture;
+  m.metallic = 0.0f;
+  m.roughness = 0.6f;
+  m.metallicRoughnessTexture = roughnessTexture;
+  m.glint = glintLayer(0.35f, 12.0f, 4.0f);
+  m.glint.roughnessTexture = roughnessTexture;
+  return m;
+}
+
+Material carPaint() {
+  Material m;
+  m.name = "car paint";
+  m.baseColour = glm::vec4(0.02f, 0.05f, 0.35f, 1.0f);
+  m.metallic = 1.0f;
+  m.roughness = roughnessFor(0.3f);
+  m.glint = glintLayer(0.3f, 12.0f, 4.0f);
+  m.glint.randomColours = true;
+  return m;
+}
+
+Material plainGrey(const char* name, float albedo) {
+  Material m;
+  m.name = name;
+  m.baseColour = glm::vec4(albedo, albedo, albedo, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = 0.8f;
+  return m;
+}
+
+Material sparklingStone() {
+  Material m;
+  m.name = "sparkling stone";
+  m.baseColour = glm::vec4(0.12f, 0.12f, 0.13f, 1.0f);  // dark granite, against which sparkles stand out
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(0.2f);
+  m.glint = glintLayer(0.2f, 11.0f, 6.0f);
+  return m;
+}
+
+Material glitterCurtain() {
+  Material m;
+  m.name = "glitter curtain";
+  m.baseColour = glm::vec4(0.16f, 0.02f, 0.24f, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(0.4f);
+  m.glint = glintLayer(0.4f, 14.0f, 4.0f);
+  m.glint.relativeArea = 0.3f;  // only some cells hold flakes: scattered sparkles on cloth
+  return m;
+}
+
+int addMaterial(Scene& scene, Material material) {
+  scene.materials.push_back(std::move(material));
+  return static_cast<int>(scene.materials.size()) - 1;
+}
+
+int addTexture(Scene& scene, Texture texture) {
+  scene.textures.push_back(std::move(texture));
+  return static_cast<int>(scene.textures.size()) - 1;
+}
+
+// ---- Shapes -----------------------------------------------------------------------------------
+
+// A superellipse (|x/a|^p + |r/b|^p = 1) as a lathe profile, by angle so that the tips get as many
+// rings as the flanks; exact zeros at the ends close the body.
+std::function<ProfilePoint(float)> superellipse(float a, float b, float p) {
+  return [=](float t) {
+    const float angle = kPi * t;
+    const float c = t <= 0.0f ? 1.0f : (t >= 1.0f ? -1.0f : std::cos(angle));
+    const float s = (t <= 0.0f || t >= 1.0f) ? 0.0f : std::sin(angle);
+    const float cx = std::pow(std::abs(c), 2.0f / p);
+    const float sr = std::pow(s, 2.0f / p);
+    // The gradient of the implicit form, |x/a|^(p-1) / a and |r/b|^(p-1) / b.
+    const glm::vec2 normal(std::copysign(std::pow(cx, p - 1.0f) / a, c), std::pow(sr, p - 1.0f) / b);
+    return ProfilePoint{std::copysign(a * cx, c), b * sr, normal};
+  };
+}
+
+// A car-like body of revolution around x, `scale` = 1 for about 4 m long, with a cabin on top.
+void addCar(Scene& scene, int material, glm::vec3 groundCentre, float scale) {
+  const float bodyRadius = 0.55f * scale;
+  const glm::vec3 bodyCentre = groundCentre + glm::vec3(0.0f, 0.2f * scale + bodyRadius, 0.0f);
+  scene.meshes.push_back(makeLathe("car body", material, bodyCentre, 64, 160, superellipse(2.0f * scale, bodyRadius, 2.6f)));
+  const glm::vec3 cabinCentre = bodyCentre + glm::vec3(-0.25f * scale, 0.42f * scale, 0.0f);
+  scene.meshes.push_back(makeLathe("car cabin", material, cabinCentre, 48, 64, superellipse(1.05f * scale, 0.42f * scale, 2.2f)));
+}
+
+// A curtain: a sheet hanging in the plane z = z0, width x height metres with its bottom at y0,
+// folded as a sine of amplitude `depth`. uv in metres, v growing downwards (unmirrored from +z).
+Mesh curtain(int material, float z0, float width, float height, float y0, float depth, float foldWidth) {
+  const float k = 2.0f * kPi / foldWidth;
+  return makeParametricSurface("curtain", material, 160, 40, [=](float s, float t) {
+    const float x = (s - 0.5f) * width;
+    const float y = y0 + (1.0f - t) * height;
+    const float z = z0 + depth * std::sin(k * x);
+    const float slope = depth * k * std::cos(k * x);  // dz/dx
+    return SurfacePoint{glm::vec3(x, y, z), glm::vec3(-slope, 0.0f, 1.0f), glm::vec2(s * width, t * height)};
+  });
+}
+
+// ---- Lighting ---------------------------------------------------------------------------------
+
+Light pointLight(glm::vec3 position, glm::vec3 intensity) {
+  Light light;
+  light.type = Light::Type::Point;
+  light.position = position;
+  light.intensity = intensity;
+  return light;
+}
+
+Light directionalLight(glm::vec3 direction, glm::vec3 irradiance) {
+  Light light;
+  light.type = Light::Type::Directional;
+  light.direction = glm::normalize(direction);
+  light.intensity = irradiance;
+  return light;
+}
+
+// An equirectangular 128 x 64 sky: blue zenith fading to a pale horizon, grey ground below.
+Environment sky(float intensity) {
+  Environment environment;
+  environment.width = 128;
+  environment.height = 64;
+  environment.intensity = intensity;
+  environment.pixels.resize(static_cast<std::size_t>(environment.width) * static_cast<std::size_t>(environment.height));
+  const glm::vec3 zenith(0.22f, 0.42f, 0.85f);
+  const glm::vec3 horizon(0.78f, 0.82f, 0.9f);
+  const glm::vec3 ground(0.3f, 0.29f, 0.28f);
+  for (int y = 0; y < environment.height; ++y) {
+    const float elevation = 0.5f * kPi - kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(environment.height);
+    const float h = std::sin(elevation);
+    const glm::vec3 colour = h >= 0.0f ? glm::mix(horizon, zenith, std::sqrt(h))
+                                       : glm::mix(horizon, ground, std::min(1.0f, 8.0f * -h));
+    for (int x = 0; x < environment.width; ++x) {
+      environment.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(environment.width) + static_cast<std::size_t>(x)] = colour;
+    }
+  }
+  return environment;
+}
+
+Camera camera(glm::vec3 position, glm::vec3 target, float fovDegrees = 45.0f) {
+  Camera c;
+  c.position = position;
+  c.target = target;
+  c.up = glm::vec3(0, 1, 0);
+  c.verticalFovDegrees = fovDegrees;
+  return c;
+}
+
+// The bounding-box presets (front, side, top, close) with the scene's own default.
+void setCameras(Scene& scene, const Camera& defaultCamera) {
+  scene.cameras = standardCameras(scene.boundsMin(), scene.boundsMax());
+  scene.cameras["default"] = defaultCamera;
+}
+
+// ---- The scenes -------------------------------------------------------------------------------
+
+Scene sphereScene() {
+  Scene scene;
+  scene.name = "sphere";
+  const int red = addMaterial(scene, redGlint());
+  scene.meshes.push_back(makeUvSphere("sphere", red, glm::vec3(0.0f), 1.0f, 128, 64));
+  // One light, up and to the right of the camera, so the highlight and its glints sit on the
+  // upper right of the sphere.
+  scene.lights.push_back(pointLight({3.0f, 3.0f, 5.0f}, glm::vec3(60.0f)));
+  scene.environment.uniform = glm::vec3(0.02f);
+  // A unit sphere spans 70% of the frame's height when tan(asin(1 / d)) = 0.7 tan(22.5 deg): d = 3.6.
+  setCameras(scene, camera({0.0f, 0.0f, 3.6f}, glm::vec3(0.0f)));
+  return scene;
+}
+
+Scene parquetScene() {
+  Scene scene;
+  scene.name = "parquet";
+  constexpr float kSize = 4.0f;
+  auto [colour, roughness] = parquetTextures(kSize);
+  const int colourTexture = addTexture(scene, std::move(colour));
+  const int roughnessTexture = addTexture(scene, std::move(roughness));
+  const int wood = addMaterial(scene, parquet(colourTexture, roughnessTexture));
+  scene.meshes.push_back(makeQuad("floor", wood, glm::vec3(0.0f), {0.5f * kSize, 0, 0}, {0, 0, 0.5f * kSize}));
+  // The point light sits beyond the centre, so its reflection (and the glints around it) lies in
+  // the middle of the grazing view.
+  scene.lights.push_back(pointLight({0.5f, 1.2f, -1.5f}, glm::vec3(5.0f)));
+  scene.lights.push_back(directionalLight({-0.3f, -1.0f, -0.4f}, glm::vec3(0.8f, 0.78f, 0.75f)));
+  scene.environment.uniform = glm::vec3(0.08f, 0.08f, 0.09f);
+  // 25 degrees above the floor, 4.5 m from its centre.
+  const float elevation = glm::radians(25.0f);
+  setCameras(scene, camera(4.5f * glm::vec3(0.0f, std::sin(elevation), std::cos(elevation)), glm::vec3(0.0f)));
+  // The whole floor from above: half of 4 m fits tan(22.5 deg) * 5.5 m.
+  Camera top = camera({0.0f, 5.5f, 0.0f}, glm::vec3(0.0f));
+  top.up = glm::vec3(0, 0, -1);
+  scene.cameras["top"] = top;
+  return scene;
+}
+
+Scene carpaintScene() {
+  Scene scene;
+  scene.name = "carpaint";
+  const int paint = addMaterial(scene, carPaint());
+  const int floor = addMaterial(scene, plainGrey("floor", 0.18f));
+  addCar(scene, paint, glm::vec3(0.0f), 1.0f);
+  scene.meshes.push_back(makeQuad("floor", floor, glm::vec3(0.0f), {6, 0, 0}, {0, 0, 6}, glm::vec2(12.0f)));
+  scene.lights.push_back(pointLight({2.0f, 4.0f, 3.0f}, glm::vec3(40.0f)));
+  scene.lights.push_back(directionalLight({-0.5f, -1.0f, -0.3f}, glm::vec3(1.0f, 0.97f, 0.92f)));
+  scene.environment = sky(0.5f);
+  setCameras(scene, camera({3.6f, 1.8f, 4.4f}, {0.0f, 0.6f, 0.0f}));
+  return scene;
+}
+
+Scene showroomScene() {
+  Scene scene;
+  scene.name = "showroom";
+  constexpr float kFloor = 8.0f;
+  auto [colour, roughness] = parquetTextures(kFloor);
+  const int colourTexture = addTexture(scene, std::move(colour));
+  const int roughnessTexture = addTexture(scene, std::move(roughness));
+  const int wood = addMaterial(scene, parquet(colourTexture, roughnessTexture));
+  const int stone = addMaterial(scene, sparklingStone());
+  const int red = addMaterial(scene, redGlint());
+  const int paint = addMaterial(scene, carPaint());
+  const int cloth = addMaterial(scene, glitterCurtain());
+
+  scene.meshes.push_back(makeQuad("parquet floor", wood, glm::vec3(0.0f), {0.5f * kFloor, 0, 0}, {0, 0, 0.5f * kFloor}));
+  // A low stone stage at the front left with the sphere on it, the car at the right, the curtain
+  // along the back.
+  const glm::vec3 stageCentre(-1.6f, 0.1f, 0.4f);
+  const glm::vec3 stageHalf(0.7f, 0.1f, 0.7f);
+  scene.meshes.push_back(makeBox("stone stage", stone, stageCentre, stageHalf, 1.0f));
+  const float sphereRadius = 0.45f;
+  scene.meshes.push_back(makeUvSphere("sphere", red, stageCentre + glm::vec3(0.0f, stageHalf.y + sphereRadius, 0.0f),
+                                      sphereRadius, 96, 48));
+  addCar(scene, paint, glm::vec3(1.5f, 0.0f, -0.6f), 0.6f);
+  scene.meshes.push_back(curtain(cloth, -3.5f, 7.0f, 3.2f, 0.02f, 0.08f, 0.45f));
+
+  // Glints show where a light's mirror image lies, so each light has a surface to sparkle on as
+  // seen from the default camera: the key on the sphere, car and curtain; the back-left light
+  // mirrors in the stage's top at about (-1.5, 0.2, 0.9); the right one in the floor at the lower right.
+  scene.lights.push_back(pointLight({0.5f, 3.5f, 2.5f}, glm::vec3(36.0f)));                  // key
+  scene.lights.push_back(pointLight({-2.6f, 1.8f, -2.4f}, glm::vec3(16.0f, 14.0f, 12.0f)));     // warm, back left
+  scene.lights.push_back(pointLight({3.0f, 3.0f, -2.0f}, glm::vec3(12.0f, 13.0f, 16.0f)));   // cool, back right
+  scene.environment = sky(0.15f);
+
+  setCameras(scene, camera({0.0f, 2.4f, 5.4f}, {0.0f, 0.6f, -1.0f}));
+  scene.cameras["wide"] = camera({4.5f, 3.2f, 6.0f}, {0.0f, 0.8f, -1.2f}, 60.0f);
+  scene.cameras["curtain"] = camera({0.5f, 1.6f, -1.0f}, {0.0f, 1.6f, -3.5f});
+  scene.cameras["car"] = camera({3.2f, 1.2f, 1.4f}, {1.5f, 0.45f, -0.6f});
+  return scene;
+}
+
+struct BuiltinScene {
+  const char* name;
+  Scene (*make)();
+};
+
+constexpr BuiltinScene kBuiltinScenes[] = {
+    {"sphere", sphereScene},
+    {"parquet", parquetScene},
+    {"carpaint", carpaintScene},
+    {"showroom", showroomScene},
+};
+
+std::string joinedNames() {
+  std::string names;
+  for (const BuiltinScene& scene : kBuiltinScenes) names += (names.empty() ? "" : ", ") + std::string(scene.name);
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() {
+  std::vector<std::string> names;
+  for (const BuiltinScene& scene : kBuiltinScenes) names.emplace_back(scene.name);
+  return names;
+}
+
+bool isBuiltinScene(const std::string& name) {
+  return std::any_of(std::begin(kBuiltinScenes), std::end(kBuiltinScenes),
+                     [&](const BuiltinScene& scene) { return name == scene.name; });
+}
+
+Scene makeBuiltinScene(const std::string& name) {
+  for (const BuiltinScene& scene : kBuiltinScenes) {
+    if (name == scene.name) return scene.make();
+  }
+  throw Error("unknown built-in scene '" + name + "' (built-in: " + joinedNames() + ")");
+}
+
+Scene loadScene(const std::string& nameOrPath) {
+  if (isBuiltinScene(nameOrPath)) return makeBuiltinScene(nameOrPath);
+  std::error_code ignored;
+  if (!nameOrPath.empty() && std::filesystem::exists(nameOrPath, ignored)) return loadGltf(nameOrPath);
+  throw Error("unknown scene '" + nameOrPath + "' (built-in: " + joinedNames() + ") and no such file");
+}
+
+}  // namespace glint::scene

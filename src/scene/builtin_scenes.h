@@ -1,0 +1,26 @@
+// Procedural scenes that need no files (docs/scenes.md, "Built-in scenes"): the authors' red glint
+// sphere, a varnished parquet floor, car paint, and a showroom combining them with glittering stone
+// and curtains. Deterministic: the same name gives the same bytes on every run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace glint::scene {
+
+// The scene `glint render` draws when none is named.
+inline constexpr const char* kDefaultScene = "showroom";
+
+// "sphere", "parquet", "carpaint", "showroom".
+std::vector<std::string> builtinSceneNames();
+bool isBuiltinScene(const std::string& name);
+// Throws Error listing the built-in names for an unknown name.
+Scene makeBuiltinScene(const std::string& name);
+
+// A built-in name, else a glTF file (.gltf or .glb, loadGltf). Throws Error
+// "unknown scene 'x' (built-in: sphere, ...) and no such file" when it is neither.
+Scene loadScene(const std::string& nameOrPath);
+
+}  // namespace glint::scene

@@ -1,0 +1,71 @@
+// Mesh building blocks shared by the glTF loader and the built-in scenes: the one tangent
+// generator, flat normals, and parametric surfaces (quads, boxes, UV spheres, lathes) with
+// analytic normals.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace glint::scene {
+
+// Per-vertex tangents from the uv derivatives of the triangles around each vertex (weighted by
+// triangle area), made orthogonal to the vertex normal (Gram-Schmidt). w is the glTF handedness:
+// cross(normal, tangent.xyz) * w points along -dP/dv, towards the top of a texture image. A vertex
+// whose triangles have degenerate uvs gets some unit tangent perpendicular to its normal, w = +1.
+// Normals must already be unit length.
+void generateTangents(Mesh& mesh);
+
+// Some unit vector perpendicular to the unit vector n (deterministic).
+glm::vec3 anyPerpendicular(glm::vec3 n);
+
+// glTF's rule for primitives without normals: flat shading. Every triangle gets three vertices of
+// its own carrying the face normal (a degenerate triangle gets +y); uvs and tangents are copied.
+void makeFlatShaded(Mesh& mesh);
+
+// Area-weighted average of the face normals around each vertex, unit length; +y for a vertex
+// that touches only degenerate triangles. Used to repair zero-length normals.
+std::vector<glm::vec3> smoothNormals(const Mesh& mesh);
+
+// Appends `from`'s vertices and triangles to `into` (material and name of `into` are kept).
+void appendMesh(Mesh& into, const Mesh& from);
+
+// A point of a parametric surface at parameters (s, t) in [0, 1]^2.
+struct SurfacePoint {
+  glm::vec3 position;
+  glm::vec3 normal;  // need not be unit length; must not be zero
+  glm::vec2 uv;
+};
+using Surface = std::function<SurfacePoint(float s, float t)>;
+
+// A (columns + 1) x (rows + 1) grid of surface points, two triangles per cell, each wound
+// counter-clockwise as seen from the side its normals point to; triangles with two coincident
+// corners (the poles of a sphere) are left out. Tangents are generated.
+Mesh makeParametricSurface(std::string name, int material, int columns, int rows, const Surface& surface);
+
+// A parallelogram centred at `centre` spanning +-halfU and +-halfV; uv runs over [0, uvExtent] along
+// halfU and halfV (v grows along +halfV); the normal is cross(halfV, halfU) normalised, so a floor
+// with halfU = +x and halfV = +z faces +y.
+Mesh makeQuad(std::string name, int material, glm::vec3 centre, glm::vec3 halfU, glm::vec3 halfV,
+              glm::vec2 uvExtent = glm::vec2(1.0f));
+
+// An axis-aligned box, six outward quads; uvs in metres times uvPerMetre on each face.
+Mesh makeBox(std::string name, int material, glm::vec3 centre, glm::vec3 halfSize, float uvPerMetre);
+
+// A UV sphere: uv = (phi / 2 pi, theta / pi) with theta from the +y pole, phi = 0 at +z and growing
+// towards +x, so that the texture is not mirrored seen from outside.
+Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings);
+
+// A point of a lathe profile at t in [0, 1]: its abscissa along the axis, its radius (>= 0) and
+// the profile's outward normal in the (axis, radius) plane.
+struct ProfilePoint {
+  float x;
+  float radius;
+  glm::vec2 normal;
+};
+// A body of revolution around the x axis through `centre`: u = t along the profile, v = angle / 2 pi.
+Mesh makeLathe(std::string name, int material, glm::vec3 centre, int segments, int rings,
+               const std::function<ProfilePoint(float t)>& profile);
+
+}  // namespace glint::scene

@@ -1,0 +1,757 @@
+#include "scene/gltf_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+// Debian's libtinygltf-dev ships the implementation compiled (libtinygltf.so): no
+// TINYGLTF_IMPLEMENTATION or STB_* macros here.
+#include <tiny_gltf.h>
+
+#include "glint/error.h"
+#include "scene/geometry.h"
+
+namespace glint::scene {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// tinygltf's messages span lines; ours are one line (docs/conventions.md, "Errors").
+std::string oneLine(const std::string& text) {
+  std::string line;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      if (!line.empty() && line.back() != ' ') line += "; ";
+    } else {
+      line += c;
+    }
+  }
+  while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
+  return line;
+}
+
+template <typename... Parts>
+Error error(const Parts&... parts) {
+  std::ostringstream message;
+  (message << ... << parts);
+  return Error(message.str());
+}
+
+// Prefixes an Error thrown by `body` with `context` (e.g. "material 2 'paint': ").
+template <typename Body>
+auto withContext(const std::string& context, Body&& body) {
+  try {
+    return body();
+  } catch (const Error& e) {
+    throw Error(context + e.what());
+  }
+}
+
+// ---- Accessors --------------------------------------------------------------------------------
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    default: return "a matrix or unknown type";
+  }
+}
+
+// Bytes [offset, offset + stride * (count - 1) + elementSize) of buffer view `viewIndex`, checked
+// against the view and the view against its buffer. All sizes in 64 bits: no overflow from huge
+// counts in a hostile file (count is checked against the view's length before multiplying).
+const unsigned char* viewBytes(const tinygltf::Model& model, int viewIndex, std::uint64_t offset,
+                               std::uint64_t stride, std::uint64_t elementSize, std::uint64_t count) {
+  if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= model.bufferViews.size()) {
+    throw error("buffer view ", viewIndex, " does not exist (the file has ", model.bufferViews.size(), ")");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(viewIndex)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
+    throw error("buffer view ", viewIndex, ": buffer ", view.buffer, " does not exist");
+  }
+  const tinygltf::Buffer& buffer = model.buffers[static_cast<std::size_t>(view.buffer)];
+  if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset) {
+    throw error("buffer view ", viewIndex, ": bytes ", view.byteOffset, " + ", view.byteLength,
+                " exceed buffer ", view.buffer, " (", buffer.data.size(), " bytes)");
+  }
+  if (count > 0) {
+    const std::uint64_t length = view.byteLength;
+    const bool fits = count <= length && offset <= length && stride <= length &&
+                      offset + stride * (count - 1) + elementSize <= length;
+    if (!fits) {
+      throw error(count, " elements of ", elementSize, " bytes, ", stride, " apart from offset ", offset,
+                  " exceed buffer view ", viewIndex, " (", length, " bytes)");
+    }
+  }
+  return buffer.data.data() + view.byteOffset + offset;
+}
+
+// One component as glTF defines it: floats as they are, normalised integers mapped to [0, 1] or
+// [-1, 1], other integers as their value (KHR_mesh_quantization).
+double readComponent(const unsigned char* p, int componentType, bool normalized) {
+  auto load = [p]<typename T>(T) {
+    T value;
+    std::memcpy(&value, p, sizeof value);  // data need not be aligned
+    return value;
+  };
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return load(float{});
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double v = load(std::int8_t{});
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      const double v = load(std::uint8_t{});
+      return normalized ? v / 255.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      const double v = load(std::int16_t{});
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      const double v = load(std::uint16_t{});
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      const double v = load(std::uint32_t{});
+      return normalized ? v / 4294967295.0 : v;
+    }
+    default: return 0.0;  // rejected before reading
+  }
+}
+
+int componentSize(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return 4;
+    default: return 0;
+  }
+}
+
+struct AccessorValues {
+  std::size_t count = 0;
+  int components = 0;
+  std::vector<double> values;  // count * components
+};
+
+// Reads accessor `index`, which must be of type `expectedType`, with its sparse substitution.
+AccessorValues readAccessor(const tinygltf::Model& model, int index, int expectedType) {
+  if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+    throw error("accessor ", index, " does not exist (the file has ", model.accessors.size(), ")");
+  }
+  return withContext("accessor " + std::to_string(index) + ": ", [&] {
+    const tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(index)];
+    if (accessor.type != expectedType) {
+      throw error("type ", typeName(accessor.type), ", expected ", typeName(expectedType));
+    }
+    const int size = componentSize(accessor.componentType);
+    if (size == 0) throw error("unsupported component type ", accessor.componentType);
+    AccessorValues result;
+    result.count = accessor.count;
+    result.components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
+    const std::uint64_t elementSize = static_cast<std::uint64_t>(size) * static_cast<std::uint64_t>(result.components);
+    const auto components = static_cast<std::size_t>(result.components);
+    if (accessor.bufferView >= 0) {
+      if (static_cast<std::size_t>(accessor.bufferView) >= model.bufferViews.size()) {
+        throw error("buffer view ", accessor.bufferView, " does not exist (the file has ", model.bufferViews.size(), ")");
+      }
+      const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
+      const std::uint64_t stride = view.byteStride == 0 ? elementSize : view.byteStride;
+      if (stride < elementSize || stride % static_cast<std::uint64_t>(size) != 0) {
+        throw error("byte stride ", stride, " does not fit elements of ", elementSize, " bytes");
+      }
+      const unsigned char* bytes =
+          viewBytes(model, accessor.bufferView, accessor.byteOffset, stride, elementSize, accessor.count);
+      result.values.resize(result.count * components);
+      for (std::size_t i = 0; i < result.count; ++i) {
+        for (std::size_t c = 0; c < components; ++c) {
+          result.values[i * components + c] =
+              readComponent(bytes + i * stride + c * static_cast<std::size_t>(size), accessor.componentType,
+                            accessor.normalized);
+        }
+      }
+    } else {
+      // glTF: an accessor without a buffer view is all zeros (unless sparse values replace some).
+      // No bytes bound the count here: cap it so a hostile file cannot ask for gigabytes of zeros.
+      if (accessor.count > (std::size_t{1} << 22)) throw error("count ", accessor.count, " without a buffer view");
+      result.values.assign(result.count * components, 0.0);
+    }
+    if (accessor.sparse.isSparse) {
+      const auto& sparse = accessor.sparse;
+      if (sparse.count < 0 || static_cast<std::size_t>(sparse.count) > accessor.count) {
+        throw error("sparse count ", sparse.count, " exceeds count ", accessor.count);
+      }
+      const int indexSize = componentSize(sparse.indices.componentType);
+      if (indexSize == 0 || sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+          sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+          sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+        throw error("sparse indices of unsupported component type ", sparse.indices.componentType);
+      }
+      const auto count = static_cast<std::uint64_t>(sparse.count);
+      const unsigned char* indices =
+          viewBytes(model, sparse.indices.bufferView, static_cast<std::uint64_t>(std::max(0, sparse.indices.byteOffset)),
+                    static_cast<std::uint64_t>(indexSize), static_cast<std::uint64_t>(indexSize), count);
+      const unsigned char* values =
+          viewBytes(model, sparse.values.bufferView, static_cast<std::uint64_t>(std::max(0, sparse.values.byteOffset)),
+                    elementSize, elementSize, count);
+      for (std::size_t i = 0; i < count; ++i) {
+        const double target = readComponent(indices + i * static_cast<std::size_t>(indexSize),
+                                            sparse.indices.componentType, false);
+        if (target >= static_cast<double>(accessor.count)) {
+          throw error("sparse index ", static_cast<std::uint64_t>(target), " out of range (count ", accessor.count, ")");
+        }
+        for (std::size_t c = 0; c < components; ++c) {
+          result.values[static_cast<std::size_t>(target) * components + c] =
+              readComponent(values + i * elementSize + c * static_cast<std::size_t>(size), accessor.componentType,
+                            accessor.normalized);
+        }
+      }
+    }
+    return result;
+  });
+}
+
+// ---- Textures ---------------------------------------------------------------------------------
+
+// An image decoded by tinygltf (1 to 4 channels, 8 or 16 bits) as RGBA8: grey spreads to RGB,
+// missing alpha is opaque, 16-bit values are rounded to 8 bits.
+Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
+  // Embedded images (buffer views, data URIs) are known by their name: a data URI is the image itself.
+  const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+  const std::string label = external ? image.uri : image.name;
+  return withContext("image " + std::to_string(imageIndex) + (label.empty() ? "" : " '" + label + "'") + ": ", [&] {
+    if (image.image.empty()) throw error("no image data (the file is missing or cannot be decoded)");
+    const int channels = image.component;
+    const int bytes = image.bits / 8;
+    if (channels < 1 || channels > 4) throw error(channels, " channels, expected 1 to 4");
+    if (image.bits != 8 && image.bits != 16) throw error(image.bits, " bits per channel, expected 8 or 16");
+    if (image.width <= 0 || image.height <= 0) throw error("size ", image.width, " x ", image.height);
+    const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    if (image.image.size() != pixels * static_cast<std::size_t>(channels * bytes)) {
+      throw error(image.image.size(), " bytes of data for ", image.width, " x ", image.height, " x ", channels,
+                  " channels of ", image.bits, " bits");
+    }
+    Texture texture;
+    texture.name = label.empty() ? "image " + std::to_string(imageIndex) : label;
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.srgb = srgb;
+    texture.rgba.resize(pixels * 4);
+    auto channel = [&](std::size_t pixel, int c) -> std::uint8_t {
+      const unsigned char* p = image.image.data() + (pixel * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)) * static_cast<std::size_t>(bytes);
+      if (bytes == 1) return p[0];
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);  // tinygltf stores 16-bit samples in native byte order
+      return static_cast<std::uint8_t>((v * 255u + 32767u) / 65535u);
+    };
+    for (std::size_t i = 0; i < pixels; ++i) {
+      std::uint8_t* out = texture.rgba.data() + i * 4;
+      if (channels <= 2) {
+        out[0] = out[1] = out[2] = channel(i, 0);
+        out[3] = channels == 2 ? channel(i, 1) : 255;
+      } else {
+        for (int c = 0; c < 3; ++c) out[c] = channel(i, c);
+        out[3] = channels == 4 ? channel(i, 3) : 255;
+      }
+    }
+    return texture;
+  });
+}
+
+// ---- Glint extras -----------------------------------------------------------------------------
+
+const std::array<const char*, 12> kGlintFields = {"alpha", "log_density", "relative_area", "density_randomisation",
+                                                  "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
+                                                  "roughness_texture", "log_density_texture", "log_density_range",
+                                                  "relative_area_texture"};
+
+float numberField(const nlohmann::json& value, const std::string& field) {
+  if (!value.is_number()) throw error(field, " must be a number");
+  return value.get<float>();
+}
+
+glm::vec2 pairField(const nlohmann::json& value, const std::string& field) {
+  if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
+    throw error(field, " must be an array of two numbers");
+  }
+  return {value[0].get<float>(), value[1].get<float>()};
+}
+
+// An integer in [low, high]; a number with a fractional part, or out of range, is an error.
+std::uint64_t wholeField(const nlohmann::json& value, const std::string& field, std::uint64_t low, std::uint64_t high) {
+  bool ok = false;
+  std::uint64_t result = 0;
+  if (value.is_number_unsigned()) {
+    result = value.get<std::uint64_t>();
+    ok = true;
+  } else if (value.is_number_integer()) {
+    ok = value.get<std::int64_t>() >= 0;
+    result = ok ? static_cast<std::uint64_t>(value.get<std::int64_t>()) : 0;
+  } else if (value.is_number_float()) {
+    const double number = value.get<double>();
+    ok = number >= 0.0 && number == std::floor(number) && number <= static_cast<double>(high);
+    result = ok ? static_cast<std::uint64_t>(number) : 0;
+  }
+  if (!ok || result < low || result > high) throw error(field, " must be an integer in [", low, ", ", high, "]");
+  return result;
+}
+
+// ---- The reader -------------------------------------------------------------------------------
+
+class GltfReader {
+ public:
+  explicit GltfReader(const tinygltf::Model& model) : model_(model) {}
+
+  Scene read(const std::string& name) {
+    checkExtensions();
+    scene_.name = name;
+    for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& source = model_.materials[i];
+      withContext("material " + std::to_string(i) + (source.name.empty() ? "" : " '" + source.name + "'") + ": ",
+                  [&] { scene_.materials.push_back(material(source, static_cast<int>(i))); });
+    }
+    std::vector<bool> onPath(model_.nodes.size(), false);
+    for (int root : rootNodes()) visitNode(root, glm::dmat4(1.0), onPath, 0);
+    std::size_t triangles = 0;
+    for (const Mesh& mesh : scene_.meshes) triangles += mesh.indices.size() / 3;
+    if (triangles == 0) throw error("no triangles in the scene");
+    scene_.cameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
+    // KHR_lights_punctual is not read: every glTF scene gets the same default lighting.
+    addDefaultLighting(scene_);
+    scene_.exposure = 1.0f;
+    return std::move(scene_);
+  }
+
+ private:
+  void checkExtensions() const {
+    // Quantised attributes are plain normalised or integer accessors, which readAccessor handles;
+    // any other required extension changes what the data means.
+    for (const std::string& extension : model_.extensionsRequired) {
+      if (extension != "KHR_mesh_quantization") throw error("requires extension ", extension, ", which glint does not support");
+    }
+  }
+
+  std::vector<int> rootNodes() const {
+    if (model_.defaultScene >= 0) {
+      if (static_cast<std::size_t>(model_.defaultScene) >= model_.scenes.size()) {
+        throw error("default scene ", model_.defaultScene, " does not exist (the file has ", model_.scenes.size(), ")");
+      }
+      return model_.scenes[static_cast<std::size_t>(model_.defaultScene)].nodes;
+    }
+    if (!model_.scenes.empty()) return model_.scenes[0].nodes;
+    // No scene at all: every node that is nobody's child is a root.
+    std::vector<bool> isChild(model_.nodes.size(), false);
+    for (const tinygltf::Node& node : model_.nodes) {
+      for (int child : node.children) {
+        if (child >= 0 && static_cast<std::size_t>(child) < isChild.size()) isChild[static_cast<std::size_t>(child)] = true;
+      }
+    }
+    std::vector<int> roots;
+    for (std::size_t i = 0; i < model_.nodes.size(); ++i) {
+      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+    return roots;
+  }
+
+  static glm::dmat4 localTransform(const tinygltf::Node& node) {
+    if (!node.matrix.empty()) {
+      if (node.matrix.size() != 16) throw error("matrix has ", node.matrix.size(), " numbers, expected 16");
+      return glm::make_mat4(node.matrix.data());  // glTF matrices are column-major, like glm's
+    }
+    glm::dmat4 transform(1.0);
+    if (!node.translation.empty()) {
+      if (node.translation.size() != 3) throw error("translation has ", node.translation.size(), " numbers");
+      transform = glm::translate(transform, glm::make_vec3(node.translation.data()));
+    }
+    if (!node.rotation.empty()) {
+      if (node.rotation.size() != 4) throw error("rotation has ", node.rotation.size(), " numbers");
+      const auto& r = node.rotation;
+      // glTF quaternions are (x, y, z, w); glm's constructor takes w first.
+      transform *= glm::mat4_cast(glm::normalize(glm::dquat(r[3], r[0], r[1], r[2])));
+    }
+    if (!node.scale.empty()) {
+      if (node.scale.size() != 3) throw error("scale has ", node.scale.size(), " numbers");
+      transform = glm::scale(transform, glm::make_vec3(node.scale.data()));
+    }
+    return transform;
+  }
+
+  void visitNode(int index, const glm::dmat4& parent, std::vector<bool>& onPath, int depth) {
+    // Recursion depth is bounded so that a hostile chain of nodes cannot overflow the stack.
+    constexpr int kMaxDepth = 1000;
+    if (depth > kMaxDepth) throw error("node hierarchy deeper than ", kMaxDepth);
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size()) {
+      throw error("node ", index, " does not exist (the file has ", model_.nodes.size(), ")");
+    }
+    const auto slot = static_cast<std::size_t>(index);
+    if (onPath[slot]) throw error("node ", index, " is its own ancestor");
+    onPath[slot] = true;
+    const tinygltf::Node& node = model_.nodes[slot];
+    const glm::dmat4 world = withContext("node " + std::to_string(index) + ": ", [&] {
+      const glm::dmat4 transform = parent * localTransform(node);
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+          if (!std::isfinite(transform[c][r])) throw error("transform is not finite");
+        }
+      }
+      return transform;
+    });
+    if (node.mesh >= 0) {
+      if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+        throw error("node ", index, ": mesh ", node.mesh, " does not exist (the file has ", model_.meshes.size(), ")");
+      }
+      const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(node.mesh)];
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        std::string context = "mesh " + std::to_string(node.mesh) + (mesh.name.empty() ? "" : " '" + mesh.name + "'") +
+                              " primitive " + std::to_string(p) + ": ";
+        withContext(context, [&] { addPrimitive(mesh, node.mesh, p, world); });
+      }
+    }
+    for (int child : node.children) visitNode(child, world, onPath, depth + 1);
+    onPath[slot] = false;
+  }
+
+  std::vector<std::uint32_t> triangleIndices(const tinygltf::Primitive& primitive, int mode, std::size_t vertexCount) const {
+    std::vector<std::uint32_t> source;
+    if (primitive.indices >= 0) {
+      const tinygltf::Accessor* accessor =
+          static_cast<std::size_t>(primitive.indices) < model_.accessors.size()
+              ? &model_.accessors[static_cast<std::size_t>(primitive.indices)]
+              : nullptr;
+      if (accessor && (accessor->componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || accessor->normalized ||
+                       accessor->componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                       accessor->componentType == TINYGLTF_COMPONENT_TYPE_SHORT)) {
+        throw error("indices (accessor ", primitive.indices, ") must be unsigned integers");
+      }
+      const AccessorValues values = readAccessor(model_, primitive.indices, TINYGLTF_TYPE_SCALAR);
+      source.reserve(values.count);
+      for (double value : values.values) {
+        if (value >= static_cast<double>(vertexCount)) {
+          throw error("index ", static_cast<std::uint64_t>(value), " out of range (", vertexCount, " vertices)");
+        }
+        source.push_back(static_cast<std::uint32_t>(value));
+      }
+    } else {
+      if (vertexCount > 0xffffffffu) throw error("too many vertices");
+      source.resize(vertexCount);
+      for (std::size_t i = 0; i < vertexCount; ++i) source[i] = static_cast<std::uint32_t>(i);
+    }
+    std::vector<std::uint32_t> triangles;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (source.size() % 3 != 0) throw error(source.size(), " indices, not a multiple of 3");
+      triangles = std::move(source);
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      // glTF: triangle i is (i, i + 1 + i % 2, i + 2 - i % 2), keeping the winding.
+      for (std::size_t i = 0; i + 2 < source.size(); ++i) {
+        triangles.insert(triangles.end(), {source[i], source[i + 1 + i % 2], source[i + 2 - i % 2]});
+      }
+    } else {  // TINYGLTF_MODE_TRIANGLE_FAN
+      for (std::size_t i = 1; i + 1 < source.size(); ++i) {
+        triangles.insert(triangles.end(), {source[i], source[i + 1], source[0]});
+      }
+    }
+    return triangles;
+  }
+
+  // Attribute `name` of `type` (with `count` elements when given), all finite; empty when the
+  // primitive lacks it.
+  AccessorValues attribute(const tinygltf::Primitive& primitive, const std::string& name, int type,
+                           std::optional<std::size_t> count) const {
+    const auto found = primitive.attributes.find(name);
+    if (found == primitive.attributes.end()) return {};
+    return withContext(name + ": ", [&] {
+      AccessorValues values = readAccessor(model_, found->second, type);
+      if (count && values.count != *count) throw error(values.count, " elements, POSITION has ", *count);
+      for (std::size_t i = 0; i < values.values.size(); ++i) {
+        if (!std::isfinite(values.values[i])) {
+          throw error("element ", i / static_cast<std::size_t>(values.components), " is not finite");
+        }
+      }
+      return values;
+    });
+  }
+
+  void addPrimitive(const tinygltf::Mesh& sourceMesh, int meshIndex, std::size_t primitiveIndex, const glm::dmat4& world) {
+    const tinygltf::Primitive& primitive = sourceMesh.primitives[primitiveIndex];
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      return;  // points and lines: nothing to shade
+    }
+    if (!primitive.attributes.contains("POSITION")) throw error("no POSITION attribute");
+    const AccessorValues positions = attribute(primitive, "POSITION", TINYGLTF_TYPE_VEC3, std::nullopt);
+    const std::size_t count = positions.count;
+    const std::vector<double> normals = attribute(primitive, "NORMAL", TINYGLTF_TYPE_VEC3, count).values;
+    const std::vector<double> uvs = attribute(primitive, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, count).values;
+    const std::vector<double> tangents = attribute(primitive, "TANGENT", TINYGLTF_TYPE_VEC4, count).values;
+
+    const glm::dmat3 linear(world);
+    const double determinant = glm::determinant(linear);
+    // A node scaled to nothing (a common way to hide a part) has no area to draw.
+    if (!(std::abs(determinant) > 0.0)) return;
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    const double handedness = determinant < 0.0 ? -1.0 : 1.0;
+
+    Mesh mesh;
+    mesh.name = sourceMesh.name.empty() ? "mesh " + std::to_string(meshIndex) : sourceMesh.name;
+    if (sourceMesh.primitives.size() > 1) mesh.name += " #" + std::to_string(primitiveIndex);
+    mesh.material = materialIndex(primitive.material);
+    mesh.indices = triangleIndices(primitive, mode, count);
+    if (mesh.indices.empty()) return;
+    // A mirroring transform turns counter-clockwise triangles clockwise: turn them back.
+    if (determinant < 0.0) {
+      for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+    }
+
+    mesh.vertices.resize(count);
+    bool badNormals = false;
+    bool badTangents = false;
+    for (std::size_t i = 0; i < count; ++i) {
+      Vertex& v = mesh.vertices[i];
+      const glm::dvec3 position = glm::make_vec3(&positions.values[3 * i]);
+      v.position = glm::vec3(world * glm::dvec4(position, 1.0));
+      if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z)) {
+        throw error("POSITION ", i, " is not finite after the node transforms");
+      }
+      v.uv = uvs.empty() ? glm::vec2(0.0f) : glm::vec2(glm::make_vec2(&uvs[2 * i]));
+      if (!normals.empty()) {
+        const glm::dvec3 n = normalMatrix * glm::make_vec3(&normals[3 * i]);
+        const double length = glm::length(n);
+        if (length > 1e-12 && std::isfinite(length)) {
+          v.normal = glm::vec3(n / length);
+        } else {
+          v.normal = glm::vec3(0.0f);  // repaired below from the faces around it
+          badNormals = true;
+        }
+      }
+      if (!tangents.empty()) {
+        const glm::dvec3 t = linear * glm::make_vec3(&tangents[4 * i]);
+        const double w = tangents[4 * i + 3] < 0.0 ? -handedness : handedness;
+        v.tangent = glm::vec4(glm::vec3(t), static_cast<float>(w));
+      }
+    }
+    if (normals.empty()) {
+      makeFlatShaded(mesh);  // glTF: no normals means flat shading
+    } else if (badNormals) {
+      const std::vector<glm::vec3> repaired = smoothNormals(mesh);
+      for (std::size_t i = 0; i < count; ++i) {
+        if (mesh.vertices[i].normal == glm::vec3(0.0f)) mesh.vertices[i].normal = repaired[i];
+      }
+    }
+    if (!tangents.empty() && !normals.empty()) {
+      // The transforms (and the file) may leave tangents off perpendicular: Gram-Schmidt again.
+      for (Vertex& v : mesh.vertices) {
+        const glm::vec3 t = glm::vec3(v.tangent) - v.normal * glm::dot(v.normal, glm::vec3(v.tangent));
+        const float length = glm::length(t);
+        if (length > 1e-6f && std::isfinite(length)) {
+          v.tangent = glm::vec4(t / length, v.tangent.w);
+        } else {
+          badTangents = true;
+          v.tangent = glm::vec4(0.0f);
+        }
+      }
+      if (badTangents) {
+        Mesh generated = mesh;
+        generateTangents(generated);
+        for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+          if (mesh.vertices[i].tangent == glm::vec4(0.0f)) mesh.vertices[i].tangent = generated.vertices[i].tangent;
+        }
+      }
+    } else {
+      generateTangents(mesh);
+    }
+    scene_.meshes.push_back(std::move(mesh));
+  }
+
+  int materialIndex(int index) {
+    if (index >= 0) {
+      if (static_cast<std::size_t>(index) >= model_.materials.size()) {
+        throw error("material ", index, " does not exist (the file has ", model_.materials.size(), ")");
+      }
+      return index;
+    }
+    if (defaultMaterial_ < 0) {
+      // The glTF default material: every property at its default (white, metallic 1, roughness 1).
+      Material fallback;
+      fallback.name = "default";
+      fallback.baseColour = glm::vec4(1.0f);
+      fallback.metallic = 1.0f;
+      fallback.roughness = 1.0f;
+      defaultMaterial_ = static_cast<int>(scene_.materials.size());
+      scene_.materials.push_back(fallback);
+    }
+    return defaultMaterial_;
+  }
+
+  // Scene texture for glTF texture `index` in the given colour space, decoded once per image and
+  // colour space.
+  int texture(int index, bool srgb) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.textures.size()) {
+      throw error("texture ", index, " does not exist (the file has ", model_.textures.size(), ")");
+    }
+    const int source = model_.textures[static_cast<std::size_t>(index)].source;
+    if (source < 0 || static_cast<std::size_t>(source) >= model_.images.size()) {
+      throw error("texture ", index, " has no image it can read (source ", source, ")");
+    }
+    const auto key = std::make_pair(source, srgb);
+    if (const auto found = textureOf_.find(key); found != textureOf_.end()) return found->second;
+    scene_.textures.push_back(toTexture(model_.images[static_cast<std::size_t>(source)], source, srgb));
+    const int result = static_cast<int>(scene_.textures.size()) - 1;
+    textureOf_[key] = result;
+    return result;
+  }
+
+  int optionalTexture(int index, bool srgb, const char* what) {
+    if (index < 0) return -1;
+    return withContext(std::string(what) + ": ", [&] { return texture(index, srgb); });
+  }
+
+  static float unitFactor(double value, const char* field) {
+    if (!(value >= 0.0 && value <= 1.0)) throw error(field, " must be in [0, 1], got ", value);
+    return static_cast<float>(value);
+  }
+
+  Material material(const tinygltf::Material& source, int index) {
+    Material m;
+    m.name = source.name.empty() ? "material " + std::to_string(index) : source.name;
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4) {
+      for (int c = 0; c < 4; ++c) m.baseColour[c] = unitFactor(pbr.baseColorFactor[static_cast<std::size_t>(c)], "baseColorFactor");
+    } else if (!pbr.baseColorFactor.empty()) {
+      throw error("baseColorFactor has ", pbr.baseColorFactor.size(), " numbers, expected 4");
+    }
+    m.metallic = unitFactor(pbr.metallicFactor, "metallicFactor");
+    m.roughness = unitFactor(pbr.roughnessFactor, "roughnessFactor");
+    m.baseColourTexture = optionalTexture(pbr.baseColorTexture.index, true, "baseColorTexture");
+    m.metallicRoughnessTexture = optionalTexture(pbr.metallicRoughnessTexture.index, false, "metallicRoughnessTexture");
+    m.normalTexture = optionalTexture(source.normalTexture.index, false, "normalTexture");
+    m.normalScale = static_cast<float>(source.normalTexture.scale);
+    if (!std::isfinite(m.normalScale)) throw error("normalTexture.scale is not finite");
+    m.occlusionTexture = optionalTexture(source.occlusionTexture.index, false, "occlusionTexture");
+    if (source.emissiveFactor.size() == 3) {
+      for (int c = 0; c < 3; ++c) m.emissive[c] = unitFactor(source.emissiveFactor[static_cast<std::size_t>(c)], "emissiveFactor");
+    } else if (!source.emissiveFactor.empty()) {
+      throw error("emissiveFactor has ", source.emissiveFactor.size(), " numbers, expected 3");
+    }
+    m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
+    // Extras are free-form: only an object with a "glint" member concerns glint. They are read from
+    // the original JSON: tinygltf's own Value drops empty objects and truncates integers to 32 bits.
+    if (!source.extras_json_string.empty()) {
+      const nlohmann::json extras = nlohmann::json::parse(source.extras_json_string, nullptr, false);
+      if (extras.is_object() && extras.contains("glint")) {
+        m.glint = withContext("extras.glint: ", [&] { return glintLayer(extras["glint"], m); });
+      }
+    }
+    return m;
+  }
+
+  // docs/scenes.md, "Glint parameters in glTF extras".
+  GlintLayer glintLayer(const nlohmann::json& glint, const Material& material) {
+    if (!glint.is_object()) throw error("must be an object");
+    for (const auto& item : glint.items()) {
+      const std::string& key = item.key();
+      if (std::find(kGlintFields.begin(), kGlintFields.end(), key) == kGlintFields.end()) {
+        std::string known;
+        for (const char* field : kGlintFields) known += (known.empty() ? "" : ", ") + std::string(field);
+        throw error("unknown field '", key, "' (known: ", known, ")");
+      }
+    }
+    GlintLayer layer;
+    layer.enabled = true;
+    layer.alpha = glm::vec2(alphaFromRoughness(material.roughness));
+    if (glint.contains("alpha")) {
+      const nlohmann::json& alpha = glint["alpha"];
+      if (alpha.is_number()) {
+        layer.alpha = glm::vec2(numberField(alpha, "alpha"));
+      } else if (alpha.is_array()) {
+        layer.alpha = pairField(alpha, "alpha");
+      } else {
+        throw error("alpha must be a number or an array of two numbers");
+      }
+    }
+    const std::pair<const char*, float*> numbers[] = {{"log_density", &layer.logDensity},
+                                                      {"relative_area", &layer.relativeArea},
+                                                      {"density_randomisation", &layer.densityRandomisation},
+                                                      {"max_anisotropy", &layer.maxAnisotropy},
+                                                      {"uv_scale", &layer.uvScale}};
+    for (const auto& [field, target] : numbers) {
+      if (glint.contains(field)) *target = numberField(glint[field], field);
+    }
+    if (glint.contains("pattern_seed")) {
+      layer.patternSeed = static_cast<std::uint32_t>(wholeField(glint["pattern_seed"], "pattern_seed", 0, 0xffffffffu));
+    }
+    if (glint.contains("random_colours")) {
+      if (!glint["random_colours"].is_boolean()) throw error("random_colours must be true or false");
+      layer.randomColours = glint["random_colours"].get<bool>();
+    }
+    if (glint.contains("log_density_range")) layer.logDensityRange = pairField(glint["log_density_range"], "log_density_range");
+    const std::pair<const char*, int*> textures[] = {{"roughness_texture", &layer.roughnessTexture},
+                                                     {"log_density_texture", &layer.logDensityTexture},
+                                                     {"relative_area_texture", &layer.relativeAreaTexture}};
+    for (const auto& [field, target] : textures) {
+      if (!glint.contains(field)) continue;
+      if (model_.textures.empty()) throw error(field, ": the file has no textures");
+      const int index = static_cast<int>(wholeField(glint[field], field, 0, model_.textures.size() - 1));
+      *target = withContext(std::string(field) + ": ", [&] { return texture(index, false); });
+    }
+    validateGlintLayer(layer, scene_.textures.size());
+    return layer;
+  }
+
+  const tinygltf::Model& model_;
+  Scene scene_;
+  std::map<std::pair<int, bool>, int> textureOf_;  // (image, sRGB) -> scene texture
+  int defaultMaterial_ = -1;
+};
+
+bool isBinaryGltf(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  char magic[4] = {};
+  file.read(magic, 4);
+  return file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+}
+
+}  // namespace
+
+Scene loadGltf(const fs::path& path) {
+  try {
+    std::error_code ignored;
+    if (!fs::exists(path, ignored)) throw error("no such file");
+    if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
+    tinygltf::TinyGLTF loader;
+    loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
+    tinygltf::Model model;
+    std::string errors;
+    std::string warnings;
+    // The content decides, not the extension: a .gltf that is really binary still loads.
+    const bool loaded = isBinaryGltf(path) ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
+                                           : loader.LoadASCIIFromFile(&model, &errors, &warnings, path.string());
+    if (!loaded) {
+      const std::string reason = oneLine(errors.empty() ? warnings : errors);
+      throw Error(reason.empty() ? "cannot parse the file" : reason);
+    }
+    return GltfReader(model).read(path.stem().string());
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
+  } catch (const std::exception& e) {  // allocation failures and the like from a hostile file
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace glint::scene

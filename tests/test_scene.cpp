@@ -1,0 +1,499 @@
+// The scene module: glTF loading (the shared helmet and Suzanne, a hand-made file with a node
+// hierarchy), one-line errors for broken files, glint parameters from extras, applyGlint, the
+// tangent generator and the built-in scenes.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "glint/error.h"
+#include "scene/builtin_scenes.h"
+#include "scene/geometry.h"
+#include "scene/gltf_loader.h"
+#include "test_support.h"
+
+namespace glint::scene {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path sharedScenes() { return fs::path(GLINT_SHARED_DIR) / "scenes"; }
+fs::path helmetPath() { return sharedScenes() / "damaged-helmet" / "DamagedHelmet.glb"; }
+fs::path suzannePath() { return sharedScenes() / "suzanne" / "Suzanne.gltf"; }
+
+bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// What every scene must satisfy for the renderers: valid indices and references, unit normals,
+// unit tangents perpendicular to them with w = +-1, finite uvs, valid glint layers.
+void expectWellFormed(const Scene& scene) {
+  ASSERT_FALSE(scene.meshes.empty());
+  ASSERT_TRUE(scene.cameras.contains("default"));
+  EXPECT_TRUE(isFinite(scene.boundsMin()));
+  EXPECT_TRUE(isFinite(scene.boundsMax()));
+  for (const Mesh& mesh : scene.meshes) {
+    SCOPED_TRACE(mesh.name);
+    ASSERT_GE(mesh.material, 0);
+    ASSERT_LT(static_cast<std::size_t>(mesh.material), scene.materials.size());
+    ASSERT_FALSE(mesh.indices.empty());
+    ASSERT_EQ(mesh.indices.size() % 3, 0u);
+    for (std::uint32_t index : mesh.indices) ASSERT_LT(index, mesh.vertices.size());
+    int bad = 0;
+    for (const Vertex& v : mesh.vertices) {
+      const glm::vec3 t(v.tangent);
+      const bool ok = isFinite(v.position) && std::abs(glm::length(v.normal) - 1.0f) < 1e-3f &&
+                      std::abs(glm::length(t) - 1.0f) < 1e-3f && std::abs(glm::dot(t, v.normal)) < 1e-3f &&
+                      std::abs(v.tangent.w) == 1.0f && std::isfinite(v.uv.x) && std::isfinite(v.uv.y);
+      bad += ok ? 0 : 1;
+    }
+    EXPECT_EQ(bad, 0) << "vertices with a bad normal, tangent, uv or position";
+  }
+  auto validTexture = [&](int index) { return index >= -1 && index < static_cast<int>(scene.textures.size()); };
+  for (const Material& m : scene.materials) {
+    SCOPED_TRACE(m.name);
+    EXPECT_TRUE(validTexture(m.baseColourTexture) && validTexture(m.metallicRoughnessTexture) &&
+                validTexture(m.normalTexture) && validTexture(m.emissiveTexture) && validTexture(m.occlusionTexture));
+    if (m.glint.enabled) EXPECT_NO_THROW(validateGlintLayer(m.glint, scene.textures.size()));
+  }
+  for (const Texture& t : scene.textures) {
+    EXPECT_GT(t.width, 0);
+    EXPECT_GT(t.height, 0);
+    EXPECT_EQ(t.rgba.size(), static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height) * 4);
+  }
+}
+
+std::size_t vertexCount(const Scene& scene) {
+  std::size_t n = 0;
+  for (const Mesh& mesh : scene.meshes) n += mesh.vertices.size();
+  return n;
+}
+
+std::size_t triangleCount(const Scene& scene) {
+  std::size_t n = 0;
+  for (const Mesh& mesh : scene.meshes) n += mesh.indices.size() / 3;
+  return n;
+}
+
+// The message of the Error `load` throws ("" and a test failure when it throws none).
+std::string errorOf(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
+}
+
+// A broken file gives one line that names the file and contains `problem`.
+void expectLoadError(const fs::path& path, const std::string& problem) {
+  const std::string message = errorOf([&] { loadGltf(path); });
+  EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
+  EXPECT_NE(message.find(problem), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+// A private copy of Suzanne (gltf, bin, two PNGs) in a fresh folder.
+fs::path copySuzanne(const std::string& test) {
+  const fs::path folder = test::temporaryFolder(test);
+  for (const auto& entry : fs::directory_iterator(suzannePath().parent_path())) {
+    fs::copy_file(entry.path(), folder / entry.path().filename());
+    fs::permissions(folder / entry.path().filename(), fs::perms::owner_write, fs::perm_options::add);
+  }
+  return folder / "Suzanne.gltf";
+}
+
+void editJson(const fs::path& path, const std::function<void(json&)>& edit) {
+  json document = json::parse(std::ifstream(path));
+  edit(document);
+  std::ofstream(path) << document.dump(1);
+}
+
+// ---- Loading the shared assets ----------------------------------------------------------------
+
+TEST(GltfLoader, LoadsSuzanneWithItsTexturesAndTangents) {
+  const Scene scene = loadGltf(suzannePath());
+  expectWellFormed(scene);
+  EXPECT_EQ(scene.name, "Suzanne");
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].vertices.size(), 11808u);
+  EXPECT_EQ(scene.meshes[0].indices.size(), 11808u);
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.name, "Suzanne");
+  EXPECT_FALSE(m.glint.enabled);
+  ASSERT_EQ(scene.textures.size(), 2u);
+  ASSERT_GE(m.baseColourTexture, 0);
+  ASSERT_GE(m.metallicRoughnessTexture, 0);
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.baseColourTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.metallicRoughnessTexture)].srgb);
+  for (const Texture& t : scene.textures) {
+    EXPECT_EQ(t.width, 1024);
+    EXPECT_EQ(t.height, 1024);
+  }
+  // The file's bounds (accessor min/max), unchanged by an identity node.
+  EXPECT_NEAR(scene.boundsMin().x, -1.336914f, 1e-5f);
+  EXPECT_NEAR(scene.boundsMax().y, 0.950195f, 1e-5f);
+  EXPECT_GE(scene.lights.size(), 2u);
+  for (const char* name : {"default", "front", "side", "top", "close"}) EXPECT_TRUE(scene.cameras.contains(name)) << name;
+  EXPECT_EQ(scene.exposure, 1.0f);
+}
+
+TEST(GltfLoader, LoadsTheDamagedHelmetWithDecodedTexturesAndGeneratedTangents) {
+  const Scene scene = loadGltf(helmetPath());
+  expectWellFormed(scene);
+  EXPECT_GT(vertexCount(scene), 10000u);
+  EXPECT_GT(triangleCount(scene), 10000u);
+  ASSERT_EQ(scene.materials.size(), 1u);
+  ASSERT_EQ(scene.textures.size(), 5u);
+  for (const Texture& t : scene.textures) {
+    EXPECT_EQ(t.width, 2048);
+    EXPECT_EQ(t.height, 2048);
+  }
+  const Material& m = scene.materials[0];
+  for (int index : {m.baseColourTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture, m.occlusionTexture}) {
+    EXPECT_GE(index, 0);
+  }
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.baseColourTexture)].srgb);
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.emissiveTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.normalTexture)].srgb);
+  // The helmet's node rotates it upright: the bounding box is about 1.9 x 1.9 x 1.8 around the origin.
+  const glm::vec3 size = scene.boundsMax() - scene.boundsMin();
+  EXPECT_GT(size.y, 1.0f);
+  EXPECT_LT(size.y, 3.0f);
+  // The default camera sees the bounding sphere whole.
+  const Camera& camera = scene.cameras.at("default");
+  const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
+  const float radius = 0.5f * glm::length(size);
+  EXPECT_GT(glm::length(camera.position - centre) * std::sin(glm::radians(0.5f * camera.verticalFovDegrees)), radius);
+}
+
+// A hand-made file: a triangle in the xy plane without normals, uvs or material, under a parent
+// (translate 10 in x, scale 2) and a child (90 degrees about y); a mirrored second instance; and a
+// LINES primitive, which is skipped.
+TEST(GltfLoader, FlattensTheHierarchyAndFillsInWhatIsMissing) {
+  const fs::path folder = test::temporaryFolder("gltf_hierarchy");
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(folder / "tri.bin", std::ios::binary).write(reinterpret_cast<const char*>(positions), sizeof positions);
+  const double s = std::sqrt(0.5);
+  const json document = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 36}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+                      {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}, {{"attributes", {{"POSITION", 0}}}, {"mode", 1}}}}}}},
+      {"nodes", {{{"translation", {10, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}},
+                 {{"rotation", {0, s, 0, s}}, {"mesh", 0}},
+                 {{"scale", {-1, 1, 1}}, {"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0, 2}}}}},
+      {"scene", 0},
+  };
+  std::ofstream(folder / "tri.gltf") << document.dump();
+  const Scene scene = loadGltf(folder / "tri.gltf");
+  expectWellFormed(scene);
+  ASSERT_EQ(scene.meshes.size(), 2u);  // the LINES primitive left out, two instances of the triangle
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[0].name, "default");
+
+  const Mesh& rotated = scene.meshes[0];
+  ASSERT_EQ(rotated.vertices.size(), 3u);
+  // (1, 0, 0) turns to (0, 0, -1), doubles and moves: (10, 0, -2). The face normal +z turns to +x.
+  const glm::vec3 expected[3] = {{10, 0, 0}, {10, 0, -2}, {10, 2, 0}};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(glm::length(rotated.vertices[static_cast<std::size_t>(i)].position - expected[i]), 0.0f, 1e-5f) << i;
+    EXPECT_NEAR(rotated.vertices[static_cast<std::size_t>(i)].normal.x, 1.0f, 1e-5f);
+    EXPECT_EQ(rotated.vertices[static_cast<std::size_t>(i)].uv, glm::vec2(0.0f));
+  }
+  // Mirrored: the winding is reversed so that the triangle still faces its normal.
+  for (const Mesh& mesh : scene.meshes) {
+    const glm::vec3 p0 = mesh.vertices[mesh.indices[0]].position;
+    const glm::vec3 p1 = mesh.vertices[mesh.indices[1]].position;
+    const glm::vec3 p2 = mesh.vertices[mesh.indices[2]].position;
+    EXPECT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), mesh.vertices[0].normal), 0.0f) << mesh.name;
+  }
+}
+
+// ---- Glint parameters from extras -------------------------------------------------------------
+
+TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
+  const fs::path path = copySuzanne("gltf_glint_extras");
+  editJson(path, [](json& d) {
+    d["materials"][0]["extras"] = {{"glint", {{"alpha", {0.2, 0.3}}, {"log_density", 20}, {"relative_area", 0.5},
+                                              {"density_randomisation", 1}, {"max_anisotropy", 16}, {"pattern_seed", 4000000000u},
+                                              {"uv_scale", 3}, {"random_colours", true}, {"roughness_texture", 1},
+                                              {"log_density_range", {10, 30}}}}};
+  });
+  const Scene scene = loadGltf(path);
+  expectWellFormed(scene);
+  const GlintLayer& g = scene.materials[0].glint;
+  EXPECT_TRUE(g.enabled);
+  EXPECT_EQ(g.alpha, glm::vec2(0.2f, 0.3f));
+  EXPECT_EQ(g.logDensity, 20.0f);
+  EXPECT_EQ(g.relativeArea, 0.5f);
+  EXPECT_EQ(g.densityRandomisation, 1.0f);
+  EXPECT_EQ(g.maxAnisotropy, 16.0f);
+  EXPECT_EQ(g.patternSeed, 4000000000u);
+  EXPECT_EQ(g.uvScale, 3.0f);
+  EXPECT_TRUE(g.randomColours);
+  EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
+  EXPECT_EQ(g.logDensityTexture, -1);
+  ASSERT_GE(g.roughnessTexture, 0);
+  // The same image as the metal-roughness texture, linear: shared, not decoded twice.
+  EXPECT_EQ(g.roughnessTexture, scene.materials[0].metallicRoughnessTexture);
+  EXPECT_EQ(scene.textures.size(), 2u);
+}
+
+TEST(GltfGlint, AlphaDefaultsToRoughnessSquared) {
+  const fs::path path = copySuzanne("gltf_glint_alpha");
+  editJson(path, [](json& d) {
+    d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
+    d["materials"][0]["extras"] = {{"glint", json::object()}, {"other_tool", "ignored"}};
+  });
+  const GlintLayer& g = loadGltf(path).materials[0].glint;
+  EXPECT_TRUE(g.enabled);
+  EXPECT_NEAR(g.alpha.x, 0.36f, 1e-6f);
+  EXPECT_NEAR(g.alpha.y, 0.36f, 1e-6f);
+  EXPECT_EQ(g.logDensity, 27.0f);
+  EXPECT_EQ(alphaFromRoughness(0.05f), 0.01f);
+}
+
+// ---- Broken files -----------------------------------------------------------------------------
+
+TEST(GltfErrors, MissingFileAndBadJson) {
+  expectLoadError(test::temporaryFolder("gltf_missing") / "nothing.gltf", "no such file");
+  const fs::path bad = test::temporaryFolder("gltf_bad_json") / "bad.gltf";
+  std::ofstream(bad) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ {";
+  expectLoadError(bad, "");
+  const fs::path empty = test::temporaryFolder("gltf_empty") / "empty.glb";
+  std::ofstream(empty) << "glTF";
+  expectLoadError(empty, "");
+}
+
+TEST(GltfErrors, MissingBufferFile) {
+  const fs::path path = copySuzanne("gltf_missing_bin");
+  fs::remove(path.parent_path() / "Suzanne.bin");
+  expectLoadError(path, "Suzanne.bin");
+}
+
+TEST(GltfErrors, MissingTextureImage) {
+  const fs::path path = copySuzanne("gltf_missing_png");
+  fs::remove(path.parent_path() / "Suzanne_BaseColor.png");
+  expectLoadError(path, "Suzanne_BaseColor.png");
+}
+
+TEST(GltfErrors, AccessorBeyondItsBufferView) {
+  const fs::path path = copySuzanne("gltf_accessor_range");
+  editJson(path, [](json& d) { d["accessors"][0]["count"] = 20000; });
+  expectLoadError(path, "accessor 0");
+}
+
+TEST(GltfErrors, IndexBeyondTheVertices) {
+  const fs::path path = copySuzanne("gltf_index_range");
+  // Fewer vertices than the indices reach for.
+  editJson(path, [](json& d) {
+    for (int a = 1; a <= 4; ++a) d["accessors"][a]["count"] = 100;
+  });
+  expectLoadError(path, "out of range (100 vertices)");
+}
+
+TEST(GltfErrors, MissingMaterialTextureAndNode) {
+  const fs::path path = copySuzanne("gltf_bad_references");
+  editJson(path, [](json& d) { d["meshes"][0]["primitives"][0]["material"] = 3; });
+  expectLoadError(path, "material 3 does not exist");
+  editJson(path, [](json& d) {
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+    d["materials"][0]["normalTexture"] = {{"index", 9}};
+  });
+  expectLoadError(path, "normalTexture: texture 9 does not exist");
+}
+
+TEST(GltfErrors, NonFinitePosition) {
+  const fs::path path = copySuzanne("gltf_nan");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::fstream bin(path.parent_path() / "Suzanne.bin", std::ios::in | std::ios::out | std::ios::binary);
+  bin.seekp(23616 + 12 * 5);  // POSITION's buffer view starts at 23616: vertex 5's x
+  bin.write(reinterpret_cast<const char*>(&nan), sizeof nan);
+  bin.close();
+  expectLoadError(path, "POSITION: element 5 is not finite");
+}
+
+TEST(GltfErrors, BadGlintExtras) {
+  const fs::path path = copySuzanne("gltf_bad_glint");
+  auto withGlint = [&](const json& glint) {
+    editJson(path, [&](json& d) { d["materials"][0]["extras"] = {{"glint", glint}}; });
+  };
+  withGlint({{"relative_area", 2}});
+  expectLoadError(path, "material 0 'Suzanne': extras.glint: relative_area must be in (0, 1], got 2");
+  withGlint({{"alpha", "x"}});
+  expectLoadError(path, "alpha must be a number or an array of two numbers");
+  withGlint({{"alpha", {0.1, 3}}});
+  expectLoadError(path, "alpha_y must be in [0.005, 2], got 3");
+  withGlint({{"log_density", true}});
+  expectLoadError(path, "log_density must be a number");
+  withGlint({{"max_anisotropy", 0.5}});
+  expectLoadError(path, "max_anisotropy");
+  withGlint({{"pattern_seed", 1.5}});
+  expectLoadError(path, "pattern_seed must be an integer");
+  withGlint({{"roughness_texture", 7}});
+  expectLoadError(path, "roughness_texture must be an integer in [0, 1]");
+  withGlint({{"log_density_range", {10, 200}}});
+  expectLoadError(path, "log_density_range: log_density must be in [0, 100], got 200");
+  withGlint({{"uv_scale", 0}});
+  expectLoadError(path, "uv_scale must be positive");
+  withGlint({{"random_colours", 1}});
+  expectLoadError(path, "random_colours must be true or false");
+  withGlint({{"alpah", 0.2}});
+  expectLoadError(path, "unknown field 'alpah'");
+  withGlint(json::array({1, 2}));
+  expectLoadError(path, "extras.glint: must be an object");
+}
+
+// ---- applyGlint -------------------------------------------------------------------------------
+
+TEST(SceneGlint, ApplyGlintToNamedMaterials) {
+  Scene scene = makeBuiltinScene("carpaint");
+  GlintLayer layer;
+  layer.alpha = glm::vec2(0.25f);
+  layer.logDensity = 18.0f;
+  applyGlint(scene, {"floor"}, layer);
+  for (const Material& m : scene.materials) {
+    if (m.name == "floor") {
+      EXPECT_TRUE(m.glint.enabled);
+      EXPECT_EQ(m.glint.logDensity, 18.0f);
+    }
+  }
+  applyGlint(scene, {"*"}, layer);
+  for (const Material& m : scene.materials) EXPECT_EQ(m.glint.alpha, glm::vec2(0.25f)) << m.name;
+}
+
+TEST(SceneGlint, UnknownMaterialOrBadLayerThrows) {
+  Scene scene = makeBuiltinScene("carpaint");
+  const std::string message = errorOf([&] { applyGlint(scene, {"floor", "chrome"}, GlintLayer{}); });
+  EXPECT_NE(message.find("'chrome'"), std::string::npos) << message;
+  EXPECT_NE(message.find("'car paint', 'floor'"), std::string::npos) << message;
+  GlintLayer bad;
+  bad.relativeArea = 0.0f;
+  EXPECT_NE(errorOf([&] { applyGlint(scene, {"floor"}, bad); }).find("relative_area"), std::string::npos);
+  bad = GlintLayer{};
+  bad.roughnessTexture = 3;
+  EXPECT_NE(errorOf([&] { applyGlint(scene, {"floor"}, bad); }).find("roughness_texture 3"), std::string::npos);
+}
+
+// ---- Geometry ---------------------------------------------------------------------------------
+
+TEST(SceneGeometry, TangentsFollowUAndCarryTheGltfHandedness) {
+  // Floor quad: u along +x, v along +z; seen from above (up = -z) the texture is not mirrored.
+  Mesh quad = makeQuad("quad", 0, glm::vec3(0.0f), {1, 0, 0}, {0, 0, 1});
+  for (const Vertex& v : quad.vertices) {
+    EXPECT_NEAR(glm::distance(v.normal, glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(glm::vec3(v.tangent), glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+    EXPECT_EQ(v.tangent.w, 1.0f);  // cross(n, t) = -z = -dP/dv
+  }
+  // Mirror u: the tangent follows u (-x) and the handedness flips.
+  for (Vertex& v : quad.vertices) v.uv.x = 1.0f - v.uv.x;
+  generateTangents(quad);
+  for (const Vertex& v : quad.vertices) {
+    EXPECT_NEAR(glm::distance(glm::vec3(v.tangent), glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
+    EXPECT_EQ(v.tangent.w, -1.0f);
+  }
+  // Degenerate uvs: still a unit tangent perpendicular to the normal.
+  for (Vertex& v : quad.vertices) v.uv = glm::vec2(0.5f);
+  generateTangents(quad);
+  for (const Vertex& v : quad.vertices) {
+    EXPECT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0f, 1e-6f);
+  }
+}
+
+TEST(SceneGeometry, SphereTrianglesFaceOutwards) {
+  const Mesh sphere = makeUvSphere("s", 0, glm::vec3(1, 2, 3), 2.0f, 32, 16);
+  EXPECT_EQ(sphere.indices.size() / 3, 2u * 32u * 16u - 2u * 32u);  // no slivers at the poles
+  for (std::size_t i = 0; i < sphere.indices.size(); i += 3) {
+    const Vertex& a = sphere.vertices[sphere.indices[i]];
+    const Vertex& b = sphere.vertices[sphere.indices[i + 1]];
+    const Vertex& c = sphere.vertices[sphere.indices[i + 2]];
+    const glm::vec3 geometric = glm::cross(b.position - a.position, c.position - a.position);
+    ASSERT_GT(glm::dot(geometric, a.position - glm::vec3(1, 2, 3)), 0.0f) << i;
+  }
+  for (const Vertex& v : sphere.vertices) {
+    EXPECT_NEAR(glm::distance(v.position, glm::vec3(1, 2, 3)), 2.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(v.normal, (v.position - glm::vec3(1, 2, 3)) / 2.0f), 0.0f, 1e-5f);
+  }
+}
+
+// ---- Built-in scenes --------------------------------------------------------------------------
+
+TEST(BuiltinScenes, EveryOneIsWellFormedLitAndGlinting) {
+  for (const std::string& name : builtinSceneNames()) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    expectWellFormed(scene);
+    EXPECT_EQ(scene.name, name);
+    EXPECT_GE(scene.lights.size(), 1u);
+    EXPECT_LT(triangleCount(scene), 100000u);
+    EXPECT_TRUE(std::any_of(scene.materials.begin(), scene.materials.end(),
+                            [](const Material& m) { return m.glint.enabled; }));
+    for (const auto& [cameraName, camera] : scene.cameras) {
+      EXPECT_GT(glm::length(camera.target - camera.position), 0.1f) << cameraName;
+      EXPECT_GT(glm::length(glm::cross(camera.target - camera.position, camera.up)), 0.0f) << cameraName;
+    }
+  }
+}
+
+TEST(BuiltinScenes, AreDeterministic) {
+  for (const std::string& name : builtinSceneNames()) {
+    SCOPED_TRACE(name);
+    const Scene a = makeBuiltinScene(name);
+    const Scene b = makeBuiltinScene(name);
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    for (std::size_t m = 0; m < a.meshes.size(); ++m) {
+      ASSERT_EQ(a.meshes[m].vertices.size(), b.meshes[m].vertices.size());
+      // Vertex is 12 floats without padding: equal bytes mean identical data.
+      EXPECT_EQ(std::memcmp(a.meshes[m].vertices.data(), b.meshes[m].vertices.data(),
+                            a.meshes[m].vertices.size() * sizeof(Vertex)), 0);
+      EXPECT_EQ(a.meshes[m].indices, b.meshes[m].indices);
+    }
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (std::size_t t = 0; t < a.textures.size(); ++t) EXPECT_EQ(a.textures[t].rgba, b.textures[t].rgba);
+    EXPECT_EQ(a.environment.pixels, b.environment.pixels);
+  }
+}
+
+TEST(BuiltinScenes, ShowroomHasItsPresetsAndMaterials) {
+  const Scene scene = makeBuiltinScene(kDefaultScene);
+  for (const char* camera : {"default", "wide", "curtain", "car"}) EXPECT_TRUE(scene.cameras.contains(camera)) << camera;
+  for (const char* material : {"parquet", "sparkling stone", "red glint", "car paint", "glitter curtain"}) {
+    EXPECT_TRUE(std::any_of(scene.materials.begin(), scene.materials.end(),
+                            [&](const Material& m) { return m.name == material && m.glint.enabled; }))
+        << material;
+  }
+  EXPECT_GE(scene.lights.size(), 2u);
+  const Scene parquet = makeBuiltinScene("parquet");
+  EXPECT_TRUE(parquet.cameras.contains("top"));
+  ASSERT_EQ(parquet.textures.size(), 2u);
+  EXPECT_EQ(parquet.textures[0].width, 512);
+  EXPECT_TRUE(parquet.textures[0].srgb);
+  EXPECT_EQ(parquet.materials[0].glint.roughnessTexture, 1);
+}
+
+TEST(BuiltinScenes, UnknownNamesAreErrors) {
+  const std::string message = errorOf([] { makeBuiltinScene("teapot"); });
+  EXPECT_NE(message.find("'teapot'"), std::string::npos) << message;
+  EXPECT_NE(message.find("sphere, parquet, carpaint, showroom"), std::string::npos) << message;
+  EXPECT_EQ(errorOf([] { loadScene("teapot"); }),
+            "unknown scene 'teapot' (built-in: sphere, parquet, carpaint, showroom) and no such file");
+  EXPECT_TRUE(isBuiltinScene("sphere"));
+  EXPECT_FALSE(isBuiltinScene("Sphere"));
+  EXPECT_EQ(loadScene("sphere").name, "sphere");
+  EXPECT_EQ(loadScene(suzannePath().string()).name, "Suzanne");
+}
+
+}  // namespace
+}  // namespace glint::scene
