@@ -1,6 +1,10 @@
 // Forward shading of glTF metal-roughness materials whose specular lobe is the glint BRDF (or
 // Cook-Torrance), lit by point and directional lights and an environment (diffuse by spherical
-// harmonics, specular by a pre-filtered map, both without glints).
+// harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
+// per specular model, SPECULAR_MODEL = SPECULAR_GLINT or SPECULAR_COOK_TORRANCE, so that the
+// baseline carries none of the glint code and everything else is identical.
+#define SPECULAR_GLINT 0
+#define SPECULAR_COOK_TORRANCE 1
 #include "glint_brdf.h"
 
 in vec3 vPosition;
@@ -29,7 +33,6 @@ uniform float uNormalScale;
 uniform vec3 uEmissive;
 
 uniform bool uGlintLayer;   // the material has a glint layer (its roughness is the layer's)
-uniform bool uGlintBrdf;    // ... and the glint BRDF is selected (else Cook-Torrance)
 uniform vec2 uGlintAlpha;
 uniform float uGlintLogDensity;
 uniform float uGlintRelativeArea;
@@ -121,13 +124,17 @@ void main() {
     vec3 wh = normalize(wo + wi);
     vec3 fresnel = fresnelSchlick(f0, dot(wo, wh));
     vec3 specular;
-    if (uGlintLayer && uGlintBrdf) {
+#if SPECULAR_MODEL == SPECULAR_GLINT
+    if (uGlintLayer) {
       vec4 p22 = glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slopeFromNormal(wh));
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
     } else {
       specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
     }
+#else
+    specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+#endif
     radiance += (diffuse + specular) * wi.z * uLightIntensity[i] / distance2;
   }
   vec3 reflected = reflect(-view, n);

@@ -1,6 +1,7 @@
 // The real-time renderer on the headless context: golden images of the built-in scenes,
 // convergence to Cook-Torrance at very high density, determinism, no GL errors.
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
 
 #include <gtest/gtest.h>
@@ -66,6 +67,21 @@ TEST(RenderGl, DefaultDensityShowsGlints) {
     EXPECT_GT(error.rmse, 0.05 * error.meanReference) << name << ": rmse " << error.rmse << ", mean " << error.meanReference;
     std::printf("%s at its own density: glint vs Cook-Torrance RMSE / mean = %.3f\n", name.c_str(),
                 error.rmse / error.meanReference);
+  }
+}
+
+TEST(RenderGl, EveryBrdfRendersEveryBenchmarkSceneWithoutGlErrors) {
+  // A correctness test, not a timing test: `glint bench` times every built-in scene with every
+  // model; each frame must render without a GL error and with finite radiance.
+  for (const std::string& name : scene::builtinSceneNames()) {
+    const scene::Scene scene = scene::makeBuiltinScene(name);
+    for (gl::BrdfModel model : gl::allBrdfModels()) {
+      const ImageRgbF image = render(scene, model);  // checks glGetError
+      const bool finite = std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
+        return std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b);
+      });
+      EXPECT_TRUE(finite) << name << " with " << gl::toString(model);
+    }
   }
 }
 

@@ -107,6 +107,20 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectOneLineError(wrongExtension, "out.jpg: the output must end in .png or .exr");
 }
 
+TEST(BenchCli, PrintsTheJsonTable) {
+  const auto folder = temporaryFolder("bench");
+  const RunResult result = runGlint(folder, "bench sphere grazing-rough --size 48x32 --frames 2 --warmup 0 --json");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  for (const char* key : {"\"size\":[48,32]", "\"renderer\":", "\"timer\":\"wall-finish\"", "\"scene\":\"sphere\"",
+                          "\"scene\":\"grazing-rough\"", "\"glint\":{", "\"cook-torrance\":{", "\"median_ms\":",
+                          "\"min_ms\":", "\"max_ms\":", "\"ratio_glint_cook-torrance\":"}) {
+    EXPECT_NE(result.out.find(key), std::string::npos) << key << " missing in " << result.out;
+  }
+  EXPECT_EQ(std::count(result.out.begin(), result.out.end(), '\n'), 1);  // one object, one line
+  expectOneLineError(runGlint(folder, "bench sphere --frames 0"), "--frames");
+  expectOneLineError(runGlint(folder, "bench atlantis"), "unknown scene 'atlantis'");
+}
+
 // The window: GLFW under a virtual X server (xvfb-run, installed by scripts/deps). Two frames,
 // because Dear ImGui hides new windows on their first frame; the screenshot must show the scene
 // and the sliders' panel.

@@ -1,6 +1,5 @@
 // `glint view`: the renderer in a window, with Dear ImGui sliders for the glint parameters, the
 // BRDF, the light and the camera, and the frame time (docs/cli.md).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -14,6 +13,7 @@
 #include "app/commands.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
+#include "gl/frame_timer.h"
 #include "gl/renderer.h"
 #include "gl/shader.h"
 #include "glint/error.h"
@@ -91,8 +91,7 @@ void runView(const ViewOptions& options) {
   gl::ShaderProgram display({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}});
   GLuint emptyVertexArray = 0;
   glCreateVertexArrays(1, &emptyVertexArray);
-  GLuint timer = 0;
-  glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
+  gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
 
   Controls controls;
@@ -110,8 +109,7 @@ void runView(const ViewOptions& options) {
   }
   const std::vector<scene::Light> originalLights = scene.lights;
   const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
-  double gpuMilliseconds = 0.0;
-  double wallMilliseconds = 0.0;
+  double frameMilliseconds = 0.0;
 
   for (int frameIndex = 0; !glfwWindowShouldClose(window.window()); ++frameIndex) {
     if (options.frames > 0 && frameIndex >= options.frames) break;
@@ -146,15 +144,7 @@ void runView(const ViewOptions& options) {
     frame.height = height;
     frame.brdf = controls.brdf == 0 ? gl::BrdfModel::Glint : gl::BrdfModel::CookTorrance;
     frame.camera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
-    const auto start = std::chrono::steady_clock::now();
-    glBeginQuery(GL_TIME_ELAPSED, timer);
-    renderer.renderFrame(frame);
-    glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
-    wallMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    GLuint64 nanoseconds = 0;
-    glGetQueryObjectui64v(timer, GL_QUERY_RESULT, &nanoseconds);
-    gpuMilliseconds = static_cast<double>(nanoseconds) * 1e-6;
+    frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
@@ -184,11 +174,11 @@ void runView(const ViewOptions& options) {
     ImGui::Combo("camera", &controls.camera, names.data(), static_cast<int>(names.size()));
     ImGui::Separator();
     ImGui::Text("%dx%d on %s", width, height, info.renderer.c_str());
-    if (info.softwareRasteriser) {
-      ImGui::Text("frame %.1f ms (wall clock around glFinish;", wallMilliseconds);
-      ImGui::Text("GPU timer queries are meaningless on llvmpipe)");
+    if (timer.usesGpuQueries()) {
+      ImGui::Text("frame %.2f ms (GPU timer query)", frameMilliseconds);
     } else {
-      ImGui::Text("frame %.2f ms (GPU timer query), %.1f ms wall", gpuMilliseconds, wallMilliseconds);
+      ImGui::Text("frame %.1f ms (wall clock around glFinish;", frameMilliseconds);
+      ImGui::Text("GPU timer queries are meaningless on llvmpipe)");
     }
     ImGui::End();
     ImGui::Render();
@@ -198,7 +188,6 @@ void runView(const ViewOptions& options) {
     }
     glfwSwapBuffers(window.window());
   }
-  glDeleteQueries(1, &timer);
   glDeleteVertexArrays(1, &emptyVertexArray);
 }
 

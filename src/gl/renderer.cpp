@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -43,6 +44,8 @@ GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, 
 
 }  // namespace
 
+std::vector<BrdfModel> allBrdfModels() { return {BrdfModel::Glint, BrdfModel::CookTorrance}; }
+
 BrdfModel brdfModelFromString(const std::string& name) {
   if (name == "glint") return BrdfModel::Glint;
   if (name == "cook-torrance") return BrdfModel::CookTorrance;
@@ -81,8 +84,15 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
   return projection * glm::lookAt(camera.position, camera.target, camera.up);
 }
 
+// The forward program of a specular model (shaders/forward.frag, SPECULAR_MODEL).
+ShaderProgram forwardProgram(BrdfModel model) {
+  const char* specular = model == BrdfModel::Glint ? "SPECULAR_GLINT" : "SPECULAR_COOK_TORRANCE";
+  return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
+                       {{"SPECULAR_MODEL", specular}});
+}
+
 struct Renderer::Gpu {
-  ShaderProgram forward{{{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}}};
+  std::map<BrdfModel, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
@@ -205,7 +215,9 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glClearNamedFramebufferfv(g.framebuffer, GL_COLOR, 0, clear);
   glClearNamedFramebufferfi(g.framebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
-  const ShaderProgram& p = g.forward;
+  auto program = g.forward.find(settings.brdf);
+  if (program == g.forward.end()) program = g.forward.emplace(settings.brdf, forwardProgram(settings.brdf)).first;
+  const ShaderProgram& p = program->second;
   glUseProgram(p.id());
   g.dictionary->bind(p);
   glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE,
@@ -242,7 +254,6 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uNormalScale"), m.normalScale);
     glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
     glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
-    glUniform1i(p.uniform("uGlintBrdf"), settings.brdf == BrdfModel::Glint);
     glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
     glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
     glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);

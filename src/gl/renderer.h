@@ -17,6 +17,8 @@
 namespace glint::gl {
 
 enum class BrdfModel { Glint, CookTorrance };
+// Every model, in the order tables list them.
+std::vector<BrdfModel> allBrdfModels();
 BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices
 const char* toString(BrdfModel model);
 

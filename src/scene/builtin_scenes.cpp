@@ -394,6 +394,31 @@ Scene showroomScene() {
   return scene;
 }
 
+// The benchmark's worst case: a grazing view of a large glittering plane (snow or stone), where
+// footprints are long and thin (anisotropy clamped to 8) and far cells are large, so a pixel
+// visits the most cells. The sun sits low behind the plane, so its glitter band runs to the
+// horizon across the whole view.
+Scene grazingPlaneScene(const char* name, float alpha) {
+  Scene scene;
+  scene.name = name;
+  constexpr float kSize = 200.0f;
+  Material snow;
+  snow.name = "glittering plane";
+  snow.baseColour = glm::vec4(0.55f, 0.57f, 0.6f, 1.0f);
+  snow.metallic = 0.0f;
+  snow.roughness = roughnessFor(alpha);
+  snow.glint = glintLayer(alpha, 14.0f, kSize);  // one glint-uv unit per metre
+  const int material = addMaterial(scene, snow);
+  scene.meshes.push_back(makeQuad("plane", material, glm::vec3(0.0f), {0.5f * kSize, 0, 0}, {0, 0, 0.5f * kSize}));
+  scene.lights.push_back(directionalLight({0.0f, -0.25f, 1.0f}, glm::vec3(3.0f)));
+  scene.environment = sky(0.3f);
+  setCameras(scene, camera({0.0f, 1.2f, 8.0f}, {0.0f, 0.2f, -20.0f}, 50.0f));
+  return scene;
+}
+
+Scene grazingSmoothScene() { return grazingPlaneScene("grazing-smooth", 0.1f); }
+Scene grazingRoughScene() { return grazingPlaneScene("grazing-rough", 0.5f); }
+
 struct BuiltinScene {
   const char* name;
   Scene (*make)();
@@ -404,6 +429,8 @@ constexpr BuiltinScene kBuiltinScenes[] = {
     {"parquet", parquetScene},
     {"carpaint", carpaintScene},
     {"showroom", showroomScene},
+    {"grazing-smooth", grazingSmoothScene},
+    {"grazing-rough", grazingRoughScene},
 };
 
 std::string joinedNames() {
