@@ -488,7 +488,8 @@ TEST(BuiltinScenes, UnknownNamesAreErrors) {
   EXPECT_NE(message.find("'teapot'"), std::string::npos) << message;
   EXPECT_NE(message.find("sphere, parquet, carpaint, showroom"), std::string::npos) << message;
   EXPECT_EQ(errorOf([] { loadScene("teapot"); }),
-            "unknown scene 'teapot' (built-in: sphere, parquet, carpaint, showroom) and no such file");
+            "unknown scene 'teapot' (built-in: sphere, parquet, carpaint, showroom, grazing-smooth, grazing-rough) "
+            "and no such file");
   EXPECT_TRUE(isBuiltinScene("sphere"));
   EXPECT_FALSE(isBuiltinScene("Sphere"));
   EXPECT_EQ(loadScene("sphere").name, "sphere");
