@@ -1,11 +1,15 @@
 // Forward shading of glTF metal-roughness materials whose specular lobe is the glint BRDF (or
 // Cook-Torrance), lit by point and directional lights and an environment (diffuse by spherical
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
-// per specular model, SPECULAR_MODEL = SPECULAR_GLINT or SPECULAR_COOK_TORRANCE, so that the
-// baseline carries none of the glint code and everything else is identical.
+// per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
+// SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical.
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
+#define SPECULAR_ZIRR_KAPLANYAN 2
 #include "glint_brdf.h"
+#if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
+#include "zirr_kaplanyan.h"
+#endif
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -129,6 +133,15 @@ void main() {
       vec4 p22 = glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slopeFromNormal(wh));
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
+    } else {
+      specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+    }
+#elif SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
+    if (uGlintLayer) {
+      // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
+      // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
+      specular = fresnel * params.relativeArea *
+                 zirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
     } else {
       specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
     }

@@ -36,14 +36,13 @@ struct Controls {
   glm::vec2 alpha{0.5f};
   float logDensity = 27.0f;
   float relativeArea = 1.0f;
-  int brdf = 0;  // index into kBrdfNames
+  int brdf = 0;  // index into gl::allBrdfModels()
   float lightAzimuth = 0.6f;
   float lightElevation = 0.9f;
   float lightScale = 1.0f;
   float exposure = 1.0f;
   int camera = 0;
 };
-constexpr const char* kBrdfNames[] = {"glint", "cook-torrance"};
 
 class ImGuiSession {
  public:
@@ -142,7 +141,7 @@ void runView(const ViewOptions& options) {
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
-    frame.brdf = controls.brdf == 0 ? gl::BrdfModel::Glint : gl::BrdfModel::CookTorrance;
+    frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(controls.brdf)];
     frame.camera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
@@ -160,7 +159,9 @@ void runView(const ViewOptions& options) {
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::Begin("glint");
-    ImGui::Combo("BRDF", &controls.brdf, kBrdfNames, 2);
+    std::vector<const char*> brdfNames;
+    for (gl::BrdfModel model : gl::allBrdfModels()) brdfNames.push_back(gl::toString(model));
+    ImGui::Combo("BRDF", &controls.brdf, brdfNames.data(), static_cast<int>(brdfNames.size()));
     ImGui::SliderFloat("roughness x", &controls.alpha.x, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("roughness y", &controls.alpha.y, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("log density", &controls.logDensity, 10.0f, 45.0f, "%.1f");

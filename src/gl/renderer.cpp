@@ -44,18 +44,22 @@ GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, 
 
 }  // namespace
 
-std::vector<BrdfModel> allBrdfModels() { return {BrdfModel::Glint, BrdfModel::CookTorrance}; }
+std::vector<BrdfModel> allBrdfModels() {
+  return {BrdfModel::Glint, BrdfModel::CookTorrance, BrdfModel::ZirrKaplanyan};
+}
 
 BrdfModel brdfModelFromString(const std::string& name) {
   if (name == "glint") return BrdfModel::Glint;
   if (name == "cook-torrance") return BrdfModel::CookTorrance;
-  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance)");
+  if (name == "zirr-kaplanyan") return BrdfModel::ZirrKaplanyan;
+  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance, zirr-kaplanyan)");
 }
 
 const char* toString(BrdfModel model) {
   switch (model) {
     case BrdfModel::Glint: return "glint";
     case BrdfModel::CookTorrance: return "cook-torrance";
+    case BrdfModel::ZirrKaplanyan: return "zirr-kaplanyan";
   }
   return "unknown";
 }
@@ -86,7 +90,9 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 
 // The forward program of a specular model (shaders/forward.frag, SPECULAR_MODEL).
 ShaderProgram forwardProgram(BrdfModel model) {
-  const char* specular = model == BrdfModel::Glint ? "SPECULAR_GLINT" : "SPECULAR_COOK_TORRANCE";
+  const char* specular = model == BrdfModel::Glint          ? "SPECULAR_GLINT"
+                         : model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
+                                                            : "SPECULAR_ZIRR_KAPLANYAN";
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
                        {{"SPECULAR_MODEL", specular}});
 }

@@ -16,7 +16,7 @@
 
 namespace glint::gl {
 
-enum class BrdfModel { Glint, CookTorrance };
+enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan };
 // Every model, in the order tables list them.
 std::vector<BrdfModel> allBrdfModels();
 BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices

@@ -1,0 +1,395 @@
+// The real-time glint BRDF of Zirr & Kaplanyan 2016, "Real-time Rendering of Procedural Multiscale
+// Materials" (I3D 2016, DOI 10.1145/2856400.2856409): a baseline next to Chermain et al. 2020.
+// Written from the team's specification ../shared/docs/zirr-kaplanyan-2016.md (cited as "spec" and a section),
+// no reference code copied. Shared by the CPU library and the GLSL renderer: see prelude.h for the
+// kernel rules, docs/zirr-kaplanyan.md for the deviations and what the tests measured.
+//
+// The model (spec 1.3): the smooth Beckmann BRDF times a stochastic "found / expected microdetails"
+// ratio, counted per cell of a multilevel uv grid and per bin of the half-vector domain with a
+// binomial law, filtered over the pixel footprint and blended between two grid levels.
+//
+// Deviations from the reference code, all documented in docs/zirr-kaplanyan.md:
+//   - integer hashing (pcg4d) of (cell id, pattern seed) and (bin, cell) instead of the sin-based
+//     float hash: identical on CPU and GPU, no float-precision aliasing (spec 4.4); hence no
+//     +100 uv offset and no 533 u2 bin offset, which served that hash;
+//   - the binomial's P(0) = (1 - q)^N uses an accurate log(1 - q), the count tail is applied only
+//     where the scan found no count, and q = 1 is the certain count (the reference divides by
+//     1 - q = 0 there);
+//   - float-range guards: levels in [kZirrKaplanyanMinLevel, kZirrKaplanyanMaxLevel], expected
+//     counts at most e^kZirrKaplanyanMaxLogCount, cells with fewer than
+//     kZirrKaplanyanMinExpectedCount expected microdetails are empty;
+//   - the cone term uses (wo.h + wi.h) / 2 for wi.h (equal in exact arithmetic) so that the
+//     evaluation is reciprocal bit for bit; cells of zero coverage weight are not evaluated.
+#ifndef GLINT_KERNEL_ZIRR_KAPLANYAN_H
+#define GLINT_KERNEL_ZIRR_KAPLANYAN_H
+
+#include "prelude.h"
+#include "random.h"
+#include "microfacet.h"
+#include "glint_brdf.h"
+
+GLINT_KERNEL_BEGIN
+
+// Global cap on cell visits, both levels together: the isolated (normative) code's IT_MAX
+// (spec 2.3; the Shadertoy uses 60). With at most 2 x 18 x 4 = 144 visits it never binds.
+GLINT_CONST int kZirrKaplanyanMaxCellVisits = 150;
+GLINT_CONST int kZirrKaplanyanMaxRows = 18;         // rows per level, long axis (spec 2.3)
+GLINT_CONST int kZirrKaplanyanMaxCellsPerRow = 4;   // cells per row, short axis (spec 2.3)
+GLINT_CONST float kZirrKaplanyanReferenceMaxAnisotropy = 16.0f;  // K_a of the reference (spec 1.6)
+GLINT_CONST float kZirrKaplanyanStereographicScale = 0.75f;      // q = 0.75 H.xy / (1 + H.z) (spec 3 step 3)
+GLINT_CONST float kZirrKaplanyanMinMesoVariance = 1e-12f;        // inside the meso roughness sqrt (spec 3 step 2)
+GLINT_CONST float kZirrKaplanyanVariationClamp = 0.999f;         // erfinv argument of the count multiplier (spec 3 step 7)
+GLINT_CONST float kZirrKaplanyanMinMultiplier = 1e-12f;          // floor of the count multiplier (spec 3 step 7)
+GLINT_CONST float kZirrKaplanyanGaussianThreshold = 5.0f;        // N p above it: normal approximation (spec 3.9)
+GLINT_CONST float kZirrKaplanyanGaussianClamp = 0.999999f;       // erfinv argument of that branch (spec 3.9)
+GLINT_CONST float kZirrKaplanyanMinProbability = 1e-30f;         // P_MIN of the isolated code (spec 3.9)
+GLINT_CONST float kZirrKaplanyanLog2QuantisationBase = -0.152003093f;  // log2(0.9): p quantised to 0.9^k (spec 3.9)
+GLINT_CONST int kZirrKaplanyanBinomialScan = 18;                  // inverse-CDF scan i = 0..17, then the tail (spec 3.9)
+// Guards of the float range (not in the reference): cell sizes 2^-24..2^24 uv keep cell indices
+// inside int; expected counts up to 1e30 per cell keep every product finite (beyond, the relative
+// noise sqrt(1 / (E p)) is far below float precision: the smooth limit); a cell expecting fewer
+// than 1e-30 microdetails is empty (the reference divides by that count).
+GLINT_CONST float kZirrKaplanyanMinLevel = -24.0f;
+GLINT_CONST float kZirrKaplanyanMaxLevel = 24.0f;
+GLINT_CONST float kZirrKaplanyanMaxLogCount = 69.0f;  // ln(1e30)
+GLINT_CONST float kZirrKaplanyanMinExpectedCount = 1e-30f;
+// The reference's glints() averages to a quarter of Cook-Torrance's f (its "solid angle" /4 on
+// top of the Smith term's own 1/4, spec 1.7). Scaled by 4 (spec 4.2, "output scale": x 4 n.l
+// onto f cos, i.e. x 4 onto f) the mean is Cook-Torrance with a Beckmann D and a GGX-form Smith G,
+// comparable to glintReflectance.
+GLINT_CONST float kZirrKaplanyanOutputScale = 4.0f;
+// Mapping from our parameters (spec 4.2): a microdetail's lobe exp(-d^2 / mu^2) has std mu / sqrt(2);
+// Chermain's per-microfacet lobe has std lobeStd * alpha / alpha_d = 0.02 alpha / 0.5 per axis, so
+// mu = sqrt(2) 0.04 alpha.
+GLINT_CONST float kZirrKaplanyanMicroRoughnessPerAlpha = 0.0565685425f;
+// Chermain has no clamp on found / expected: a dynamic range that only cells expecting fewer than
+// 1e-6 glinting microdetails reach (their rare spikes are clamped to 1e6 times the mean).
+GLINT_CONST float kZirrKaplanyanMappedDynamicRange = 1e6f;
+
+// The model's own parameters (spec 2.2), validated by the host.
+struct ZirrKaplanyanParameters {
+  vec2 roughness;         // r: macro Beckmann roughness per axis (x = tangent = +u, y = +v)
+  vec2 microRoughness;    // mu: width of one microdetail's lobe, 0 < mu <= r
+  float searchConeAngle;  // c: angular size of the searched cone of half vectors
+  float variation;        // v: amplitude of the per-(cell, bin) count multiplier
+  float dynamicRange;     // R: a cell's found / expected ratio is clamped to R p
+  float logDensity;       // ln(rho_d), rho_d = microdetails per unit (compressed) uv area; a log so
+                          // that our density range (up to e^100) stays a float
+  float maxAnisotropy;    // K_a: cell size >= the footprint's long extent / K_a (16 in the reference)
+  uint patternSeed;       // selects another pattern (not in the reference, which has one)
+};
+
+GLINT_FN vec2 zirrKaplanyanMesoRoughness(vec2 roughness, vec2 microRoughness) {
+  // Gaussian widths add in quadrature: microdetail orientations spread by rho (spec 1.2, 3 step 2).
+  return sqrt(max(roughness * roughness - microRoughness * microRoughness, vec2(kZirrKaplanyanMinMesoVariance)));
+}
+
+// Our parameters to the model's (spec 4.2). What does not correspond:
+//   - relativeArea (MRA) has no counterpart: ZK cells are never empty by a mask; match with
+//     MRA = 1, or multiply ZK's output by MRA to match the mean energy only;
+//   - densityRandomisation (zeta) has no counterpart: the variation v is set to 0, which makes the
+//     mean exactly the smooth BRDF (ZK's 1 + v erfinv(.) multiplier is another, heavy-tailed law);
+//   - colouredCells is not modelled;
+//   - the search cone is 0: Chermain evaluates the exact half vector of a point light;
+//   - the masking term stays ZK's GGX-form Smith G (Chermain: V-cavity).
+// The spec's output scale (x 4) is applied by zirrKaplanyanReflectance, not here.
+GLINT_FN ZirrKaplanyanParameters zirrKaplanyanFromGlint(GlintParameters glint) {
+  ZirrKaplanyanParameters zk;
+  zk.roughness = glint.alpha;  // the same Beckmann convention (spec 4.2: exact)
+  zk.microRoughness = kZirrKaplanyanMicroRoughnessPerAlpha * glint.alpha;
+  // ZK counts per unit compressed uv area: a cell of side h covers h^2 / (gamma_x gamma_y) of uv.
+  vec2 meso = zirrKaplanyanMesoRoughness(zk.roughness, zk.microRoughness);
+  zk.logDensity = glint.logDensity + log(max(meso.x / meso.y, meso.y / meso.x));
+  zk.searchConeAngle = 0.0f;
+  zk.variation = 0.0f;
+  zk.dynamicRange = kZirrKaplanyanMappedDynamicRange;
+  zk.maxAnisotropy = glint.maxAnisotropy;  // the same cap in both methods (spec 4.2)
+  zk.patternSeed = glint.patternSeed;
+  return zk;
+}
+
+// The coherent multilevel index (spec 1.5, 3 step 7): trailing zero bits removed, so cell i at
+// level l + 1 has the id of its first child 2i at level l. Arithmetic shift, so negative indices
+// keep the property (-1 at level l + 1 and -2 at level l); 0 stays 0.
+GLINT_FN int zirrKaplanyanCoherentIndex(int i) {
+  if (i == 0) {
+    return 0;
+  }
+  return i >> findLSB(uint(i));
+}
+
+// A grid coordinate (an integral float) as an int, clamped into int's range first (float to int
+// is undefined outside it).
+GLINT_FN int zirrKaplanyanCellIndex(float i) {
+  return int(clamp(i, -2147483520.0f, 2147483520.0f));
+}
+
+// ln(1 - q) without the cancellation of 1 - q in float (the series to q^4 below 0.01, relative
+// error under 2e-9): the binomial's P(0) = (1 - q)^N for N in the millions and q near 1e-7 would
+// otherwise be 1 and lose the count.
+GLINT_FN float zirrKaplanyanLogOneMinus(float q) {
+  if (q < 0.01f) {
+    return -q * (1.0f + q * (0.5f + q * (0.33333333f + q * 0.25f)));
+  }
+  return log(1.0f - q);
+}
+
+// The number of microdetails of a cell that reflect into the eye: an inverse-CDF draw at u of
+// Binomial(n, p), continuous in p (spec 3.9, APPROX_BINOMIAL). n need not be an integer.
+GLINT_FN float zirrKaplanyanBinomial(float u, float n, float p) {
+  if (!(n > 0.0f)) {
+    return 0.0f;
+  }
+  float mean = n * p;
+  if (mean > kZirrKaplanyanGaussianThreshold) {
+    // Normal approximation; erfinv(2u - 1) has std 1/sqrt(2), so this normal is sqrt(2) narrower
+    // than the binomial (spec 3.9, kept for fidelity).
+    float k = mean + erfinvApprox(-kZirrKaplanyanGaussianClamp + 2.0f * kZirrKaplanyanGaussianClamp * u) *
+                         sqrt(mean * max(1.0f - p, 0.0f));
+    return clamp(k, 0.0f, n);
+  }
+  if (p >= 1.0f) {
+    return n;
+  }
+  if (p <= kZirrKaplanyanMinProbability) {
+    return 0.0f;
+  }
+  // An integer number of trials with the same mean, and p quantised to the powers of 0.9 on either
+  // side (p_lo < p' <= p_hi): the two counts are interpolated like mip levels, so the result is
+  // continuous in p (temporal stability).
+  float trials = ceil(n);
+  float pTrial = p * n / trials;
+  if (pTrial <= kZirrKaplanyanMinProbability) {  // guard: p n / n' can underflow where p did not
+    return 0.0f;
+  }
+  float t = log2(pTrial) / kZirrKaplanyanLog2QuantisationBase;
+  float tFloor = floor(t);
+  float pHi = exp2(tFloor * kZirrKaplanyanLog2QuantisationBase);
+  float pLo = 0.9f * pHi;
+  bool hiIsOne = tFloor <= 0.0f;  // q = 1: every trial succeeds, the count is n'
+  float pmfLo = exp(trials * zirrKaplanyanLogOneMinus(pLo));
+  float pmfHi = hiIsOne ? 0.0f : exp(trials * zirrKaplanyanLogOneMinus(pHi));
+  float cdfLo = pmfLo;
+  float cdfHi = pmfHi;
+  float oddsLo = pLo / (1.0f - pLo);
+  float oddsHi = hiIsOne ? 0.0f : pHi / (1.0f - pHi);
+  float countLo = trials;
+  float countHi = trials;
+  bool foundLo = false;
+  bool foundHi = false;
+  for (int i = 0; i < kZirrKaplanyanBinomialScan; ++i) {
+    if (!foundLo && u < cdfLo) {
+      countLo = float(i);
+      foundLo = true;
+    }
+    if (u < cdfHi) {  // the larger p has the smaller CDF: the other count is found already
+      countHi = float(i);
+      foundHi = true;
+      break;
+    }
+    if (i == kZirrKaplanyanBinomialScan - 1) {
+      break;  // the tail below starts from CDF(17)
+    }
+    float step = (trials - float(i)) / float(i + 1);
+    pmfLo = pmfLo * step * oddsLo;
+    pmfHi = pmfHi * step * oddsHi;
+    cdfLo += pmfLo;
+    cdfHi += pmfHi;
+  }
+  // Beyond 17 successes: the inverse CDF of a geometric tail with ratio p' truncated at n'
+  // (reaching n' at U = 1), where U is u renormalised to the remaining mass. For n' <= 18 the scan
+  // covered every count and only rounding is left: n'.
+  float tailLength = trials - float(kZirrKaplanyanBinomialScan);
+  float log2P = log2(pTrial);
+  float tailMass = 1.0f - exp2(tailLength * log2P);  // 1 / C of the spec
+  if (!foundLo) {
+    float tailU = (u - cdfLo) / (1.0f - cdfLo);
+    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * tailMass, 1e-30f)) / log2P;
+    countLo = tailLength > 0.0f ? min(trials, tail) : trials;
+  }
+  if (!foundHi) {
+    float tailU = (u - cdfHi) / (1.0f - cdfHi);
+    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * tailMass, 1e-30f)) / log2P;
+    countHi = (tailLength > 0.0f && !hiIsOne) ? min(trials, tail) : trials;
+  }
+  return countHi + (countLo - countHi) * (t - tFloor);
+}
+
+// Smith's masking in GGX form with a^2 = r_x r_y, as the reference writes it (spec 3 step 4):
+// G_X = |n.X| + sqrt(|n.X|^2 (1 - a^2) + a^2) = 2 |n.X| / G1_GGX(X).
+GLINT_FN float zirrKaplanyanSmithDenominator(float cosTheta, float a2) {
+  float c = abs(cosTheta);
+  return c + sqrt(c * c * (1.0f - a2) + a2);
+}
+
+// What every cell of a pixel shares (spec 3 steps 3-4).
+struct ZirrKaplanyanPixel {
+  vec2 binCoordinate;  // e = q / (mu + c): the half vector in bin units
+  float probability;   // p: the chance that one microdetail reflects into the eye
+  float brdfScale;     // K = Lambda / (4 pi mu_x mu_y): pmf to BRDF
+};
+
+// The value of one cell (spec 3 steps 7-8): the found / expected microdetail ratio, clamped to
+// R p, times K. (iu, iv) are the cell's integer grid coordinates at cell size 2^level.
+GLINT_FN float zirrKaplanyanCell(int iu, int iv, float level, ZirrKaplanyanPixel pixel,
+                                 ZirrKaplanyanParameters params) {
+  // Coherent ids and the pattern seed, hashed by a bijection: the cell's bin-grid jitter from two
+  // lanes, a 64-bit cell key from the other two.
+  uvec4 cellHash = pcg4d(uvec4(uint(zirrKaplanyanCoherentIndex(iu)), uint(zirrKaplanyanCoherentIndex(iv)),
+                               params.patternSeed, 0u));
+  vec2 jitter = vec2(hashToUnitOpen(cellHash.x), hashToUnitOpen(cellHash.y));
+  // The half-vector bin, on a grid jittered per cell (spec 3 step 7.3).
+  vec2 binFloor = floor(pixel.binCoordinate + jitter);
+  uvec4 binHash = pcg4d(uvec4(uint(zirrKaplanyanCellIndex(binFloor.x)), uint(zirrKaplanyanCellIndex(binFloor.y)),
+                              cellHash.z, cellHash.w));
+  // Count multiplier ("randomize glint sizes"), negative values folded into (0, 1) (step 7.4).
+  float multiplier = 1.0f + params.variation * erfinvApprox(-kZirrKaplanyanVariationClamp +
+                                                            2.0f * kZirrKaplanyanVariationClamp * hashToUnitOpen(binHash.x));
+  if (multiplier <= 0.0f) {
+    multiplier = fract(multiplier) / (1.0f - multiplier);
+  }
+  multiplier = max(multiplier, kZirrKaplanyanMinMultiplier);
+  // Expected microdetails E0 = rho_d h^2 (step 7.5), in logs: h = 2^level.
+  float expectedBase = exp(min(params.logDensity + 1.38629436f * level, kZirrKaplanyanMaxLogCount));
+  float expected = expectedBase * multiplier;
+  if (expected < kZirrKaplanyanMinExpectedCount) {
+    return 0.0f;
+  }
+  float trials = max(expected, min(1.0f, expectedBase));
+  float found = zirrKaplanyanBinomial(hashToUnitOpen(binHash.y), trials, pixel.probability);
+  return min(found / expected, params.dynamicRange * pixel.probability) * pixel.brdfScale;
+}
+
+// The reference's glints(): ZK16 for one pixel footprint and one directional light (spec 3),
+// without the output scale (a quarter of Cook-Torrance's f on average). uv and its screen-space
+// derivatives (the columns of J), wo and wi in the local frame (z = normal, x = +u). cellVisits:
+// the cells visited, both levels together (at most kZirrKaplanyanMaxCellVisits).
+GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
+                                          ZirrKaplanyanParameters params, GLINT_OUT(int) cellVisits) {
+  cellVisits = 0;
+  // Step 0: gating.
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    return 0.0f;
+  }
+  vec2 r = params.roughness;
+  vec2 mu = params.microRoughness;
+  // Step 2: material anisotropy gamma compresses uv and the bin grid along the smoother meso axis.
+  vec2 meso = zirrKaplanyanMesoRoughness(r, mu);
+  vec2 gamma = vec2(min(meso.x / meso.y, 1.0f), min(meso.y / meso.x, 1.0f));
+
+  // Step 3: half vector and its stereographic bin coordinates.
+  vec3 h = normalize(wo + wi);
+  ZirrKaplanyanPixel pixel;
+  pixel.binCoordinate = kZirrKaplanyanStereographicScale * vec2(h.x, h.y) / (1.0f + h.z) * gamma /
+                        (mu + vec2(params.searchConeAngle));
+  // Step 4: p0 = pi mu_x mu_y D_Beckmann(h; r); the masking Lambda = G1 G1 / (4 n.l n.v);
+  // K = Lambda / (4 pi mu_x mu_y); the search cone flattens p (phenomenological, no pi).
+  // (Below h.z = 1e-6 the slope exceeds 1e6 and D is exactly 0 in float; the guard avoids 0 / 0.)
+  float p0 = h.z > 1e-6f ? kPi * mu.x * mu.y * ndfFromP22(beckmannP22(slopeFromNormal(h), r), h.z) : 0.0f;
+  float a2 = r.x * r.y;
+  float lambda = 1.0f / (zirrKaplanyanSmithDenominator(wi.z, a2) * zirrKaplanyanSmithDenominator(wo.z, a2));
+  pixel.brdfScale = lambda / (4.0f * kPi * mu.x * mu.y);
+  float cosLightHalf = 0.5f * (dot(wi, h) + dot(wo, h));
+  float cone = params.searchConeAngle > 0.0f
+                   ? params.searchConeAngle * params.searchConeAngle / (4.0f * cosLightHalf * h.z)
+                   : 0.0f;
+  pixel.probability = min(p0 + (1.0f - p0) * clamp(cone, 0.0f, 1.0f), 1.0f);
+
+  // Step 1: M = J^-1 through the adjugate of J / s, s its largest entry (det cancels in the skew
+  // and stays out of uvPP's division; the scale keeps det finite for any finite footprint):
+  // det M e_u ~ (duvdy.y, -duvdx.y), det M e_v ~ (-duvdy.x, duvdx.x).
+  vec2 extent = max(abs(duvdx), abs(duvdy));
+  float scale = max(max(extent.x, extent.y), 1e-30f);
+  vec2 jx = duvdx / scale;
+  vec2 jy = duvdy / scale;
+  float det = jx.x * jy.y - jy.x * jx.y;
+  vec2 adjU = vec2(jy.y, -jx.y);
+  vec2 adjV = vec2(-jy.x, jx.x);
+  // uv distance along u (v) that moves one pixel in the L-infinity pixel norm.
+  float uvPerPixelU = scale * (abs(det) / max(max(abs(adjU.x), abs(adjU.y)), 1e-30f));
+  float uvPerPixelV = scale * (abs(det) / max(max(abs(adjV.x), abs(adjV.y)), 1e-30f));
+
+  // Step 5: compressed noise coordinates (no +100 offset: see the header), the footprint's
+  // axis-aligned box, its long axis L and short axis S.
+  vec2 y = uv * gamma;
+  vec2 box = extent * gamma;
+  bool longIsU = box.x > box.y;
+  float yL = longIsU ? y.x : y.y;
+  float yS = longIsU ? y.y : y.x;
+  float boxL = longIsU ? box.x : box.y;
+  float gammaL = longIsU ? gamma.x : gamma.y;
+  float gammaS = longIsU ? gamma.y : gamma.x;
+  // Skew: rows follow the uv line along which pixel coordinate k stays constant, k being the pixel
+  // axis that moves most along S.
+  vec2 adjL = longIsU ? adjU : adjV;
+  vec2 adjS = longIsU ? adjV : adjU;
+  bool kIsX = abs(adjS.x) > abs(adjS.y);
+  float adjLk = kIsX ? adjL.x : adjL.y;
+  float adjSk = kIsX ? adjS.x : adjS.y;
+  float skew = adjSk != 0.0f ? -(adjLk / adjSk) * (gammaS / gammaL) : 0.0f;
+  // Base cell size: the short axis' uv per pixel, at least the long extent / K_a.
+  float cellSize = max(longIsU ? uvPerPixelV : uvPerPixelU, boxL / params.maxAnisotropy);
+  float lod = clamp(log2(cellSize), kZirrKaplanyanMinLevel, kZirrKaplanyanMaxLevel);
+  float level0 = floor(lod);
+
+  // Step 6: two grid levels, blended linearly in log2(cell size).
+  float result = 0.0f;
+  for (int j = 0; j < 2; ++j) {
+    float level = level0 + float(j);
+    float hCell = ldexp(1.0f, int(level));
+    float levelWeight = 1.0f - abs(level - lod);
+    // Range of cell corners: the box shrunk by half a cell, never past its centre.
+    float loL = min(yL - 0.5f * boxL + 0.5f * hCell, yL);
+    float hiL = max(yL + 0.5f * boxL - 0.5f * hCell, yL);
+    float startL = floor(loL / hCell);
+    float extentL = hiL + hCell - startL * hCell;
+    float weightSum = 0.0f;
+    float valueSum = 0.0f;
+    for (int t = 0; t < kZirrKaplanyanMaxRows; ++t) {
+      if (!(float(t) * hCell < extentL) || cellVisits >= kZirrKaplanyanMaxCellVisits) {
+        break;
+      }
+      float indexL = startL + float(t);
+      float zL = indexL * hCell;
+      // Linear ramps one cell beyond each end of the corner range.
+      float weightL = max(1.0f - max((loL - zL) / hCell, 0.0f), 0.0f) *
+                      max(1.0f - max((zL - hiL) / hCell, 0.0f), 0.0f);
+      float rowCentre = yS + skew * (zL - yL);
+      float indexS = floor(rowCentre / hCell);
+      for (int k = 0; k < kZirrKaplanyanMaxCellsPerRow; ++k) {
+        if (!(indexS * hCell < rowCentre + hCell) || cellVisits >= kZirrKaplanyanMaxCellVisits) {
+          break;
+        }
+        // A tent of half-width h on the row centre: linear interpolation between two cells.
+        float weight = weightL * max(1.0f - abs(indexS * hCell - rowCentre) / hCell, 0.0f);
+        if (weight > 0.0f) {
+          int iL = zirrKaplanyanCellIndex(indexL);
+          int iS = zirrKaplanyanCellIndex(indexS);
+          weightSum += weight;
+          valueSum += weight * zirrKaplanyanCell(longIsU ? iL : iS, longIsU ? iS : iL, level, pixel, params);
+        }
+        indexS += 1.0f;
+        cellVisits += 1;
+      }
+    }
+    // The guard the reference keeps under DEBUG (spec 3 step 6.5).
+    result += levelWeight * (weightSum > 0.0f ? valueSum / weightSum : 0.0f);
+  }
+  return result;
+}
+
+GLINT_FN float zirrKaplanyanGlints(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi, ZirrKaplanyanParameters params) {
+  int cellVisits;
+  return zirrKaplanyanGlintsCounted(uv, duvdx, duvdy, wo, wi, params, cellVisits);
+}
+
+// The ZK16 BRDF without Fresnel (F = 1) and without the cosine, comparable to glintReflectance:
+// the renderer's entry point (uv and its dFdx/dFdy, wo and wi in the local frame).
+GLINT_FN float zirrKaplanyanReflectance(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
+                                        ZirrKaplanyanParameters params) {
+  return kZirrKaplanyanOutputScale * zirrKaplanyanGlints(uv, duvdx, duvdy, wo, wi, params);
+}
+
+GLINT_KERNEL_END
+
+#endif
