@@ -42,20 +42,8 @@ Timing summarise(std::vector<double> times) {
   return {median, times.front(), times.back()};
 }
 
-std::pair<int, int> parseBenchSize(const std::string& text) {
-  int w = 0;
-  int h = 0;
-  char x = 0;
-  char rest = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || x != 'x' || w < 1 || h < 1 || w > 8192 ||
-      h > 8192) {
-    throw Error("--size must look like 512x512 (1 to 8192 each), got '" + text + "'");
-  }
-  return {w, h};
-}
-
 void runBench(const BenchOptions& options) {
-  const auto [width, height] = parseBenchSize(options.size);
+  const auto [width, height] = parseImageSize(options.size);
   if (options.frames < 1 || options.frames > 100000) throw Error("--frames must be in [1, 100000]");
   if (options.warmup < 0 || options.warmup > 1000) throw Error("--warmup must be in [0, 1000]");
   const std::vector<std::string> sceneNames = options.scenes.empty() ? scene::builtinSceneNames() : options.scenes;

@@ -2,7 +2,6 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
-#include <regex>
 #include <unistd.h>
 
 #include "app/commands.h"
@@ -25,18 +24,8 @@ struct RenderOptions {
   float exposure = 1.0f;
 };
 
-std::pair<int, int> parseSize(const std::string& text) {
-  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
-  std::smatch match;
-  if (!std::regex_match(text, match, pattern)) throw Error("--size must look like 512x512, got '" + text + "'");
-  const int w = std::stoi(match[1]);
-  const int h = std::stoi(match[2]);
-  if (w < 1 || h < 1 || w > 8192 || h > 8192) throw Error("--size must be between 1x1 and 8192x8192, got " + text);
-  return {w, h};
-}
-
 void runRender(const RenderOptions& options) {
-  const auto [width, height] = parseSize(options.size);
+  const auto [width, height] = parseImageSize(options.size);
   const gl::BrdfModel brdf = gl::brdfModelFromString(options.brdf);
   const std::string extension = lowercaseExtension(options.output);
   if (extension != ".png" && extension != ".exr") {
@@ -80,7 +69,7 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("-o,--output", options->output, "Output image: .png (tone-mapped sRGB) or .exr (linear radiance)")
       ->required();
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
-  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint or cook-torrance")
+  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
       ->capture_default_str();
   command->add_option("--spp", options->spp, "Jittered samples per pixel, averaged: a supersampled reference")
       ->capture_default_str();

@@ -11,6 +11,7 @@ void registerEvalCommand(CLI::App& app);
 void registerDiffCommand(CLI::App& app);
 void registerRenderCommand(CLI::App& app);
 void registerViewCommand(CLI::App& app);
+void registerTraceCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
 
 }  // namespace glint::app

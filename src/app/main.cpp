@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   glint::app::registerDiffCommand(app);
   glint::app::registerRenderCommand(app);
   glint::app::registerViewCommand(app);
+  glint::app::registerTraceCommand(app);
   glint::app::registerBenchCommand(app);
   try {
     app.parse(argc, argv);

@@ -1,5 +1,7 @@
 #include "app/scene_options.h"
 
+#include <regex>
+
 #include "glint/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -60,6 +62,16 @@ const scene::Camera& SceneOptions::findCamera(const scene::Scene& s) const {
 
 Dictionary SceneOptions::loadDictionary() const {
   return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionary);
+}
+
+std::pair<int, int> parseImageSize(const std::string& text) {
+  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) throw Error("--size must look like 512x512, got '" + text + "'");
+  const int w = std::stoi(match[1]);
+  const int h = std::stoi(match[2]);
+  if (w < 1 || h < 1 || w > 8192 || h > 8192) throw Error("--size must be between 1x1 and 8192x8192, got " + text);
+  return {w, h};
 }
 
 }  // namespace glint::app

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -29,5 +30,8 @@ struct SceneOptions {
   const scene::Camera& findCamera(const scene::Scene& scene) const;
   Dictionary loadDictionary() const;
 };
+
+// `--size WxH` of the commands that write images: each side in [1, 8192]; throws Error with one line.
+std::pair<int, int> parseImageSize(const std::string& text);
 
 }  // namespace glint::app

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "error.h"
+#include "microfacet_sampling.h"
 
 namespace glint {
 
@@ -112,21 +113,35 @@ float CookTorranceBsdf::ndf(glm::vec3 m) const {
 float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::beckmannP22(slope, alpha_); }
 
 GlintBsdf::GlintBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
-                     const SurfaceFootprint& footprint, Fresnel fresnel, Spectrum reflectance)
+                     const SurfaceFootprint& footprint, Fresnel fresnel, Spectrum reflectance, GlintSampler sampler)
     : dictionary_(dictionary.view()),
       parameters_(parameters),
       footprint_(footprint),
       fresnel_(fresnel),
-      reflectance_(reflectance) {
+      reflectance_(reflectance),
+      sampler_(sampler) {
   validateGlintParameters(parameters);
   validateFootprint(footprint);
 }
 
-Spectrum GlintBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
-  const float value = kernel::glintReflectance(dictionary_, parameters_, footprint_.uv, footprint_.duvdx,
-                                               footprint_.duvdy, wo, wi);
+namespace {
+
+// The Cook-Torrance frame around a value of the P-NDF at wh = normalize(wo + wi), with Fresnel and
+// colour: what kernel::glintReflectance computes, given the NDF value, so that sample() evaluates
+// the P-NDF once for both f and pdf.
+Spectrum glintReflection(const Fresnel& fresnel, Spectrum reflectance, glm::vec3 wo, glm::vec3 wi, glm::vec3 wh,
+                         float ndf) {
+  const float value = kernel::microfacetReflectance(wo, wi, wh, ndf);
   if (value == 0.0f) return Spectrum(0.0f);
-  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
+  return reflectance * fresnel.evaluate(glm::dot(wo, wh)) * value;
+}
+
+}  // namespace
+
+Spectrum GlintBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return Spectrum(0.0f);
+  const glm::vec3 wh = glm::normalize(wo + wi);
+  return glintReflection(fresnel_, reflectance_, wo, wi, wh, ndf(wh));
 }
 
 float GlintBsdf::ndf(glm::vec3 m) const {
@@ -135,6 +150,214 @@ float GlintBsdf::ndf(glm::vec3 m) const {
 
 float GlintBsdf::p22(glm::vec2 slope) const {
   return kernel::glintP22(dictionary_, parameters_, footprint_.uv, footprint_.duvdx, footprint_.duvdy, slope);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Importance sampling (docs/sampling.md): CookTorranceBsdf, GlintBsdf, GlintDielectricBsdf.
+
+namespace {
+
+// Mirror reflection of wo about a microfacet normal m: wi = 2 (wo.m) m - wo.
+glm::vec3 reflectAbout(glm::vec3 wo, glm::vec3 m) { return glm::normalize(2.0f * glm::dot(wo, m) * m - wo); }
+
+// A visible normal of the Beckmann lobe: a slope of its P22 (that is, m from D(m) m.z), then the
+// V-cavity's choice between m and its mirror (Heitz & d'Eon 2014, section 5).
+glm::vec3 sampleBeckmannVisibleNormal(glm::vec2 alpha, glm::vec3 wo, float& uChoice, glm::vec2 u) {
+  const glm::vec3 m = sampling::normalFromSlope(sampling::sampleBeckmannSlope(alpha, u));
+  return sampling::sampleVCavityVisibleNormal(wo, m, uChoice);
+}
+
+float beckmannNdf(glm::vec2 alpha, glm::vec3 m) {
+  return m.z > 0.0f ? kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha), m.z) : 0.0f;
+}
+
+// Density of a direction reflected about visible normals: D_wo(wh) / (4 wo.wh), the Jacobian of
+// the reflection dwh / dwi = 1 / (4 wi.wh) (Walter et al. 2007, Eq. 14; Heitz 2014, Eq. 17).
+float reflectionPdf(glm::vec3 wo, glm::vec3 wh, float visibleNdf) {
+  const float cosine = glm::dot(wo, wh);
+  return cosine > 0.0f ? visibleNdf / (4.0f * cosine) : 0.0f;
+}
+
+std::optional<BsdfSample> makeSample(Spectrum f, glm::vec3 wi, float pdf, bool transmission) {
+  if (!(pdf > 0.0f)) return std::nullopt;
+  return BsdfSample{f, wi, pdf, f * (std::abs(wi.z) / pdf), transmission};
+}
+
+}  // namespace
+
+std::optional<BsdfSample> CookTorranceBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  if (wo.z <= 0.0f) return std::nullopt;
+  const glm::vec3 wi = reflectAbout(wo, sampleBeckmannVisibleNormal(alpha_, wo, uChoice, u));
+  if (wi.z <= 0.0f) return std::nullopt;
+  return makeSample(f(wo, wi), wi, pdf(wo, wi), false);
+}
+
+float CookTorranceBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const glm::vec3 wh = glm::normalize(wo + wi);
+  return reflectionPdf(wo, wh, sampling::visibleNdf(wo, wh, beckmannNdf(alpha_, wh)));
+}
+
+std::optional<glm::vec3> GlintBsdf::sampleVisibleNormal(glm::vec3 wo, float& uChoice, glm::vec2 u) const {
+  if (sampler_ == GlintSampler::Gaussian) return sampleBeckmannVisibleNormal(parameters_.alpha, wo, uChoice, u);
+  const std::optional<glm::vec2> slope = sampling::sampleGlintSlope(
+      dictionary_, parameters_, footprint_.uv, footprint_.duvdx, footprint_.duvdy, uChoice, u);
+  if (!slope) return std::nullopt;  // a cell without microfacets
+  return sampling::sampleVCavityVisibleNormal(wo, sampling::normalFromSlope(*slope), uChoice);
+}
+
+float GlintBsdf::visibleNormalPdf(glm::vec3 wo, glm::vec3 m) const {
+  if (m.z <= 0.0f) return 0.0f;
+  const float d = sampler_ == GlintSampler::Gaussian ? beckmannNdf(parameters_.alpha, m) : ndf(m);
+  return sampling::visibleNdf(wo, m, d);
+}
+
+std::optional<BsdfSample> GlintBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  if (wo.z <= 0.0f) return std::nullopt;
+  const std::optional<glm::vec3> m = sampleVisibleNormal(wo, uChoice, u);
+  if (!m) return std::nullopt;
+  const glm::vec3 wi = reflectAbout(wo, *m);
+  if (wi.z <= 0.0f) return std::nullopt;
+  // f and pdf at the half vector of (wo, wi), as f() and pdf() compute them, with the P-NDF
+  // evaluated once.
+  const glm::vec3 wh = glm::normalize(wo + wi);
+  const float d = ndf(wh);
+  const float visible =
+      sampler_ == GlintSampler::Mixture ? sampling::visibleNdf(wo, wh, d) : visibleNormalPdf(wo, wh);
+  return makeSample(glintReflection(fresnel_, reflectance_, wo, wi, wh, d), wi, reflectionPdf(wo, wh, visible),
+                    false);
+}
+
+float GlintBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  const glm::vec3 wh = glm::normalize(wo + wi);
+  return reflectionPdf(wo, wh, visibleNormalPdf(wo, wh));
+}
+
+GlintDielectricBsdf::GlintDielectricBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
+                                         const SurfaceFootprint& footprint, float eta, GlintSampler sampler)
+    : microfacets_(dictionary, parameters, footprint, Fresnel::none(), Spectrum(1.0f), sampler), eta_(eta) {
+  requireRange("eta", eta, 0.2f, 5.0f);
+  if (std::abs(eta - 1.0f) < 1e-3f) {
+    // Index matched: every microfacet transmits wo straight through, a Dirac the model cannot hold.
+    std::ostringstream message;
+    message << "eta must differ from 1 by at least 1e-3, got " << eta;
+    throw Error(message.str());
+  }
+}
+
+GlintDielectricBsdf::Evaluation GlintDielectricBsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
+  const float cosO = wo.z;
+  const float cosI = wi.z;
+  if (cosO == 0.0f || cosI == 0.0f) return {};
+  const bool reflection = cosO * cosI > 0.0f;
+  // etap = n_wi / n_wo, the relative index across the interface (1 for reflection).
+  const float etap = reflection ? 1.0f : (cosO > 0.0f ? eta_ : 1.0f / eta_);
+  // Generalised half vector (Walter et al. 2007, Eq. 16), turned to the outside.
+  glm::vec3 wm = wo + etap * wi;
+  if (glm::dot(wm, wm) == 0.0f) return {};
+  wm = glm::normalize(wm);
+  if (wm.z < 0.0f) wm = -wm;
+  // Both directions must see the front of the microfacet from their own side.
+  if (wm.z <= 0.0f || glm::dot(wm, wo) * cosO <= 0.0f || glm::dot(wm, wi) * cosI <= 0.0f) return {};
+
+  const float d = microfacets_.ndf(wm);
+  const float g = sampling::vcavityG1TwoSided(wo, wm) * sampling::vcavityG1TwoSided(wi, wm);
+  const float fresnel = sampling::fresnelDielectric(glm::dot(wo, wm), eta_);
+  // Visible normals are drawn for the viewer's side turned up: D_wo(m) with |wo|.
+  const float visible = microfacets_.visibleNormalPdf(cosO > 0.0f ? wo : -wo, wm);
+  const float cosOM = glm::dot(wo, wm);
+  const float cosIM = glm::dot(wi, wm);
+  Evaluation result;
+  if (reflection) {
+    // Walter et al. 2007, Eq. 20; pdf: Eq. 14 times the probability F of choosing reflection.
+    result.f = fresnel * g * d / (4.0f * std::abs(cosI * cosO));
+    result.pdf = visible / (4.0f * std::abs(cosOM)) * fresnel;
+  } else {
+    // Walter et al. 2007, Eq. 21 (radiance), written with etap = n_wi / n_wo:
+    // f = (1 - F) G D |wi.m| |wo.m| / (|wi.z| |wo.z| (wi.m + wo.m / etap)^2) / etap^2;
+    // pdf: dwm / dwi = |wi.m| / (wi.m + wo.m / etap)^2 (Eq. 17), times the probability 1 - F.
+    const float sqrtDenominator = cosIM + cosOM / etap;
+    const float denominator = sqrtDenominator * sqrtDenominator;
+    if (!(denominator > 0.0f)) return {};
+    result.f = (1.0f - fresnel) * g * d * std::abs(cosIM * cosOM) / (std::abs(cosI * cosO) * denominator) /
+               (etap * etap);
+    result.pdf = visible * std::abs(cosIM) / denominator * (1.0f - fresnel);
+  }
+  return result;
+}
+
+Spectrum GlintDielectricBsdf::f(glm::vec3 wo, glm::vec3 wi) const { return Spectrum(evaluate(wo, wi).f); }
+
+float GlintDielectricBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const { return evaluate(wo, wi).pdf; }
+
+std::optional<BsdfSample> GlintDielectricBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  if (wo.z == 0.0f) return std::nullopt;
+  const std::optional<glm::vec3> m = microfacets_.sampleVisibleNormal(wo.z > 0.0f ? wo : -wo, uChoice, u);
+  if (!m) return std::nullopt;  // a cell without microfacets: neither reflects nor transmits
+  const float fresnel = sampling::fresnelDielectric(glm::dot(wo, *m), eta_);
+  glm::vec3 wi;
+  bool transmission = false;
+  if (uChoice < fresnel) {
+    wi = reflectAbout(wo, *m);
+    if (wi.z * wo.z <= 0.0f) return std::nullopt;
+  } else {
+    const std::optional<glm::vec3> refracted = sampling::refractDirection(wo, *m, eta_);
+    if (!refracted || refracted->z * wo.z >= 0.0f) return std::nullopt;
+    wi = *refracted;
+    transmission = true;
+  }
+  const Evaluation e = evaluate(wo, wi);
+  return makeSample(Spectrum(e.f), wi, e.pdf, transmission);
+}
+
+ZirrKaplanyanParameters defaultZirrKaplanyanParameters() {
+  ZirrKaplanyanParameters p;
+  p.roughness = glm::vec2(0.6f);
+  p.microRoughness = 0.024f * p.roughness;
+  p.searchConeAngle = 0.01f;
+  p.variation = 100.0f;
+  p.dynamicRange = 50000.0f;
+  p.logDensity = std::log(5e8f);
+  p.maxAnisotropy = kernel::kZirrKaplanyanReferenceMaxAnisotropy;
+  p.patternSeed = 0u;
+  return p;
+}
+
+void validateZirrKaplanyanParameters(const ZirrKaplanyanParameters& p) {
+  requireRange("roughness_x", p.roughness.x, 0.005f, 2.0f);
+  requireRange("roughness_y", p.roughness.y, 0.005f, 2.0f);
+  // The bin index q / (mu + c) stays below 1e4 in magnitude (an int), and rho = sqrt(r^2 - mu^2).
+  requireRange("micro_roughness_x", p.microRoughness.x, 1e-4f, p.roughness.x);
+  requireRange("micro_roughness_y", p.microRoughness.y, 1e-4f, p.roughness.y);
+  requireRange("search_cone_angle", p.searchConeAngle, 0.0f, 1.0f);
+  requireRange("variation", p.variation, 0.0f, 1e6f);
+  // R p K stays finite: p K is at most about 1e10 for accepted roughnesses.
+  requireRange("dynamic_range", p.dynamicRange, 1e-6f, 1e10f);
+  requireRange("log_density", p.logDensity, -100.0f, 100.0f);
+  requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
+}
+
+ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const GlintParameters& parameters, const SurfaceFootprint& footprint,
+                                     Fresnel fresnel, Spectrum reflectance)
+    : footprint_(footprint), fresnel_(fresnel), reflectance_(reflectance) {
+  validateGlintParameters(parameters);
+  validateFootprint(footprint);
+  parameters_ = kernel::zirrKaplanyanFromGlint(parameters);
+}
+
+ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
+                                     Fresnel fresnel, Spectrum reflectance)
+    : parameters_(parameters), footprint_(footprint), fresnel_(fresnel), reflectance_(reflectance) {
+  validateZirrKaplanyanParameters(parameters);
+  validateFootprint(footprint);
+}
+
+Spectrum ZirrKaplanyanBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
+  const float value = kernel::zirrKaplanyanReflectance(footprint_.uv, footprint_.duvdx, footprint_.duvdy, wo, wi,
+                                                       parameters_);
+  if (value == 0.0f) return Spectrum(0.0f);
+  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
 }
 
 }  // namespace glint

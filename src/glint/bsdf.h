@@ -3,18 +3,25 @@
 //   - f(wo, wi) is the BRDF value WITHOUT the cosine factor;
 //   - a BSDF is a small value type built per shading point; its parameters are validated when it
 //     is built (glint::Error naming the field), never on the evaluation path.
-// Sampling (sample / pdf) arrives with the path tracer; the types leave room for it.
+//   - sample(wo, uChoice, u) draws wi by importance and returns f, pdf and the weight f |cos| / pdf;
+//     pdf(wo, wi) is the solid-angle density of sample(), the same value for the same pair
+//     (docs/sampling.md). sample() returns nullopt where it draws no direction (below the horizon,
+//     or on a glint cell without microfacets): the pdf then integrates to less than 1.
 #pragma once
+
+#include <optional>
 
 #include <glm/glm.hpp>
 
 #include "dictionary.h"
 #include "kernel/glint_brdf.h"
+#include "kernel/zirr_kaplanyan.h"
 
 namespace glint {
 
 using Spectrum = glm::vec3;
 using GlintParameters = kernel::GlintParameters;
+using ZirrKaplanyanParameters = kernel::ZirrKaplanyanParameters;
 
 // The reference defaults of model.md section 2.
 GlintParameters defaultGlintParameters();
@@ -45,6 +52,21 @@ struct SurfaceFootprint {
 };
 void validateFootprint(const SurfaceFootprint& footprint);
 
+// One importance sample of a BSDF (docs/sampling.md): wi in the local frame, f(wo, wi) without the
+// cosine, pdf(wo, wi) in solid angle, and the Monte Carlo weight f |wi.z| / pdf.
+struct BsdfSample {
+  Spectrum f;
+  glm::vec3 wi;
+  float pdf;
+  Spectrum weight;  // f * |cos wi| / pdf
+  bool transmission = false;
+};
+
+// How GlintBsdf draws its microfacet normals (docs/sampling.md): Mixture samples the P-NDF itself,
+// as the finite mixture it is (Chermain et al. 2021, EGSR); Gaussian samples the single Beckmann
+// lobe of the same roughness, the baseline (low cost, high variance for glints).
+enum class GlintSampler { Mixture, Gaussian };
+
 // Cook-Torrance with a Beckmann NDF and V-cavity masking: the baseline, and the glint BRDF's limit.
 class CookTorranceBsdf {
  public:
@@ -52,6 +74,9 @@ class CookTorranceBsdf {
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
   float ndf(glm::vec3 m) const;    // Beckmann D(m)
   float p22(glm::vec2 slope) const;
+  // Visible normals of Beckmann with V-cavity (Heitz & d'Eon 2014); uChoice, u in [0, 1).
+  std::optional<BsdfSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
+  float pdf(glm::vec3 wo, glm::vec3 wi) const;
 
  private:
   glm::vec2 alpha_;
@@ -64,10 +89,22 @@ class CookTorranceBsdf {
 class GlintBsdf {
  public:
   GlintBsdf(const Dictionary& dictionary, const GlintParameters& parameters, const SurfaceFootprint& footprint,
-            Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f));
+            Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f),
+            GlintSampler sampler = GlintSampler::Mixture);
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
   float ndf(glm::vec3 m) const;     // D_P(m), the P-NDF
   float p22(glm::vec2 slope) const; // P22_P, the P-SDF
+  // wi by the sampler's visible normals, reflected about them; uChoice, u in [0, 1).
+  std::optional<BsdfSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
+  float pdf(glm::vec3 wo, glm::vec3 wi) const;
+  GlintSampler sampler() const { return sampler_; }
+
+  // The building blocks of sample() and pdf(), shared with GlintDielectricBsdf: a visible normal
+  // for wo.z > 0 (nullopt on a cell without microfacets), uChoice coming back rescaled to [0, 1)
+  // for a further choice; and its density D_wo(m) = G1(wo, m) <wo, m>+ D(m) / wo.z, with D the
+  // P-NDF (Mixture) or Beckmann (Gaussian).
+  std::optional<glm::vec3> sampleVisibleNormal(glm::vec3 wo, float& uChoice, glm::vec2 u) const;
+  float visibleNormalPdf(glm::vec3 wo, glm::vec3 m) const;
 
  private:
   kernel::DictionaryView dictionary_;
@@ -75,6 +112,60 @@ class GlintBsdf {
   SurfaceFootprint footprint_;
   Fresnel fresnel_;
   Spectrum reflectance_;
+  GlintSampler sampler_;
 };
+
+// A glittering dielectric (Chermain et al. 2021, EGSR): the glint microfacets reflect
+// and transmit, after Walter, Marschner, Li & Torrance 2007 (generalised half vectors, exact
+// dielectric Fresnel), with V-cavity masking G = G1(wo) G1(wi). Conventions (docs/sampling.md):
+//   - eta = n_inside / n_outside; the side z > 0 of the shading frame is the outside;
+//   - wo and wi may each be on either side: same side is reflection, opposite sides transmission;
+//   - f is for radiance (Walter 2007, Eq. 21: the transmitted part carries (n_wo / n_wi)^2), so
+//     f(wo, wi) / n_wo^2 = f(wi, wo) / n_wi^2;
+//   - sample() picks reflection with probability F(wo.m) at the sampled visible normal m.
+class GlintDielectricBsdf {
+ public:
+  GlintDielectricBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
+                      const SurfaceFootprint& footprint, float eta, GlintSampler sampler = GlintSampler::Mixture);
+  Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
+  std::optional<BsdfSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
+  float pdf(glm::vec3 wo, glm::vec3 wi) const;
+  float eta() const { return eta_; }
+
+ private:
+  struct Evaluation {
+    float f = 0.0f;
+    float pdf = 0.0f;
+  };
+  Evaluation evaluate(glm::vec3 wo, glm::vec3 wi) const;
+
+  GlintBsdf microfacets_;  // F = 1, white: its P-NDF and visible-normal sampler
+  float eta_;
+};
+
+// The glint BRDF of Zirr & Kaplanyan 2016 (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md), the
+// baseline, at one shading point. Built from our parameters through the spec's mapping
+// (kernel::zirrKaplanyanFromGlint), or from the model's own parameters.
+class ZirrKaplanyanBsdf {
+ public:
+  ZirrKaplanyanBsdf(const GlintParameters& parameters, const SurfaceFootprint& footprint,
+                    Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f));
+  ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
+                    Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f));
+  Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
+  const ZirrKaplanyanParameters& parameters() const { return parameters_; }
+
+ private:
+  ZirrKaplanyanParameters parameters_;
+  SurfaceFootprint footprint_;
+  Fresnel fresnel_;
+  Spectrum reflectance_;
+};
+
+// The Shadertoy's snow material (spec 2.2): r = 0.6, mu = 0.024 r, c = 0.01, v = 100, R = 50000,
+// rho_d = 5e8, K_a = 16, in world-scale uv units.
+ZirrKaplanyanParameters defaultZirrKaplanyanParameters();
+// Throws Error naming the first parameter out of range (docs/zirr-kaplanyan.md).
+void validateZirrKaplanyanParameters(const ZirrKaplanyanParameters& parameters);
 
 }  // namespace glint

@@ -79,12 +79,16 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   return footprint;
 }
 
+// The dictionary's slope support 4 sigma_d = 4 alpha_d / sqrt(2): marginals vanish beyond it.
+GLINT_FN float glintDictionaryDomain(DictionaryView dict) {
+  return 2.82842712f * dict.alpha;
+}
+
 // One tabulated 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R and
 // the marginal falls linearly to 0 at 4 sigma_d (docs/dictionary.md, "Texel convention"). The
 // caller guarantees 0 <= absSlope < 4 sigma_d.
 GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, float absSlope) {
-  float fourSigma = 2.82842712f * dict.alpha;  // 4 alpha_d / sqrt(2)
-  float x = absSlope * (float(dict.texelsPerDistribution) / fourSigma);
+  float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict));
   int k = min(int(x), dict.texelsPerDistribution - 1);
   float f = x - float(k);
   float a = glintDictionaryTexel(dict, level, distribution, k);
@@ -105,64 +109,105 @@ GLINT_FN vec3 glintCellColour(uvec4 h) {
   return mix(vec3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
 }
 
+// The random properties of one cell (model.md 2.5), each drawn in exactly one place: the P-SDF
+// below and the importance sampler of the host (src/glint/microfacet_sampling.cpp) both call these.
+//
+// Coherent index: the level-0 index of the cell's first child, so that a cell and its descendants
+// draw the same random numbers (model.md 2.5). Masked to the period, the pair is a collision-free
+// seed; pcg4d's four lanes are the cell's four draws.
+GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
+  uint s = (uint(cellX) << uint(level)) & kCellIndexMask;
+  uint t = (uint(cellY) << uint(level)) & kCellIndexMask;
+  return pcg4d(uvec4(s, t, params.patternSeed, 0u));
+}
+
+// Microfacet relative area: the cell holds microfacets with probability MRA (model.md 2.5).
+GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
+  return !(hashToUnitOpen(h.x) > params.relativeArea);
+}
+
+// Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
+// log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L means "so
+// many microfacets that the smooth Beckmann limit holds".
+GLINT_FN int glintCellDictionaryLevel(DictionaryView dict, GlintParameters params, float logDensity, int level,
+                                      uvec4 h) {
+  float log4Count = float(level - (dict.numLevels - 1)) + logDensity * kInvLn4;
+  float randomLevel = log4Count +
+      params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
+  return int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
+}
+
+// The cell's random rotation theta = 2 pi hash (model.md 2.5), as (cos theta, sin theta).
+GLINT_FN vec2 glintCellRotation(uvec4 h) {
+  float theta = 2.0f * kPi * hashToUnitOpen(h.z);
+  return vec2(cos(theta), sin(theta));
+}
+
+// The cell's two distributions (i, j) from the 16-bit halves of the last lane: exact integer
+// arithmetic, the same in both languages.
+GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
+  uint n = uint(dict.numDistributions);
+  return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
+}
+
+// Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
+// rotation, (x', y') = R(-theta) S^-1 slope (model.md 2.5).
+GLINT_FN vec2 glintDictionarySlope(DictionaryView dict, GlintParameters params, vec2 rotation, vec2 slope) {
+  vec2 scaled = slope * (vec2(dict.alpha) / params.alpha);
+  float x = rotation.x * scaled.x + rotation.y * scaled.y;
+  float y = -rotation.y * scaled.x + rotation.x * scaled.y;
+  return vec2(x, y);
+}
+
+// Jacobian of the scaling, 1 / det(S) (model.md 2.5).
+GLINT_FN float glintScalingJacobian(DictionaryView dict, GlintParameters params) {
+  return (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
+}
+
 // P22 of one cell of footprint level `level` (model.md 2.5), in .w; .rgb is P22 times the
 // cell's colour (white unless params.colouredCells).
 GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float logDensity, int cellX, int cellY,
                            int level, vec2 slope) {
-  // Coherent index: the level-0 index of the cell's first child, so that a cell and its
-  // descendants draw the same random numbers (model.md 2.5). Masked to the period, the pair
-  // is a collision-free seed.
-  uint s = (uint(cellX) << uint(level)) & kCellIndexMask;
-  uint t = (uint(cellY) << uint(level)) & kCellIndexMask;
-  uvec4 h = pcg4d(uvec4(s, t, params.patternSeed, 0u));
-
-  // Microfacet relative area: the cell holds microfacets with probability MRA (model.md 2.5).
-  if (hashToUnitOpen(h.x) > params.relativeArea) {
+  uvec4 h = glintCellHash(params, cellX, cellY, level);
+  if (!glintCellHasMicrofacets(params, h)) {
     return vec4(0.0f);
   }
-  // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level
-  // is log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L
-  // means "so many microfacets that the smooth limit holds".
-  float log4Count = float(level - (dict.numLevels - 1)) + logDensity * kInvLn4;
-  float randomLevel = log4Count +
-      params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
-  int dictLevel = int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
+  int dictLevel = glintCellDictionaryLevel(dict, params, logDensity, level, h);
   if (dictLevel == dict.numLevels) {
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     return vec4(beckmannP22(slope, params.alpha));
   }
-
-  // Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
-  // random rotation (model.md 2.5).
-  float theta = 2.0f * kPi * hashToUnitOpen(h.z);
-  float c = cos(theta);
-  float sn = sin(theta);
-  vec2 scaled = slope * (vec2(dict.alpha) / params.alpha);
-  float x = c * scaled.x + sn * scaled.y;
-  float y = -sn * scaled.x + c * scaled.y;
-  float fourSigma = 2.82842712f * dict.alpha;
-  if (abs(x) >= fourSigma || abs(y) >= fourSigma) {
+  vec2 local = glintDictionarySlope(dict, params, glintCellRotation(h), slope);
+  float fourSigma = glintDictionaryDomain(dict);
+  if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return vec4(0.0f);
   }
-  // Two distributions from the 16-bit halves of the last lane: exact integer arithmetic, the
-  // same in both languages.
-  uint n = uint(dict.numDistributions);
-  int i = int(((h.w >> 16u) * n) >> 16u);
-  int j = int(((h.w & 0xFFFFu) * n) >> 16u);
   // Tensor product of two marginals and the Jacobian of the scaling (model.md 2.5).
-  float jacobian = (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
-  float p22 = glintMarginal(dict, dictLevel, i, abs(x)) * glintMarginal(dict, dictLevel, j, abs(y)) * jacobian;
+  ivec2 distributions = glintCellDistributions(dict, h);
+  float p22 = glintMarginal(dict, dictLevel, distributions.x, abs(local.x)) *
+              glintMarginal(dict, dictLevel, distributions.y, abs(local.y)) * glintScalingJacobian(dict, params);
   vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
   return vec4(colour * p22, p22);
 }
 
-// P22 over the footprint at one level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted
-// by pbrt-v3's EWA Gaussian over the footprint ellipse. Rows are walked between the ellipse's two
-// boundary crossings, so only cells inside the ellipse are visited (no bounding-box waste, no cap).
-GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
-                             int level, vec2 slope) {
-  float cellsPerUv = exp2(float(dict.numLevels - 1 - level));
-  vec2 centre = uv * cellsPerUv - vec2(0.5f);  // cell (s, t) is centred on integer (s, t)
+// The cells of one footprint level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
+// pbrt-v3's EWA Gaussian over the footprint ellipse. Rows t0..t1 of the ellipse's bounding box are
+// walked between the ellipse's two boundary crossings (glintCellRow), so only cells inside the
+// ellipse are visited (no bounding-box waste, no cap). The P-SDF and the host's sampler enumerate
+// the cells and weigh them with these three functions, so both see the same cells and weights.
+struct GlintCellGrid {
+  vec2 centre;  // the footprint's centre in cell units; cell (s, t) is centred on integer (s, t)
+  float ea;     // implicit ellipse ea x^2 + eb x y + ec y^2 < 1 around the centre
+  float eb;
+  float ec;
+  int t0;       // first and last row
+  int t1;
+};
+
+GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numLevels, int level) {
+  float cellsPerUv = exp2(float(numLevels - 1 - level));
+  GlintCellGrid grid;
+  grid.centre = uv * cellsPerUv - vec2(0.5f);
   vec2 a0 = footprint.majorAxis * cellsPerUv;
   vec2 a1 = footprint.minorAxis * cellsPerUv;
   // Implicit ellipse A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so it covers at least a cell.
@@ -170,34 +215,68 @@ GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFo
   float eb = -2.0f * (a0.x * a0.y + a1.x * a1.y);
   float ec = a0.x * a0.x + a1.x * a1.x + 1.0f;
   float invF = 1.0f / (ea * ec - 0.25f * eb * eb);
-  ea = ea * invF;
-  eb = eb * invF;
-  ec = ec * invF;
-  float halfHeight = sqrt(4.0f * ea / (4.0f * ea * ec - eb * eb));
-  int t0 = int(ceil(centre.y - halfHeight));
-  int t1 = int(floor(centre.y + halfHeight));
+  grid.ea = ea * invF;
+  grid.eb = eb * invF;
+  grid.ec = ec * invF;
+  float halfHeight = sqrt(4.0f * grid.ea / (4.0f * grid.ea * grid.ec - grid.eb * grid.eb));
+  grid.t0 = int(ceil(grid.centre.y - halfHeight));
+  grid.t1 = int(floor(grid.centre.y + halfHeight));
+  return grid;
+}
+
+// The columns (s0, s1) of row t inside the ellipse; s1 < s0 when the row misses it.
+GLINT_FN ivec2 glintCellRow(GlintCellGrid grid, int t) {
+  float dy = float(t) - grid.centre.y;
+  float discriminant = grid.eb * grid.eb * dy * dy - 4.0f * grid.ea * (grid.ec * dy * dy - 1.0f);
+  if (discriminant <= 0.0f) {
+    return ivec2(1, 0);
+  }
+  float root = sqrt(discriminant);
+  return ivec2(int(ceil(grid.centre.x + (-grid.eb * dy - root) / (2.0f * grid.ea))),
+               int(floor(grid.centre.x + (-grid.eb * dy + root) / (2.0f * grid.ea))));
+}
+
+// EWA weight of cell (s, t): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0 (model.md 2.4).
+GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
+  float dx = float(s) - grid.centre.x;
+  float dy = float(t) - grid.centre.y;
+  float r2 = grid.ea * dx * dx + grid.eb * dx * dy + grid.ec * dy * dy;
+  return r2 < 1.0f ? exp(-2.0f * r2) - kEwaFilterFloor : 0.0f;
+}
+
+// P22 over the footprint at one level (model.md 2.4): the EWA-weighted mean of its cells' P22.
+GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
+                             int level, vec2 slope) {
+  GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   float weightSum = 0.0f;
   vec4 p22Sum = vec4(0.0f);
-  for (int t = t0; t <= t1; ++t) {
-    float dy = float(t) - centre.y;
-    float discriminant = eb * eb * dy * dy - 4.0f * ea * (ec * dy * dy - 1.0f);
-    if (discriminant <= 0.0f) {
-      continue;
-    }
-    float root = sqrt(discriminant);
-    int s0 = int(ceil(centre.x + (-eb * dy - root) / (2.0f * ea)));
-    int s1 = int(floor(centre.x + (-eb * dy + root) / (2.0f * ea)));
-    for (int s = s0; s <= s1; ++s) {
-      float dx = float(s) - centre.x;
-      float r2 = ea * dx * dx + eb * dx * dy + ec * dy * dy;
-      if (r2 < 1.0f) {
-        float weight = exp(-2.0f * r2) - kEwaFilterFloor;
+  for (int t = grid.t0; t <= grid.t1; ++t) {
+    ivec2 row = glintCellRow(grid, t);
+    for (int s = row.x; s <= row.y; ++s) {
+      float weight = glintCellWeight(grid, s, t);
+      if (weight > 0.0f) {
         weightSum += weight;
         p22Sum += weight * glintCellP22(dict, params, footprint.logDensity, s, t, level, slope);
       }
     }
   }
   return weightSum > 0.0f ? p22Sum / weightSum : vec4(0.0f);
+}
+
+// The pattern's uv, wrapped to its period (glintFootprintPeriod).
+GLINT_FN vec2 glintWrapUv(vec2 uv, int numLevels) {
+  float period = glintFootprintPeriod(numLevels);
+  return uv - period * floor(uv / period);
+}
+
+// The continuous LOD's two levels (model.md 2.3): floor(lod), blended with the next one by
+// glintLodBlend.
+GLINT_FN int glintLodLevel(GlintFootprint footprint) {
+  return int(floor(footprint.lod));
+}
+
+GLINT_FN float glintLodBlend(GlintFootprint footprint) {
+  return footprint.lod - float(glintLodLevel(footprint));
 }
 
 // The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3), in .w;
@@ -209,10 +288,9 @@ GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2
   if (footprint.degenerate) {
     return vec4(beckmannP22(slope, params.alpha));
   }
-  float period = glintFootprintPeriod(dict.numLevels);
-  vec2 wrapped = uv - period * floor(uv / period);
-  int level = int(floor(footprint.lod));
-  float blend = footprint.lod - float(level);
+  vec2 wrapped = glintWrapUv(uv, dict.numLevels);
+  int level = glintLodLevel(footprint);
+  float blend = glintLodBlend(footprint);
   vec4 p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, slope);
   if (blend > 0.0f) {
     p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, slope);

@@ -1,0 +1,169 @@
+// `glint trace`: the CPU path tracer (docs/trace.md) to a linear EXR and a tone-mapped PNG beside it.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <unistd.h>
+
+#include <tbb/global_control.h>
+
+#include "app/commands.h"
+#include "app/scene_options.h"
+#include "gl/renderer.h"
+#include "glint/error.h"
+#include "glint/image_io.h"
+#include "trace/path_tracer.h"
+
+namespace glint::app {
+
+namespace {
+
+struct TraceOptions {
+  SceneOptions scene;
+  std::string output;
+  std::string size = "256x256";
+  std::string brdf = "glint";
+  std::string sampler = "mixture";
+  int spp = 16;
+  int maxDepth = 4;
+  bool directOnly = false;
+  bool pixelCentres = false;
+  float exposure = 1.0f;
+  int threads = 0;
+};
+
+// The BRDF names are the real-time renderer's (one list of names); the tracer has both models.
+trace::SpecularModel specularModel(const std::string& name) {
+  const gl::BrdfModel model = gl::brdfModelFromString(name);
+  if (model == gl::BrdfModel::Glint) return trace::SpecularModel::Glint;
+  if (model == gl::BrdfModel::CookTorrance) return trace::SpecularModel::CookTorrance;
+  throw Error("--brdf " + name + " is not available in glint trace (choices: glint, cook-torrance)");
+}
+
+// A bar with the percentage done and the time left, redrawn at most ten times a second by
+// whichever worker finishes a tile; only on a terminal (a log gets the summary line alone).
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(Clock::now()) {}
+
+  void update(double fraction) {
+    if (!enabled_) return;
+    const std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock()) return;  // another worker is drawing it; skipping one update is fine
+    const auto now = Clock::now();
+    if (fraction < 1.0 && now - lastDrawn_ < std::chrono::milliseconds(100)) return;
+    lastDrawn_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    constexpr int kWidth = 30;
+    const int filled = std::clamp(static_cast<int>(fraction * kWidth), 0, kWidth);
+    char bar[kWidth + 1];
+    for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '-';
+    bar[kWidth] = '\0';
+    if (fraction > 0.0) {
+      const int left = static_cast<int>(std::lround(elapsed * (1.0 - fraction) / fraction));
+      std::fprintf(stderr, "\rglint: trace [%s] %3d%%  %d:%02d left   ", bar, static_cast<int>(fraction * 100.0),
+                   left / 60, left % 60);
+    }
+  }
+
+  void finish() {
+    if (enabled_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool enabled_;
+  Clock::time_point start_;
+  Clock::time_point lastDrawn_{};
+  std::mutex mutex_;
+};
+
+void runTrace(const TraceOptions& options) {
+  // Every option is checked before anything is loaded or written.
+  trace::TraceSettings settings;
+  std::tie(settings.width, settings.height) = parseImageSize(options.size);
+  settings.spp = options.spp;
+  settings.maxDepth = options.maxDepth;
+  settings.brdf = specularModel(options.brdf);
+  settings.sampler = trace::glintSamplerFromString(options.sampler);
+  settings.directOnly = options.directOnly;
+  settings.pixelCentres = options.pixelCentres;
+  trace::validateTraceSettings(settings);
+  const std::filesystem::path exrPath = options.output;
+  if (lowercaseExtension(exrPath) != ".exr") {
+    throw Error(options.output + ": the output must end in .exr (a .png preview is written beside it)");
+  }
+  const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
+  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
+  if (options.threads < 0 || options.threads > 1024) throw Error("--threads must be in [0, 1024]");
+  std::optional<tbb::global_control> threadLimit;
+  if (options.threads > 0) {
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+  }
+
+  const scene::Scene scene = options.scene.loadScene();
+  settings.camera = options.scene.findCamera(scene);
+  const Dictionary dictionary = options.scene.loadDictionary();
+  const auto start = std::chrono::steady_clock::now();
+  const trace::PathTracer tracer(scene, dictionary, settings);
+  ProgressBar progress(isatty(STDERR_FILENO) != 0);
+  const ImageRgbF image = tracer.render([&](double fraction) { progress.update(fraction); });
+  progress.finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  writeExr(exrPath, image);
+  try {
+    writePng(pngPath, displayEncode(image, scene.exposure * options.exposure));
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(exrPath, ignored);  // both files or neither
+    throw;
+  }
+  const double samples = static_cast<double>(settings.width) * settings.height * settings.spp;
+  const std::string brdf = settings.brdf == trace::SpecularModel::Glint
+                               ? options.brdf + ", " + trace::glintSamplerName(settings.sampler) + " sampler"
+                               : options.brdf;
+  const std::string paths =
+      settings.directOnly ? std::string("direct light only") : "max depth " + std::to_string(settings.maxDepth);
+  std::fprintf(stderr, "glint: wrote %s and %s (%s, %dx%d, %d spp, %s, %s, %.2f s, %.0f samples/s on %zu threads)\n",
+               exrPath.string().c_str(), pngPath.string().c_str(), options.scene.scene.c_str(), settings.width,
+               settings.height, settings.spp, brdf.c_str(), paths.c_str(), seconds, samples / seconds,
+               tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  if (tracer.nonFiniteSamples() > 0) {
+    std::fprintf(stderr, "glint: warning: %llu samples were not finite and count as black\n",
+                 static_cast<unsigned long long>(tracer.nonFiniteSamples()));
+  }
+}
+
+}  // namespace
+
+void registerTraceCommand(CLI::App& app) {
+  auto options = std::make_shared<TraceOptions>();
+  CLI::App* command = app.add_subcommand(
+      "trace", "Path-trace a scene on the CPU (Embree, oneTBB) to a linear EXR and a PNG preview beside it");
+  options->scene.addTo(*command);
+  command->add_option("-o,--output", options->output, "Output EXR (linear radiance); OUT.png is written beside it")
+      ->required();
+  command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+  command->add_option("--spp", options->spp, "Samples per pixel")->capture_default_str();
+  command->add_option("--max-depth", options->maxDepth, "Bounces: 1 is direct light (lights and environment) at the first hit")->capture_default_str();
+  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint or cook-torrance")
+      ->capture_default_str();
+  command->add_option("--sampler", options->sampler, "Importance sampling of the glint BRDF: mixture or gaussian")
+      ->capture_default_str();
+  command->add_flag("--direct-only", options->directOnly,
+                    "Only point and directional lights at the first hit: no environment, no bounces");
+  command->add_flag("--pixel-centres", options->pixelCentres,
+                    "Every sample through its pixel's centre (no jitter): the rasteriser's footprint");
+  command->add_option("--exposure", options->exposure, "Exposure multiplier for the PNG preview")
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Worker threads (0: all cores); the image does not depend on it")
+      ->capture_default_str();
+  command->callback([options] { runTrace(*options); });
+}
+
+}  // namespace glint::app

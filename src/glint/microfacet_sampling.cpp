@@ -1,0 +1,185 @@
+#include "microfacet_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint::sampling {
+
+float remapUniform(float u, float low, float width) {
+  return std::clamp((u - low) / width, 0.0f, kOneMinusEpsilon);
+}
+
+glm::vec3 normalFromSlope(glm::vec2 slope) { return glm::normalize(glm::vec3(-slope.x, -slope.y, 1.0f)); }
+
+glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, glm::vec2 u) {
+  // Box-Muller: radius sqrt(-2 ln(1 - u.x)) of a unit Gaussian pair, angle 2 pi u.y; then the
+  // per-axis standard deviations alpha / sqrt(2).
+  const float radius = std::sqrt(-2.0f * std::log1p(-std::min(u.x, kOneMinusEpsilon)));
+  const float phi = 2.0f * kernel::kPi * u.y;
+  return alpha * 0.70710678f * radius * glm::vec2(std::cos(phi), std::sin(phi));
+}
+
+float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u) {
+  // The even density, one half each side, inverted monotonically: u in [0, 1/2) covers
+  // (-4 sigma_d, 0], u in [1/2, 1) covers [0, 4 sigma_d); v is the CDF of |x| on its half (exact in
+  // double).
+  const float sign = u < 0.5f ? -1.0f : 1.0f;
+  const double v = u < 0.5f ? 1.0 - 2.0 * static_cast<double>(u) : 2.0 * static_cast<double>(u) - 1.0;
+  // On [0, 4 sigma_d) the marginal is piecewise linear between texel values a_k at x_k = k h,
+  // h = 4 sigma_d / R, with a_R = 0: segment k holds h (a_k + a_{k+1}) / 2 of the mass.
+  const int texels = dict.texelsPerDistribution;
+  auto texel = [&](int k) {
+    return k < texels ? static_cast<double>(kernel::glintDictionaryTexel(dict, level, distribution, k)) : 0.0;
+  };
+  double total = 0.0;
+  for (int k = 0; k < texels; ++k) total += 0.5 * (texel(k) + texel(k + 1));
+  const double target = v * total;
+  double before = 0.0;
+  int segment = -1;
+  for (int k = 0; k < texels; ++k) {
+    const double mass = 0.5 * (texel(k) + texel(k + 1));
+    if (mass > 0.0) {
+      segment = k;
+      if (target < before + mass) break;
+      before += mass;
+    }
+  }
+  if (segment < 0) return 0.0f;  // an empty marginal: no dictionary has one (they integrate to 1)
+  // Within the segment the density is a + (b - a) t, t in [0, 1): solve the CDF
+  // a t + (b - a) t^2 / 2 = r for t, in the form that stays accurate when b - a -> 0.
+  const double a = texel(segment);
+  const double b = texel(segment + 1);
+  const double r = std::max(0.0, target - before);
+  const double root = a + std::sqrt(std::max(0.0, a * a + 2.0 * (b - a) * r));
+  const double t = root > 0.0 ? std::clamp(2.0 * r / root, 0.0, 1.0) : 0.0;
+  const double spacing = static_cast<double>(kernel::glintDictionaryDomain(dict)) / texels;
+  return sign * static_cast<float>((segment + t) * spacing);
+}
+
+std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const kernel::GlintParameters& params,
+                                          glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy, float& uChoice,
+                                          glm::vec2 u) {
+  const kernel::GlintFootprint footprint =
+      kernel::glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
+  if (footprint.degenerate) return sampleBeckmannSlope(params.alpha, u);
+  // P22_P = (1 - w) P22_il + w P22_il+1 (model.md 2.3): level il + 1 with probability w.
+  int level = kernel::glintLodLevel(footprint);
+  const float blend = kernel::glintLodBlend(footprint);
+  if (blend > 0.0f) {
+    if (uChoice < blend) {
+      uChoice = remapUniform(uChoice, 0.0f, blend);
+      level += 1;
+    } else {
+      uChoice = remapUniform(uChoice, blend, 1.0f - blend);
+    }
+  }
+  // P22_level = sum_c w_c P22_c / sum_c w_c (model.md 2.4): cell c with probability w_c / sum w.
+  // Same walk, same weights, same float sum as glintLevelP22, twice: the sum, then the choice.
+  const kernel::GlintCellGrid grid =
+      kernel::glintCellGrid(footprint, kernel::glintWrapUv(uv, dict.numLevels), dict.numLevels, level);
+  float weightSum = 0.0f;
+  for (int t = grid.t0; t <= grid.t1; ++t) {
+    const glm::ivec2 row = kernel::glintCellRow(grid, t);
+    for (int s = row.x; s <= row.y; ++s) {
+      const float weight = kernel::glintCellWeight(grid, s, t);
+      if (weight > 0.0f) weightSum += weight;
+    }
+  }
+  if (!(weightSum > 0.0f)) return std::nullopt;  // glintLevelP22 is 0 there too
+  const float target = uChoice * weightSum;
+  // The first cell whose running sum passes the target; the last one catches a target that
+  // rounding put past the sum.
+  float before = 0.0f;
+  glm::ivec2 cell(0);
+  float cellWeight = 0.0f;
+  float cellStart = 0.0f;
+  bool found = false;
+  for (int t = grid.t0; t <= grid.t1 && !found; ++t) {
+    const glm::ivec2 row = kernel::glintCellRow(grid, t);
+    for (int s = row.x; s <= row.y && !found; ++s) {
+      const float weight = kernel::glintCellWeight(grid, s, t);
+      if (weight > 0.0f) {
+        cell = glm::ivec2(s, t);
+        cellWeight = weight;
+        cellStart = before;
+        found = target < before + weight;
+        before += weight;
+      }
+    }
+  }
+  uChoice = remapUniform(target, cellStart, cellWeight);
+
+  // The cell's random properties, drawn by the kernel's functions exactly as glintCellP22 draws them.
+  const glm::uvec4 hash = kernel::glintCellHash(params, cell.x, cell.y, level);
+  if (!kernel::glintCellHasMicrofacets(params, hash)) return std::nullopt;
+  const int dictLevel = kernel::glintCellDictionaryLevel(dict, params, footprint.logDensity, level, hash);
+  if (dictLevel == dict.numLevels) return sampleBeckmannSlope(params.alpha, u);
+  const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
+  // Tensor product: x' and y' independent, each from its marginal (model.md 2.5).
+  const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
+  const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
+  // Back from the dictionary's space: slope = S R(theta) (x', y'), the inverse of
+  // glintDictionarySlope's (x', y') = R(-theta) S^-1 slope.
+  const glm::vec2 rotation = kernel::glintCellRotation(hash);
+  const glm::vec2 scaled(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y);
+  return scaled * (params.alpha / dict.alpha);
+}
+
+glm::vec3 sampleVCavityVisibleNormal(glm::vec3 wo, glm::vec3 m, float& u) {
+  const glm::vec3 mirror(-m.x, -m.y, m.z);
+  const float front = std::max(0.0f, glm::dot(wo, m));
+  const float back = std::max(0.0f, glm::dot(wo, mirror));
+  const float total = front + back;
+  if (!(total > 0.0f)) return m;
+  const float target = u * total;
+  if (target < back) {
+    u = remapUniform(target, 0.0f, back);
+    return mirror;
+  }
+  u = remapUniform(target, back, front);
+  return m;
+}
+
+float visibleNdf(glm::vec3 wo, glm::vec3 m, float ndf) {
+  const float cosine = glm::dot(wo, m);
+  if (wo.z <= 0.0f || m.z <= 0.0f || cosine <= 0.0f) return 0.0f;
+  return kernel::vcavityG1(wo, m) * cosine * ndf / wo.z;
+}
+
+float vcavityG1TwoSided(glm::vec3 w, glm::vec3 m) {
+  const float cosine = glm::dot(w, m);
+  if (cosine * w.z <= 0.0f) return 0.0f;
+  return std::min(1.0f, std::abs(2.0f * m.z * w.z / cosine));
+}
+
+float fresnelDielectric(float cosThetaI, float eta) {
+  cosThetaI = std::clamp(cosThetaI, -1.0f, 1.0f);
+  if (cosThetaI < 0.0f) {  // from inside: the relative index is inverted
+    eta = 1.0f / eta;
+    cosThetaI = -cosThetaI;
+  }
+  // Snell: sin(theta_t) = sin(theta_i) / eta.
+  const float sin2T = (1.0f - cosThetaI * cosThetaI) / (eta * eta);
+  if (sin2T >= 1.0f) return 1.0f;
+  const float cosThetaT = std::sqrt(std::max(0.0f, 1.0f - sin2T));
+  const float parallel = (eta * cosThetaI - cosThetaT) / (eta * cosThetaI + cosThetaT);
+  const float perpendicular = (cosThetaI - eta * cosThetaT) / (cosThetaI + eta * cosThetaT);
+  return 0.5f * (parallel * parallel + perpendicular * perpendicular);
+}
+
+std::optional<glm::vec3> refractDirection(glm::vec3 w, glm::vec3 m, float eta) {
+  float cosThetaI = glm::dot(m, w);
+  glm::vec3 n = m;
+  if (cosThetaI < 0.0f) {  // w inside: refract into the outside through the flipped facet
+    eta = 1.0f / eta;
+    cosThetaI = -cosThetaI;
+    n = -m;
+  }
+  const float sin2T = std::max(0.0f, 1.0f - cosThetaI * cosThetaI) / (eta * eta);
+  if (sin2T >= 1.0f) return std::nullopt;
+  const float cosThetaT = std::sqrt(1.0f - sin2T);
+  // Heckbert's form (pbrt-v4 Refract): t = -w / eta + (cos_i / eta - cos_t) n.
+  return glm::normalize(-w / eta + (cosThetaI / eta - cosThetaT) * n);
+}
+
+}  // namespace glint::sampling

@@ -1,0 +1,194 @@
+#include "trace/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <embree3/rtcore.h>
+
+#include "glint/error.h"
+
+namespace glint::trace {
+
+namespace {
+
+const char* errorName(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_UNKNOWN: return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+  }
+  return "unknown error";
+}
+
+void check(RTCDevice device, const char* what) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (code != RTC_ERROR_NONE) throw Error(std::string("Embree: ") + what + ": " + errorName(code));
+}
+
+}  // namespace
+
+SceneGeometry::SceneGeometry(const scene::Scene& scene) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw Error(std::string("Embree: cannot create a device: ") + errorName(rtcGetDeviceError(nullptr)));
+  try {
+    scene_ = rtcNewScene(device_);
+    check(device_, "new scene");
+    // Robust traversal: no rays slip between neighbouring triangles (no light leaks).
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      const scene::Mesh& mesh = scene.meshes[m];
+      if (mesh.indices.size() < 3) continue;
+      RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.indices.size() / 3));
+      check(device_, "geometry buffers");
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        std::memcpy(vertices + 3 * i, &mesh.vertices[i].position.x, 3 * sizeof(float));
+      }
+      std::copy(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3),
+                indices);
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));
+      rtcReleaseGeometry(geometry);
+      check(device_, "attach geometry");
+    }
+    rtcCommitScene(scene_);
+    check(device_, "build scene");
+  } catch (...) {
+    if (scene_) rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+    throw;
+  }
+}
+
+SceneGeometry::~SceneGeometry() {
+  rtcReleaseScene(scene_);
+  rtcReleaseDevice(device_);
+}
+
+std::optional<Hit> SceneGeometry::intersect(const Ray& ray, float tMax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayHit{};
+  rayHit.ray.org_x = ray.origin.x;
+  rayHit.ray.org_y = ray.origin.y;
+  rayHit.ray.org_z = ray.origin.z;
+  rayHit.ray.dir_x = ray.direction.x;
+  rayHit.ray.dir_y = ray.direction.y;
+  rayHit.ray.dir_z = ray.direction.z;
+  rayHit.ray.tnear = 0.0f;
+  rayHit.ray.tfar = tMax;
+  rayHit.ray.mask = 0xFFFFFFFFu;
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rayHit);
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return Hit{rayHit.ray.tfar, rayHit.hit.geomID, rayHit.hit.primID, {rayHit.hit.u, rayHit.hit.v}};
+}
+
+bool SceneGeometry::occluded(const Ray& ray, float tMax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{};
+  r.org_x = ray.origin.x;
+  r.org_y = ray.origin.y;
+  r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x;
+  r.dir_y = ray.direction.y;
+  r.dir_z = ray.direction.z;
+  r.tnear = 0.0f;
+  r.tfar = tMax;
+  r.mask = 0xFFFFFFFFu;
+  rtcOccluded1(scene_, &context, &r);
+  // Embree sets tfar to -inf when the ray is blocked.
+  return r.tfar < 0.0f;
+}
+
+SurfacePoint surfacePoint(const scene::Scene& scene, const Hit& hit) {
+  const scene::Mesh& mesh = scene.meshes[hit.mesh];
+  const scene::Vertex& a = mesh.vertices[mesh.indices[3 * hit.triangle + 0]];
+  const scene::Vertex& b = mesh.vertices[mesh.indices[3 * hit.triangle + 1]];
+  const scene::Vertex& c = mesh.vertices[mesh.indices[3 * hit.triangle + 2]];
+  const float wb = hit.barycentric.x;
+  const float wc = hit.barycentric.y;
+  const float wa = 1.0f - wb - wc;
+
+  SurfacePoint p;
+  p.material = mesh.material;
+  p.position = wa * a.position + wb * b.position + wc * c.position;
+  const glm::vec3 faceNormal = glm::cross(b.position - a.position, c.position - a.position);
+  const float faceLength = glm::length(faceNormal);
+  p.normal = wa * a.normal + wb * b.normal + wc * c.normal;
+  const float normalLength = glm::length(p.normal);
+  p.geometricNormal = faceLength > 0.0f ? faceNormal / faceLength : (normalLength > 0.0f ? p.normal / normalLength : glm::vec3(0, 0, 1));
+  p.normal = normalLength > 0.0f ? p.normal / normalLength : p.geometricNormal;
+  p.tangent = wa * a.tangent + wb * b.tangent + wc * c.tangent;
+  p.uv = wa * a.uv + wb * b.uv + wc * c.uv;
+
+  // The triangle's dp/du and dp/dv (pbrt-v3, Triangle::Intersect) from two edges and their uvs.
+  const glm::vec2 duv02 = a.uv - c.uv;
+  const glm::vec2 duv12 = b.uv - c.uv;
+  const glm::vec3 dp02 = a.position - c.position;
+  const glm::vec3 dp12 = b.position - c.position;
+  const float determinant = duv02.x * duv12.y - duv02.y * duv12.x;
+  const float scale = std::max({std::abs(duv02.x), std::abs(duv02.y), std::abs(duv12.x), std::abs(duv12.y)});
+  p.uvDegenerate = !(std::abs(determinant) > 1e-9f * scale * scale) || !std::isfinite(determinant);
+  if (!p.uvDegenerate) {
+    const float inverse = 1.0f / determinant;
+    p.dpdu = (duv12.y * dp02 - duv02.y * dp12) * inverse;
+    p.dpdv = (duv02.x * dp12 - duv12.x * dp02) * inverse;
+  }
+  return p;
+}
+
+UvDerivatives uvDerivatives(const SurfacePoint& point, const RayDifferential& rays) {
+  UvDerivatives result;
+  if (point.uvDegenerate) return result;
+  const glm::vec3 n = point.geometricNormal;
+  const float planeOffset = glm::dot(n, point.position);
+  // Where an offset ray meets the triangle's plane, minus p; nothing when it runs parallel to it.
+  auto offsetOnPlane = [&](const Ray& r, glm::vec3& dp) {
+    const float denominator = glm::dot(n, r.direction);
+    if (std::abs(denominator) < 1e-8f) return false;
+    const float t = (planeOffset - glm::dot(n, r.origin)) / denominator;
+    dp = r.origin + t * r.direction - point.position;
+    return std::isfinite(dp.x) && std::isfinite(dp.y) && std::isfinite(dp.z);
+  };
+  glm::vec3 dpdx;
+  glm::vec3 dpdy;
+  if (!offsetOnPlane(rays.rx, dpdx) || !offsetOnPlane(rays.ry, dpdy)) return result;
+  // Normal equations of [dpdu dpdv] (duv) = dp: a 2x2 system.
+  const float a00 = glm::dot(point.dpdu, point.dpdu);
+  const float a01 = glm::dot(point.dpdu, point.dpdv);
+  const float a11 = glm::dot(point.dpdv, point.dpdv);
+  const float determinant = a00 * a11 - a01 * a01;
+  if (!(std::abs(determinant) > 1e-20f)) return result;
+  auto solve = [&](glm::vec3 dp) {
+    const float b0 = glm::dot(point.dpdu, dp);
+    const float b1 = glm::dot(point.dpdv, dp);
+    return glm::vec2(a11 * b0 - a01 * b1, a00 * b1 - a01 * b0) / determinant;
+  };
+  result.duvdx = solve(dpdx);
+  result.duvdy = solve(dpdy);
+  if (!std::isfinite(result.duvdx.x + result.duvdx.y + result.duvdy.x + result.duvdy.y)) return UvDerivatives{};
+  return result;
+}
+
+Ray spawnRay(const SurfacePoint& point, glm::vec3 w) {
+  // Float error of a hit point grows with its magnitude; 1e-4 m is far below the scenes' detail.
+  const float maxCoordinate = std::max({std::abs(point.position.x), std::abs(point.position.y),
+                                        std::abs(point.position.z)});
+  const float epsilon = 1e-4f * (1.0f + maxCoordinate);
+  const float side = glm::dot(point.geometricNormal, w) >= 0.0f ? 1.0f : -1.0f;
+  return {point.position + side * epsilon * point.geometricNormal, w};
+}
+
+}  // namespace glint::trace

@@ -1,0 +1,172 @@
+#include "trace/material.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "trace/sampling.h"
+
+namespace glint::trace {
+
+namespace {
+
+float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+// The smallest alpha the CPU BSDFs accept (validateRoughness); the shader's roughness clamp at
+// 0.03 allows alpha = 0.0009, which only glTF materials with roughness below 0.07 reach.
+constexpr float kMinimumAlpha = 0.005f;
+
+}  // namespace
+
+Spectrum GlintTint::operator()(glm::vec3 wo, glm::vec3 wi) const {
+  const glm::vec3 wh = glm::normalize(wo + wi);
+  if (!(wh.z > 0.0f)) return Spectrum(1.0f);
+  const glm::vec4 p22 = kernel::glintP22Coloured(dictionary, parameters, footprint.uv, footprint.duvdx,
+                                                 footprint.duvdy, kernel::slopeFromNormal(wh));
+  return p22.w > 0.0f ? Spectrum(p22) / p22.w : Spectrum(1.0f);
+}
+
+SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, std::optional<GlintTint> tint,
+                                 Spectrum specularAlbedo)
+    : diffuse_(diffuse), specular_(std::move(specular)), tint_(tint) {
+  const float d = luminance(diffuse * kPi);
+  const float s = luminance(specularAlbedo);
+  // Each lobe keeps at least 10% of the samples when it reflects anything, so that neither is
+  // left to rare samples where the estimate (Fresnel at normal view) undersells it.
+  specularProbability_ = d <= 0.0f ? 1.0f : (s <= 0.0f ? 0.0f : std::clamp(s / (s + d), 0.1f, 0.9f));
+}
+
+Spectrum SurfaceMaterial::specularF(glm::vec3 wo, glm::vec3 wi) const {
+  const Spectrum value = std::visit([&](const auto& bsdf) { return bsdf.f(wo, wi); }, specular_);
+  if (tint_ && (value.x > 0.0f || value.y > 0.0f || value.z > 0.0f)) return value * (*tint_)(wo, wi);
+  return value;
+}
+
+float SurfaceMaterial::specularPdf(glm::vec3 wo, glm::vec3 wi) const {
+  return std::visit([&](const auto& bsdf) { return bsdf.pdf(wo, wi); }, specular_);
+}
+
+Spectrum SurfaceMaterial::f(glm::vec3 wo, glm::vec3 wi) const {
+  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return Spectrum(0.0f);
+  return diffuse_ + specularF(wo, wi);
+}
+
+float SurfaceMaterial::pdf(glm::vec3 wo, glm::vec3 wi) const {
+  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return 0.0f;
+  const float diffusePdf = specularProbability_ < 1.0f ? cosineHemispherePdf(wi.z) : 0.0f;
+  const float specularPdfValue = specularProbability_ > 0.0f ? specularPdf(wo, wi) : 0.0f;
+  return specularProbability_ * specularPdfValue + (1.0f - specularProbability_) * diffusePdf;
+}
+
+std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  if (!(wo.z > 0.0f)) return std::nullopt;
+  const float ps = specularProbability_;
+  MaterialSample s;
+  if (uChoice < ps) {
+    // The specular lobe's own sampler; its value and pdf come with the sample, so the glint
+    // P-NDF is not evaluated again.
+    const float uLobe = std::min(uChoice / ps, 0x1.fffffep-1f);
+    const auto lobe = std::visit([&](const auto& bsdf) { return bsdf.sample(wo, uLobe, u); }, specular_);
+    if (!lobe || lobe->transmission || !(lobe->pdf > 0.0f) || !(lobe->wi.z > 0.0f)) return std::nullopt;
+    s.wi = lobe->wi;
+    Spectrum specular = lobe->f;
+    if (tint_) specular *= (*tint_)(wo, s.wi);
+    s.f = diffuse_ + specular;
+    s.pdf = ps * lobe->pdf + (1.0f - ps) * cosineHemispherePdf(s.wi.z);
+  } else {
+    s.wi = sampleCosineHemisphere(u);
+    if (!(s.wi.z > 0.0f)) return std::nullopt;
+    s.f = f(wo, s.wi);
+    s.pdf = pdf(wo, s.wi);
+  }
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
+  s.weight = s.f * (s.wi.z / s.pdf);
+  return s;
+}
+
+SceneMaterials::SceneMaterials(const scene::Scene& scene, const Dictionary& dictionary, SpecularModel model,
+                               GlintSampler sampler)
+    : scene_(scene), dictionary_(dictionary), model_(model), sampler_(sampler) {
+  textures_.reserve(scene.textures.size());
+  for (const scene::Texture& t : scene.textures) textures_.emplace_back(t);
+}
+
+glm::vec3 SceneMaterials::texture(int index, glm::vec2 uv, const UvDerivatives& footprint) const {
+  if (index < 0 || index >= static_cast<int>(textures_.size())) return glm::vec3(1.0f);
+  return textures_[static_cast<std::size_t>(index)].sample(uv, footprint.duvdx, footprint.duvdy);
+}
+
+ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
+                                  glm::vec3 towardsViewer) const {
+  const scene::Material& m = scene_.materials[static_cast<std::size_t>(point.material)];
+  const scene::GlintLayer& layer = m.glint;
+  const glm::vec2 uv = point.uv;
+
+  // glTF metal-roughness inputs, as forward.frag reads them.
+  const glm::vec3 baseColour = glm::vec3(m.baseColour) * texture(m.baseColourTexture, uv, footprint);
+  const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, uv, footprint);
+  const float metallic = m.metallic * metallicRoughness.b;
+  const float roughness = std::clamp(m.roughness * metallicRoughness.g, 0.03f, 1.0f);
+  const Spectrum emitted = m.emissive * texture(m.emissiveTexture, uv, footprint);
+
+  // Shading frame: the normal map's normal, the tangent re-orthogonalised against it, the normal
+  // turned towards the viewer for sheets seen from behind.
+  const glm::vec3 view = towardsViewer;
+  glm::vec3 n = point.normal;
+  const glm::vec3 tangent(point.tangent);
+  glm::vec3 t = tangent - n * glm::dot(n, tangent);
+  if (glm::dot(t, t) < 1e-12f) {
+    // No usable tangent (degenerate mesh data): any direction perpendicular to n.
+    t = glm::cross(std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), n);
+  }
+  t = glm::normalize(t);
+  const float handedness = point.tangent.w < 0.0f ? -1.0f : 1.0f;
+  glm::vec3 b = glm::cross(n, t) * handedness;
+  if (m.normalTexture >= 0) {
+    glm::vec3 mapped = texture(m.normalTexture, uv, footprint) * 2.0f - 1.0f;
+    mapped.x *= m.normalScale;
+    mapped.y *= m.normalScale;
+    const glm::vec3 perturbed = t * mapped.x + b * mapped.y + n * mapped.z;
+    if (glm::dot(perturbed, perturbed) > 0.0f) n = glm::normalize(perturbed);
+  }
+  if (glm::dot(n, view) < 0.0f) n = -n;
+  glm::vec3 t2 = t - n * glm::dot(n, t);
+  t = glm::dot(t2, t2) > 1e-12f ? glm::normalize(t2) : t;
+  b = glm::cross(n, t) * handedness;
+  const ShadingFrame frame{t, b, n};
+  const glm::vec3 wo(glm::dot(view, t), glm::dot(view, b), std::max(glm::dot(view, n), 1e-4f));
+
+  const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), baseColour, metallic);
+  const Spectrum diffuse = baseColour * (1.0f - metallic) / kPi;
+  const Fresnel fresnel = Fresnel::schlick(glm::clamp(f0, 0.0f, 1.0f));
+  const Spectrum specularAlbedo = fresnel.evaluate(wo.z);
+
+  if (!layer.enabled) {
+    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), fresnel);
+    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
+  }
+
+  // The glint layer's parameters, textures applied as in the shader.
+  GlintParameters params = glintParameters(layer);
+  params.alpha = glm::clamp(layer.alpha * texture(layer.roughnessTexture, uv, footprint).r, 0.01f, 2.0f);
+  if (layer.logDensityTexture >= 0) {
+    params.logDensity = glm::mix(layer.logDensityRange.x, layer.logDensityRange.y,
+                                 texture(layer.logDensityTexture, uv, footprint).r);
+  }
+  params.relativeArea =
+      std::clamp(layer.relativeArea * texture(layer.relativeAreaTexture, uv, footprint).r, 1e-4f, 1.0f);
+  if (model_ == SpecularModel::CookTorrance) {
+    const CookTorranceBsdf specular(params.alpha, fresnel);
+    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
+  }
+  // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives.
+  SurfaceFootprint glintFootprint;
+  glintFootprint.uv = uv * layer.uvScale;
+  glintFootprint.duvdx = footprint.duvdx * layer.uvScale;
+  glintFootprint.duvdy = footprint.duvdy * layer.uvScale;
+  const GlintBsdf specular(dictionary_, params, glintFootprint, fresnel, Spectrum(1.0f), sampler_);
+  std::optional<GlintTint> tint;
+  if (layer.randomColours) tint = GlintTint{dictionary_.view(), params, glintFootprint};
+  return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, tint, specularAlbedo)};
+}
+
+}  // namespace glint::trace

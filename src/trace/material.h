@@ -1,0 +1,113 @@
+// Per-hit material evaluation of the path tracer: the real-time renderer's shading model
+// (shaders/forward.frag, docs/renderer.md "Shading") turned into a BSDF that can be sampled.
+//   - glTF metal-roughness inputs (textures times factors), the normal map in the tangent frame,
+//     the tangent re-orthogonalised, a sheet seen from behind shaded on its visible side;
+//   - Lambertian diffuse baseColour (1 - metallic) / pi;
+//   - plus a specular lobe times Schlick's Fresnel with F0 = mix(0.04, baseColour, metallic): the
+//     glint BRDF when the material has a glint layer and the glint model is selected (coloured
+//     cells tint it), else Cook-Torrance with the layer's alpha, or alpha = roughness^2 without one.
+// Everything the shader computes per fragment happens once, in SceneMaterials::shade; what the
+// integrator asks of a material (f, sample, pdf over its lobes) is in SurfaceMaterial.
+#pragma once
+
+#include <optional>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "glint/bsdf.h"
+#include "scene/scene.h"
+#include "trace/geometry.h"
+#include "trace/texture.h"
+
+namespace glint::trace {
+
+// The specular lobe of materials with a glint layer (`--brdf`); the real-time renderer's BrdfModel.
+enum class SpecularModel { Glint, CookTorrance };
+
+// Shading frame: n the shading normal, t the tangent (alpha_x), b = cross(n, t) times the
+// tangent's handedness, as the shader builds it (so the frame may be left-handed).
+struct ShadingFrame {
+  glm::vec3 t{1, 0, 0};
+  glm::vec3 b{0, 1, 0};
+  glm::vec3 n{0, 0, 1};
+  glm::vec3 toLocal(glm::vec3 v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
+  glm::vec3 toWorld(glm::vec3 v) const { return t * v.x + b * v.y + n * v.z; }
+};
+
+struct MaterialSample {
+  Spectrum f;        // the whole material's f(wo, wi), without the cosine
+  glm::vec3 wi;      // local frame
+  float pdf;         // of the lobe mixture, solid angle
+  Spectrum weight;   // f wi.z / pdf
+};
+
+// The tint of coloured glint cells at a half vector (the shader's p22.rgb / p22.w): white unless
+// the layer has random colours.
+struct GlintTint {
+  kernel::DictionaryView dictionary;
+  GlintParameters parameters;
+  SurfaceFootprint footprint;
+  Spectrum operator()(glm::vec3 wo, glm::vec3 wi) const;
+};
+
+// Lambertian diffuse plus one specular lobe, in the local shading frame (docs/conventions.md:
+// directions away from the surface, f without the cosine). Lobes are chosen for sampling in
+// proportion to estimates of their albedos, and pdf() is the mixture's (one-sample MIS over lobes).
+class SurfaceMaterial {
+ public:
+  using Specular = std::variant<CookTorranceBsdf, GlintBsdf>;
+  // `specularAlbedo`: an estimate of the specular lobe's reflectance (Fresnel at wo), to split
+  // samples between the lobes.
+  SurfaceMaterial(Spectrum diffuse, Specular specular, std::optional<GlintTint> tint, Spectrum specularAlbedo);
+
+  Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
+  float pdf(glm::vec3 wo, glm::vec3 wi) const;
+  // uChoice picks the lobe (and is rescaled for the lobe's own choices), u the direction.
+  std::optional<MaterialSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
+
+  Spectrum diffuse() const { return diffuse_; }  // baseColour (1 - metallic) / pi
+  float specularProbability() const { return specularProbability_; }
+  const Specular& specular() const { return specular_; }
+
+ private:
+  Spectrum specularF(glm::vec3 wo, glm::vec3 wi) const;
+  float specularPdf(glm::vec3 wo, glm::vec3 wi) const;
+
+  Spectrum diffuse_;
+  Specular specular_;
+  std::optional<GlintTint> tint_;
+  float specularProbability_;
+};
+
+// What the shader knows at a fragment, for one path vertex.
+struct ShadedPoint {
+  ShadingFrame frame;
+  glm::vec3 wo;       // towards the viewer, local; wo.z at least 1e-4 as in the shader
+  Spectrum emitted;   // emissive factor times texture
+  SurfaceMaterial material;
+};
+
+class SceneMaterials {
+ public:
+  // Decodes the scene's textures into mip chains. The scene and the dictionary must outlive it.
+  SceneMaterials(const scene::Scene& scene, const Dictionary& dictionary, SpecularModel model,
+                 GlintSampler sampler = GlintSampler::Mixture);
+
+  // The material at a surface point seen from direction `towardsViewer` (world, unit), with the
+  // mesh-uv derivatives of the footprint (textures' level of detail; times the layer's uv_scale,
+  // the glint footprint).
+  ShadedPoint shade(const SurfacePoint& point, const UvDerivatives& footprint, glm::vec3 towardsViewer) const;
+
+ private:
+  glm::vec3 texture(int index, glm::vec2 uv, const UvDerivatives& footprint) const;
+
+  const scene::Scene& scene_;
+  const Dictionary& dictionary_;
+  SpecularModel model_;
+  GlintSampler sampler_;
+  std::vector<MipTexture> textures_;
+};
+
+}  // namespace glint::trace

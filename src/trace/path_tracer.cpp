@@ -1,0 +1,200 @@
+#include "trace/path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "glint/error.h"
+#include "trace/sampling.h"
+
+namespace glint::trace {
+
+namespace {
+
+constexpr int kTileSize = 16;
+constexpr int kRouletteDepth = 3;  // Russian roulette on rays leaving vertices of this depth and deeper
+
+bool isBlack(glm::vec3 c) { return !(c.x > 0.0f || c.y > 0.0f || c.z > 0.0f); }
+
+const TraceSettings& validated(const TraceSettings& settings) {
+  validateTraceSettings(settings);
+  return settings;
+}
+
+}  // namespace
+
+GlintSampler glintSamplerFromString(const std::string& name) {
+  if (name == "mixture") return GlintSampler::Mixture;
+  if (name == "gaussian") return GlintSampler::Gaussian;
+  throw Error("unknown sampler '" + name + "' (choices: mixture, gaussian)");
+}
+
+const char* glintSamplerName(GlintSampler sampler) {
+  switch (sampler) {
+    case GlintSampler::Mixture: return "mixture";
+    case GlintSampler::Gaussian: return "gaussian";
+  }
+  return "unknown";
+}
+
+void validateTraceSettings(const TraceSettings& s) {
+  if (s.width < 1 || s.height < 1 || s.width > 8192 || s.height > 8192) {
+    throw Error("--size must be between 1x1 and 8192x8192, got " + std::to_string(s.width) + "x" +
+                std::to_string(s.height));
+  }
+  if (s.spp < 1 || s.spp > 65536) throw Error("--spp must be in [1, 65536], got " + std::to_string(s.spp));
+  if (s.maxDepth < 1 || s.maxDepth > 64) {
+    throw Error("--max-depth must be in [1, 64], got " + std::to_string(s.maxDepth));
+  }
+}
+
+PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, const TraceSettings& settings)
+    : scene_(scene),
+      settings_(validated(settings)),
+      camera_(settings.camera, settings.width, settings.height),
+      geometry_(scene),
+      materials_(scene, dictionary, settings.brdf, settings.sampler),
+      environment_(scene.environment),
+      useEnvironment_(!settings.directOnly && !environment_.black()) {}
+
+glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& shaded) const {
+  glm::vec3 sum(0.0f);
+  for (const scene::Light& light : scene_.lights) {
+    // As forward.frag: point lights give intensity / distance^2, directional lights irradiance.
+    glm::vec3 toLight;
+    float distance = std::numeric_limits<float>::infinity();
+    float falloff = 1.0f;
+    if (light.type == scene::Light::Type::Point) {
+      toLight = light.position - point.position;
+      const float distance2 = glm::dot(toLight, toLight);
+      if (!(distance2 > 0.0f)) continue;
+      distance = std::sqrt(distance2);
+      toLight /= distance;
+      falloff = 1.0f / distance2;
+    } else {
+      toLight = -glm::normalize(light.direction);
+    }
+    const glm::vec3 wi = shaded.frame.toLocal(toLight);
+    if (!(wi.z > 0.0f)) continue;
+    // The shadow ray first: it costs less than the glint BRDF.
+    const Ray shadow = spawnRay(point, toLight);
+    // Stop the shadow ray short of a point light by the same margin it starts off the surface.
+    const float tMax = std::isinf(distance) ? distance : distance - glm::length(shadow.origin - point.position);
+    if (geometry_.occluded(shadow, tMax)) continue;
+    sum += shaded.material.f(shaded.wo, wi) * wi.z * light.intensity * falloff;
+  }
+  return sum;
+}
+
+glm::vec3 PathTracer::radiance(const RayDifferential& cameraRay, Pcg32& rng) const {
+  glm::vec3 result(0.0f);
+  glm::vec3 throughput(1.0f);
+  Ray ray = cameraRay.ray;
+  float previousPdf = 0.0f;           // solid-angle pdf of the BSDF sample that made `ray`
+  glm::vec3 previousNormal(0.0f);     // shading normal where it left
+  for (int depth = 0;; ++depth) {
+    const std::optional<Hit> hit = geometry_.intersect(ray);
+    if (!hit) {
+      if (useEnvironment_) {
+        const glm::vec3 le = environment_.radiance(ray.direction);
+        // Seen directly, or found by BSDF sampling: weighed against the light sample that could
+        // have found it too.
+        const float weight = depth == 0 ? 1.0f
+                                        : powerHeuristic(previousPdf, environment_.pdf(ray.direction, previousNormal));
+        result += throughput * le * weight;
+      }
+      break;
+    }
+    const SurfacePoint point = surfacePoint(scene_, *hit);
+    const UvDerivatives footprint =
+        uvDerivatives(point, depth == 0 ? cameraRay : camera_.approximateRays(point.position));
+    const ShadedPoint shaded = materials_.shade(point, footprint, -ray.direction);
+    // Emissive surfaces are not sampled as lights, so what a path finds of them counts fully.
+    result += throughput * shaded.emitted;
+    if (depth == settings_.maxDepth) break;
+
+    result += throughput * deltaLights(point, shaded);
+    if (settings_.directOnly) break;
+
+    if (useEnvironment_) {
+      const glm::vec2 uLight = uniformFloat2(rng);
+      if (const auto light = environment_.sample(uLight, shaded.frame.n)) {
+        const glm::vec3 wi = shaded.frame.toLocal(light->direction);
+        if (wi.z > 0.0f && !isBlack(light->radiance) &&
+            !geometry_.occluded(spawnRay(point, light->direction), std::numeric_limits<float>::infinity())) {
+          const Spectrum f = shaded.material.f(shaded.wo, wi);
+          if (!isBlack(f)) {
+            const float weight = powerHeuristic(light->pdf, shaded.material.pdf(shaded.wo, wi));
+            result += throughput * f * light->radiance * (wi.z * weight / light->pdf);
+          }
+        }
+      }
+    }
+
+    const float uChoice = uniformFloat(rng);
+    const glm::vec2 uDirection = uniformFloat2(rng);
+    const std::optional<MaterialSample> bounce = shaded.material.sample(shaded.wo, uChoice, uDirection);
+    if (!bounce || isBlack(bounce->weight)) break;
+    throughput *= bounce->weight;
+    const glm::vec3 wiWorld = shaded.frame.toWorld(bounce->wi);
+    previousPdf = bounce->pdf;
+    previousNormal = shaded.frame.n;
+    ray = spawnRay(point, glm::normalize(wiWorld));
+
+    if (depth >= kRouletteDepth) {
+      // Continue with the probability of the throughput's largest channel (at least 5%), and
+      // divide by it: unbiased, and paths that carry little stop early.
+      const float survive = std::clamp(std::max({throughput.x, throughput.y, throughput.z}), 0.05f, 1.0f);
+      if (uniformFloat(rng) >= survive) break;
+      throughput /= survive;
+    }
+  }
+  return result;
+}
+
+glm::vec3 PathTracer::samplePixel(int x, int y, int sampleIndex) const {
+  const auto pixel = static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(settings_.width) +
+                     static_cast<std::uint32_t>(x);
+  Pcg32 rng = sampleStream(pixel, static_cast<std::uint32_t>(sampleIndex));
+  const glm::vec2 offset = settings_.pixelCentres ? glm::vec2(0.5f) : uniformFloat2(rng);
+  const RayDifferential cameraRay = camera_.generateRay(glm::vec2(static_cast<float>(x), static_cast<float>(y)) + offset);
+  const glm::vec3 value = radiance(cameraRay, rng);
+  if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z)) {
+    nonFinite_.fetch_add(1, std::memory_order_relaxed);
+    return glm::vec3(0.0f);
+  }
+  return value;
+}
+
+ImageRgbF PathTracer::render(const std::function<void(double)>& progress) const {
+  ImageRgbF image = ImageRgbF::filled(settings_.width, settings_.height);
+  const int tilesX = (settings_.width + kTileSize - 1) / kTileSize;
+  const int tilesY = (settings_.height + kTileSize - 1) / kTileSize;
+  const int tileCount = tilesX * tilesY;
+  std::atomic<int> tilesDone{0};
+  tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+    for (int tile = range.begin(); tile != range.end(); ++tile) {
+      const int x0 = (tile % tilesX) * kTileSize;
+      const int y0 = (tile / tilesX) * kTileSize;
+      const int x1 = std::min(x0 + kTileSize, settings_.width);
+      const int y1 = std::min(y0 + kTileSize, settings_.height);
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          // Summed in double in sample order: the same bits whichever thread renders the tile.
+          glm::dvec3 sum(0.0);
+          for (int s = 0; s < settings_.spp; ++s) sum += glm::dvec3(samplePixel(x, y, s));
+          image.at(x, y) = glm::vec3(sum / static_cast<double>(settings_.spp));
+        }
+      }
+      const int done = tilesDone.fetch_add(1) + 1;
+      if (progress) progress(static_cast<double>(done) / tileCount);
+    }
+  });
+  return image;
+}
+
+}  // namespace glint::trace

@@ -1,0 +1,82 @@
+#include "trace/texture.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "glint/error.h"
+#include "glint/image_io.h"
+
+namespace glint::trace {
+
+MipTexture::MipTexture(const scene::Texture& texture) {
+  if (texture.width < 1 || texture.height < 1 ||
+      texture.rgba.size() != static_cast<std::size_t>(texture.width) * texture.height * 4) {
+    throw Error("texture '" + texture.name + "': size and data do not agree");
+  }
+  // 8-bit code values to linear floats, through a table (256 entries instead of one pow per texel).
+  float decode[256];
+  for (int i = 0; i < 256; ++i) {
+    decode[i] = texture.srgb ? srgbToLinear(static_cast<float>(i) / 255.0f) : static_cast<float>(i) / 255.0f;
+  }
+  Level base{texture.width, texture.height, {}};
+  base.texels.resize(static_cast<std::size_t>(texture.width) * texture.height);
+  for (std::size_t i = 0; i < base.texels.size(); ++i) {
+    base.texels[i] = {decode[texture.rgba[4 * i]], decode[texture.rgba[4 * i + 1]], decode[texture.rgba[4 * i + 2]]};
+  }
+  levels_.push_back(std::move(base));
+  // Level k has max(1, floor(size / 2^k)) texels per axis, each the mean of the 2 x 2 texels
+  // below it (the last row or column is repeated for odd sizes).
+  while (levels_.back().width > 1 || levels_.back().height > 1) {
+    const Level& below = levels_.back();
+    Level level{std::max(1, below.width / 2), std::max(1, below.height / 2), {}};
+    level.texels.resize(static_cast<std::size_t>(level.width) * level.height);
+    for (int y = 0; y < level.height; ++y) {
+      const int y0 = std::min(2 * y, below.height - 1);
+      const int y1 = std::min(2 * y + 1, below.height - 1);
+      for (int x = 0; x < level.width; ++x) {
+        const int x0 = std::min(2 * x, below.width - 1);
+        const int x1 = std::min(2 * x + 1, below.width - 1);
+        auto at = [&](int xx, int yy) { return below.texels[static_cast<std::size_t>(yy) * below.width + xx]; };
+        level.texels[static_cast<std::size_t>(y) * level.width + x] =
+            0.25f * (at(x0, y0) + at(x1, y0) + at(x0, y1) + at(x1, y1));
+      }
+    }
+    levels_.push_back(std::move(level));
+  }
+}
+
+glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv) const {
+  const Level& level = levels_[static_cast<std::size_t>(levelIndex)];
+  // Texel centres at (i + 0.5) / size; uv (0, 0) is the first stored row (glTF: the top).
+  const float x = uv.x * static_cast<float>(level.width) - 0.5f;
+  const float y = uv.y * static_cast<float>(level.height) - 0.5f;
+  if (!std::isfinite(x) || !std::isfinite(y)) return level.texels.front();
+  const float fx = std::floor(x);
+  const float fy = std::floor(y);
+  const float tx = x - fx;
+  const float ty = y - fy;
+  auto wrap = [](float i, int size) {
+    const float m = std::fmod(i, static_cast<float>(size));
+    return static_cast<int>(m < 0.0f ? m + static_cast<float>(size) : m) % size;
+  };
+  const int x0 = wrap(fx, level.width);
+  const int x1 = (x0 + 1) % level.width;
+  const int y0 = wrap(fy, level.height);
+  const int y1 = (y0 + 1) % level.height;
+  auto at = [&](int xx, int yy) { return level.texels[static_cast<std::size_t>(yy) * level.width + xx]; };
+  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0f - tx) * at(x0, y1) + tx * at(x1, y1));
+}
+
+glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {
+  const glm::vec2 size(static_cast<float>(levels_.front().width), static_cast<float>(levels_.front().height));
+  const float rho = std::max(glm::length(duvdx * size), glm::length(duvdy * size));
+  const float lambda = rho > 0.0f ? std::log2(rho) : -1.0f;
+  if (!(lambda > 0.0f)) return bilinear(0, uv);  // magnification, or no footprint
+  const int last = levelCount() - 1;
+  if (lambda >= static_cast<float>(last)) return bilinear(last, uv);
+  const int level = static_cast<int>(std::floor(lambda));
+  const float blend = lambda - static_cast<float>(level);
+  return (1.0f - blend) * bilinear(level, uv) + blend * bilinear(level + 1, uv);
+}
+
+}  // namespace glint::trace
