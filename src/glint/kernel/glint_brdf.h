@@ -177,8 +177,15 @@ GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float lo
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     return vec4(beckmannP22(slope, params.alpha));
   }
-  vec2 local = glintDictionarySlope(dict, params, glintCellRotation(h), slope);
+  // A slope beyond the rotated support's circumradius (4 sigma_d sqrt 2, in dictionary units) is
+  // outside the support at every rotation: the cell's sincos and texel reads are skipped. Exact:
+  // the per-axis test below would return 0 too.
   float fourSigma = glintDictionaryDomain(dict);
+  vec2 unrotated = slope * (vec2(dict.alpha) / params.alpha);
+  if (dot(unrotated, unrotated) >= 2.0f * fourSigma * fourSigma) {
+    return vec4(0.0f);
+  }
+  vec2 local = glintDictionarySlope(dict, params, glintCellRotation(h), slope);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return vec4(0.0f);
   }
