@@ -20,6 +20,7 @@ void SceneOptions::addTo(CLI::App& command) {
   command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY")->delimiter(',');
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
+  command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
 }
 
 scene::Scene SceneOptions::loadScene() const {
@@ -35,6 +36,10 @@ scene::Scene SceneOptions::loadScene() const {
     }
   }
   if (alpha.size() > 2) throw Error("--alpha takes one or two values");
+  if (sky) {
+    if (!(*sky >= 0.0f && *sky <= 100.0f)) throw Error("--sky must be in [0, 100]");
+    s.environment = scene::skyEnvironment(*sky);
+  }
   for (scene::Material& m : s.materials) {
     if (!m.glint.enabled) continue;
     if (!alpha.empty()) m.glint.alpha = glm::vec2(alpha.front(), alpha.back());

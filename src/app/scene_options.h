@@ -22,6 +22,7 @@ struct SceneOptions {
   std::vector<float> alpha;
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
+  std::optional<float> sky;
 
   void addTo(CLI::App& command);
   // Loads the scene, applies --glint-material and the overrides (validated like the file's own

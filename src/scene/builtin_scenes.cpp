@@ -459,6 +459,8 @@ Scene makeBuiltinScene(const std::string& name) {
   throw Error("unknown built-in scene '" + name + "' (built-in: " + joinedNames() + ")");
 }
 
+Environment skyEnvironment(float intensity) { return sky(intensity); }
+
 Scene loadScene(const std::string& nameOrPath) {
   if (isBuiltinScene(nameOrPath)) return makeBuiltinScene(nameOrPath);
   std::error_code ignored;

@@ -19,6 +19,9 @@ bool isBuiltinScene(const std::string& name);
 // Throws Error listing the built-in names for an unknown name.
 Scene makeBuiltinScene(const std::string& name);
 
+// The built-in scenes' procedural sky (blue zenith, pale horizon, grey ground), 128 x 64.
+Environment skyEnvironment(float intensity);
+
 // A built-in name, else a glTF file (.gltf or .glb, loadGltf). Throws Error
 // "unknown scene 'x' (built-in: sphere, ...) and no such file" when it is neither.
 Scene loadScene(const std::string& nameOrPath);
