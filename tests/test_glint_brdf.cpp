@@ -226,3 +226,32 @@ TEST(GlintBrdf, InvalidParametersAreRejectedByName) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(GlintBrdf, ColouredCellsTintTheCpuBsdfLikeTheShader) {
+  // Car paint: each cell reflects a random hue (kernel glintCellColour). The CPU BSDF, used by the
+  // path tracer, must apply the same tint as the shader; uncoloured glints stay grey.
+  using namespace glint::test;
+  GlintParameters parameters = defaultGlintParameters();
+  parameters.logDensity = 18.0f;
+  Pcg32 rng(12, 3);
+  int tinted = 0;
+  for (int i = 0; i < 200; ++i) {
+    const SurfaceFootprint footprint = randomFootprint(rng, 1e-4f, 1e-3f);
+    const glm::vec3 wo = directionAt(0.3f, 0.0f);
+    const glm::vec3 wi = directionAt(0.35f, 3.0f);
+    parameters.colouredCells = false;
+    const Spectrum grey = GlintBsdf(defaultDictionary(), parameters, footprint).f(wo, wi);
+    EXPECT_EQ(grey.r, grey.g);
+    EXPECT_EQ(grey.g, grey.b);
+    parameters.colouredCells = true;
+    const Spectrum coloured = GlintBsdf(defaultDictionary(), parameters, footprint).f(wo, wi);
+    tinted += std::abs(coloured.r - coloured.g) > 1e-3f * (coloured.r + coloured.g);
+  }
+  EXPECT_GT(tinted, 50);
+}
+
+}  // namespace
+}  // namespace glint

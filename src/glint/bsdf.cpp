@@ -136,12 +136,27 @@ Spectrum glintReflection(const Fresnel& fresnel, Spectrum reflectance, glm::vec3
   return reflectance * fresnel.evaluate(glm::dot(wo, wh)) * value;
 }
 
+// The colour of coloured cells (the shader's tint): the P22-weighted mean cell colour, from the
+// (colour * P22, P22) pair of kernel::glintP22Coloured; white for uncoloured glints.
+Spectrum cellTint(glm::vec4 colouredP22) {
+  return colouredP22.w > 0.0f ? Spectrum(colouredP22) / colouredP22.w : Spectrum(1.0f);
+}
+
 }  // namespace
+
+glm::vec4 GlintBsdf::colouredNdf(glm::vec3 m) const {
+  if (m.z <= 0.0f) return glm::vec4(0.0f);
+  const glm::vec4 p = kernel::glintP22Coloured(dictionary_, parameters_, footprint_.uv, footprint_.duvdx,
+                                               footprint_.duvdy, kernel::slopeFromNormal(m));
+  const float toNdf = kernel::ndfFromP22(1.0f, m.z);
+  return p * toNdf;
+}
 
 Spectrum GlintBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return Spectrum(0.0f);
   const glm::vec3 wh = glm::normalize(wo + wi);
-  return glintReflection(fresnel_, reflectance_, wo, wi, wh, ndf(wh));
+  const glm::vec4 d = colouredNdf(wh);
+  return glintReflection(fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d);
 }
 
 float GlintBsdf::ndf(glm::vec3 m) const {
@@ -221,11 +236,11 @@ std::optional<BsdfSample> GlintBsdf::sample(glm::vec3 wo, float uChoice, glm::ve
   // f and pdf at the half vector of (wo, wi), as f() and pdf() compute them, with the P-NDF
   // evaluated once.
   const glm::vec3 wh = glm::normalize(wo + wi);
-  const float d = ndf(wh);
+  const glm::vec4 d = colouredNdf(wh);
   const float visible =
-      sampler_ == GlintSampler::Mixture ? sampling::visibleNdf(wo, wh, d) : visibleNormalPdf(wo, wh);
-  return makeSample(glintReflection(fresnel_, reflectance_, wo, wi, wh, d), wi, reflectionPdf(wo, wh, visible),
-                    false);
+      sampler_ == GlintSampler::Mixture ? sampling::visibleNdf(wo, wh, d.w) : visibleNormalPdf(wo, wh);
+  return makeSample(glintReflection(fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d), wi,
+                    reflectionPdf(wo, wh, visible), false);
 }
 
 float GlintBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {

@@ -107,6 +107,9 @@ class GlintBsdf {
   float visibleNormalPdf(glm::vec3 wo, glm::vec3 m) const;
 
  private:
+  // (colour * D_P, D_P) at m: the P-NDF and its cells' colour weighting (kernel::glintP22Coloured).
+  glm::vec4 colouredNdf(glm::vec3 m) const;
+
   kernel::DictionaryView dictionary_;
   GlintParameters parameters_;
   SurfaceFootprint footprint_;
