@@ -119,7 +119,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
   const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
   // Back from the dictionary's space: slope = S R(theta) (x', y'), the inverse of
-  // glintDictionarySlope's (x', y') = R(-theta) S^-1 slope.
+  // glintDictionarySlope(glintUnscaledSlope(slope))'s (x', y') = R(-theta) S^-1 slope.
   const glm::vec2 rotation = kernel::glintCellRotation(hash);
   const glm::vec2 scaled(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y);
   return scaled * (params.alpha / dict.alpha);

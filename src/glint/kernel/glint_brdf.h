@@ -150,12 +150,16 @@ GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
 
-// Into the dictionary's space: undo the roughness scaling S = alpha / alpha_d, then the cell's
-// rotation, (x', y') = R(-theta) S^-1 slope (model.md 2.5).
-GLINT_FN vec2 glintDictionarySlope(DictionaryView dict, GlintParameters params, vec2 rotation, vec2 slope) {
-  vec2 scaled = slope * (vec2(dict.alpha) / params.alpha);
-  float x = rotation.x * scaled.x + rotation.y * scaled.y;
-  float y = -rotation.y * scaled.x + rotation.x * scaled.y;
+// Into the dictionary's space, (x', y') = R(-theta) S^-1 slope (model.md 2.5), in two steps: undo
+// the roughness scaling S = alpha / alpha_d (the same for every cell of a pixel) ...
+GLINT_FN vec2 glintUnscaledSlope(DictionaryView dict, GlintParameters params, vec2 slope) {
+  return slope * (vec2(dict.alpha) / params.alpha);
+}
+
+// ... then the cell's rotation.
+GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
+  float x = rotation.x * unscaled.x + rotation.y * unscaled.y;
+  float y = -rotation.y * unscaled.x + rotation.x * unscaled.y;
   return vec2(x, y);
 }
 
@@ -181,11 +185,11 @@ GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float lo
   // outside the support at every rotation: the cell's sincos and texel reads are skipped. Exact:
   // the per-axis test below would return 0 too.
   float fourSigma = glintDictionaryDomain(dict);
-  vec2 unrotated = slope * (vec2(dict.alpha) / params.alpha);
-  if (dot(unrotated, unrotated) >= 2.0f * fourSigma * fourSigma) {
+  vec2 unscaled = glintUnscaledSlope(dict, params, slope);
+  if (dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma) {
     return vec4(0.0f);
   }
-  vec2 local = glintDictionarySlope(dict, params, glintCellRotation(h), slope);
+  vec2 local = glintDictionarySlope(glintCellRotation(h), unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return vec4(0.0f);
   }
