@@ -48,22 +48,7 @@ std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases) {
                       {c.wi, p.relativeArea},
                       {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), 0.0f}});
   }
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(inputs.size() * sizeof(KernelInput)), inputs.data(), 0);
-  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(cases.size() * sizeof(Values)), nullptr, GL_MAP_READ_BIT);
-  glUseProgram(program.id());
-  dictionary.bind(program);
-  glUniform1ui(program.uniform("uCount"), static_cast<GLuint>(cases.size()));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  glDispatchCompute(static_cast<GLuint>((cases.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<Values> outputs(cases.size());
-  glGetNamedBufferSubData(buffers[1], 0, static_cast<GLsizeiptr>(outputs.size() * sizeof(Values)), outputs.data());
-  glDeleteBuffers(2, buffers);
-  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-  return outputs;
+  return dispatchCompute<Values>(program, inputs, [&] { dictionary.bind(program); });
 }
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to

@@ -584,22 +584,7 @@ std::vector<GpuOutput> evaluateOnGpu(const std::vector<GlCase>& cases) {
                       {p.microRoughness, p.variation, p.dynamicRange},
                       {p.maxAnisotropy, static_cast<float>(p.patternSeed), 0.0f, 0.0f}});
   }
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(inputs.size() * sizeof(GpuInput)), inputs.data(), 0);
-  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(cases.size() * sizeof(GpuOutput)), nullptr,
-                       GL_MAP_READ_BIT);
-  glUseProgram(program.id());
-  glUniform1ui(program.uniform("uCount"), static_cast<GLuint>(cases.size()));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  glDispatchCompute(static_cast<GLuint>((cases.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<GpuOutput> outputs(cases.size());
-  glGetNamedBufferSubData(buffers[1], 0, static_cast<GLsizeiptr>(outputs.size() * sizeof(GpuOutput)), outputs.data());
-  glDeleteBuffers(2, buffers);
-  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-  return outputs;
+  return dispatchCompute<GpuOutput>(program, inputs);
 }
 
 // Half mapped from our parameters, half the model's own over wide ranges; footprints from
