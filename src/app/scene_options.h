@@ -10,12 +10,13 @@
 #include <CLI/CLI.hpp>
 
 #include "glint/dictionary.h"
+#include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 
 namespace glint::app {
 
 struct SceneOptions {
-  std::string scene = "showroom";
+  std::string scene = scene::kDefaultScene;
   std::string camera = "default";
   std::string dictionary;
   std::vector<std::string> glintMaterials;

@@ -209,7 +209,6 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
 Renderer::~Renderer() = default;
 
 GLuint Renderer::radianceTexture() const { return gpu_->radiance; }
-GLuint Renderer::framebuffer() const { return gpu_->framebuffer; }
 
 void Renderer::renderFrame(const FrameSettings& settings) {
   Gpu& g = *gpu_;

@@ -43,12 +43,10 @@ class Renderer {
   // The last frame: RGBA floats, rows bottom-up (as GL stores them).
   std::vector<float> readRadiance() const;
   GLuint radianceTexture() const;
-  GLuint framebuffer() const;
 
   // Materials and lights as drawn; the viewer edits them between frames.
   std::vector<scene::Material>& materials() { return materials_; }
   std::vector<scene::Light>& lights() { return lights_; }
-  const scene::Scene& scene() const { return scene_; }
 
  private:
   struct Gpu;
