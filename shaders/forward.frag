@@ -130,7 +130,10 @@ void main() {
     vec3 specular;
 #if SPECULAR_MODEL == SPECULAR_GLINT
     if (uGlintLayer) {
-      vec4 p22 = glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slopeFromNormal(wh));
+      vec2 slope = slopeFromNormal(wh);
+      vec4 p22 = glintSlopeIsNegligible(dict, params, slope)
+                     ? vec4(0.0f)
+                     : glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slope);
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
     } else {

@@ -1,7 +1,8 @@
 // GLSL side of the kernel's dictionary access (the C++ side is in src/glint/kernel/prelude.h):
-// the dictionary is a texture array of R16F texels, one layer per level, one row per distribution,
-// read with texelFetch so the kernel's own interpolation (glintMarginal) is the only one, exactly
-// as on the CPU. Its shape and alpha come from uniforms set from the Dictionary the host loaded.
+// the dictionary is a texture array of RG16F texels, one layer per level, one row per distribution,
+// texel k holding (p[k], p[k+1]) so that one texelFetch serves an interpolation; read with
+// texelFetch so the kernel's own interpolation (glintMarginal) is the only one, exactly as on the
+// CPU. Its shape and alpha come from uniforms set from the Dictionary the host loaded.
 #ifndef GLINT_DICTIONARY_GLSL
 #define GLINT_DICTIONARY_GLSL
 
@@ -25,8 +26,8 @@ DictionaryView glintDictionary() {
   return dict;
 }
 
-float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
-  return texelFetch(uGlintDictionary, ivec3(texel, distribution, level), 0).r;
+vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
+  return texelFetch(uGlintDictionary, ivec3(texel, distribution, level), 0).rg;
 }
 
 #endif

@@ -1,6 +1,7 @@
 // The glint BRDF behaves as the paper claims: a normalised P-NDF, convergence to Cook-Torrance,
 // reciprocity, energy conservation (the "Must show" list).
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -146,6 +147,92 @@ TEST(GlintBrdfStat, WhiteFurnaceAlbedoIsAtMostOneAndMatchesCookTorranceOnAverage
     EXPECT_NEAR(sum / kPositions / reference, 1.0, 0.02) << degrees << " degrees, Cook-Torrance " << reference;
     EXPECT_LE(reference, 1.001);
   }
+}
+
+TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
+  // The walk (glintCellGrid, glintCellRow, glintCellAt) goes along rows or, for footprints long in
+  // v, along columns. Either way it must visit each cell of the EWA ellipse once and no other:
+  // compared with a brute-force scan of a box around the ellipse, on random, often anisotropic
+  // footprints at both levels of their LOD. A cell counts as visited when the walk gives it a
+  // weight. Cells with r^2 within 2e-3 of 1 are left out of the comparison: cell coordinates reach
+  // 2^15, where a float's step is 4e-3 cells, so the kernel's float r^2 and this double one differ
+  // there (such a cell's weight is below 7e-4 of the centre's).
+  const kernel::DictionaryView dict = defaultDictionary().view();
+  Pcg32 rng(404, 3);
+  int transposed = 0;
+  int compared = 0;
+  for (int i = 0; i < 400; ++i) {
+    const SurfaceFootprint surface = randomFootprint(rng, 1e-5f, 1e-2f);
+    const kernel::GlintFootprint footprint = kernel::glintFootprint(surface.duvdx, surface.duvdy, 8.0f, 20.0f, 16);
+    const glm::vec2 uv = kernel::glintWrapUv(surface.uv, 16);
+    for (int level = kernel::glintLodLevel(footprint); level <= kernel::glintLodLevel(footprint) + 1; ++level) {
+      if (level > 15) continue;
+      const kernel::GlintCellGrid grid = kernel::glintCellGrid(footprint, uv, dict.numLevels, level);
+      transposed += grid.transposed ? 1 : 0;
+      std::set<std::pair<int, int>> walked;
+      for (int t = grid.t0; t <= grid.t1; ++t) {
+        const glm::ivec2 row = kernel::glintCellRow(grid, t);
+        for (int s = row.x; s <= row.y; ++s) {
+          if (!(kernel::glintCellWeight(grid, s, t) > 0.0f)) continue;
+          const glm::ivec2 cell = kernel::glintCellAt(grid, s, t);
+          EXPECT_TRUE(walked.insert({cell.x, cell.y}).second) << "cell visited twice, case " << i;
+        }
+      }
+      // The ellipse in cell units, straight from the footprint (pbrt-v3's EWA form, +1 widening).
+      const float cellsPerUv = std::exp2(float(15 - level));
+      const glm::vec2 centre = uv * cellsPerUv - glm::vec2(0.5f);
+      const glm::dvec2 a0 = glm::dvec2(footprint.majorAxis) * double(cellsPerUv);
+      const glm::dvec2 a1 = glm::dvec2(footprint.minorAxis) * double(cellsPerUv);
+      const double A = a0.y * a0.y + a1.y * a1.y + 1.0;
+      const double B = -2.0 * (a0.x * a0.y + a1.x * a1.y);
+      const double C = a0.x * a0.x + a1.x * a1.x + 1.0;
+      const double F = A * C - 0.25 * B * B;
+      const int reach = int(std::ceil(glm::length(a0) + glm::length(a1))) + 2;
+      for (int t = int(centre.y) - reach; t <= int(centre.y) + reach; ++t) {
+        for (int s = int(centre.x) - reach; s <= int(centre.x) + reach; ++s) {
+          const double dx = s - double(centre.x);
+          const double dy = t - double(centre.y);
+          const double r2 = (A * dx * dx + B * dx * dy + C * dy * dy) / F;
+          if (std::abs(r2 - 1.0) < 2e-3) continue;
+          ++compared;
+          EXPECT_EQ(walked.count({s, t}) == 1, r2 < 1.0)
+              << "case " << i << " level " << level << " cell " << s << "," << t << " r2 " << r2;
+        }
+      }
+    }
+  }
+  EXPECT_GT(transposed, 50);  // both walk directions are exercised
+  EXPECT_LT(transposed, 750);
+  RecordProperty("cells_compared", std::to_string(compared));
+}
+
+TEST(GlintBrdf, RendererSkipsOnlyNegligibleSlopes) {
+  // The renderer takes P22 = 0 where glintSlopeIsNegligible holds (docs/renderer.md, "Cost"). The
+  // exact P22 there comes from smooth-limit cells only and must be below exp(-16) = 1.13e-7 of the
+  // Beckmann peak. High densities make such cells common, so the bound is met by non-zero values.
+  const kernel::DictionaryView dict = defaultDictionary().view();
+  Pcg32 rng(1616, 5);
+  double worst = 0.0;
+  int nonZero = 0;
+  for (int i = 0; i < 2000; ++i) {
+    GlintParameters parameters = defaultGlintParameters();
+    parameters.alpha = glm::vec2(uniform(rng, 0.05f, 1.0f), uniform(rng, 0.05f, 1.0f));
+    parameters.logDensity = uniform(rng, 25.0f, 45.0f);
+    const SurfaceFootprint surface = randomFootprint(rng, 1e-5f, 1e-2f);
+    // A slope at 1 to 1.3 times the rotated support's circumradius, in dictionary units.
+    const float angle = uniform(rng, 0.0f, 6.2831853f);
+    const float radius = uniform(rng, 1.0f, 1.3f) * 1.41421356f * kernel::glintDictionaryDomain(dict);
+    const glm::vec2 slope =
+        glm::vec2(std::cos(angle), std::sin(angle)) * radius * (parameters.alpha / glm::vec2(dict.alpha));
+    ASSERT_TRUE(kernel::glintSlopeIsNegligible(dict, parameters, slope)) << "case " << i;
+    const double p22 = kernel::glintP22(dict, parameters, surface.uv, surface.duvdx, surface.duvdy, slope);
+    const double peak = kernel::beckmannP22(glm::vec2(0.0f), parameters.alpha);
+    worst = std::max(worst, p22 / peak);
+    nonZero += p22 > 0.0 ? 1 : 0;
+  }
+  EXPECT_LE(worst, 1.13e-7);
+  EXPECT_GT(nonZero, 100);
+  RecordProperty("worst_relative_to_peak", std::to_string(worst));
 }
 
 TEST(GlintBrdf, PatternRepeatsWithItsPeriodAndVariesWithin) {

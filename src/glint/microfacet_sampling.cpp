@@ -99,7 +99,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
     for (int s = row.x; s <= row.y && !found; ++s) {
       const float weight = kernel::glintCellWeight(grid, s, t);
       if (weight > 0.0f) {
-        cell = glm::ivec2(s, t);
+        cell = kernel::glintCellAt(grid, s, t);
         cellWeight = weight;
         cellStart = before;
         found = target < before + weight;

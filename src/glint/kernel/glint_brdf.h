@@ -91,12 +91,8 @@ GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, f
   float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict));
   int k = min(int(x), dict.texelsPerDistribution - 1);
   float f = x - float(k);
-  float a = glintDictionaryTexel(dict, level, distribution, k);
-  float b = 0.0f;
-  if (k + 1 < dict.texelsPerDistribution) {
-    b = glintDictionaryTexel(dict, level, distribution, k + 1);
-  }
-  return a + f * (b - a);
+  vec2 ab = glintDictionaryTexelPair(dict, level, distribution, k);
+  return ab.x + f * (ab.y - ab.x);
 }
 
 // A saturated random hue for a cell (the paper's "cheap iridescence"), from its own hash so that
@@ -168,57 +164,88 @@ GLINT_FN float glintScalingJacobian(DictionaryView dict, GlintParameters params)
   return (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
 }
 
-// P22 of one cell of footprint level `level` (model.md 2.5), in .w; .rgb is P22 times the
-// cell's colour (white unless params.colouredCells).
-GLINT_FN vec4 glintCellP22(DictionaryView dict, GlintParameters params, float logDensity, int cellX, int cellY,
-                           int level, vec2 slope) {
+// Whether an unscaled slope (glintUnscaledSlope) lies beyond the circumradius of the dictionary's
+// square support, 4 sigma_d sqrt 2: outside it at every cell rotation.
+GLINT_FN bool glintBeyondEveryRotatedSupport(DictionaryView dict, vec2 unscaled) {
+  float fourSigma = glintDictionaryDomain(dict);
+  return dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma;
+}
+
+// The real-time renderer's one approximation (docs/renderer.md, "Cost"): beyond every rotated
+// support no dictionary cell reflects, and the smooth cells' Beckmann P22 there is below exp(-16)
+// = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 without
+// visiting the footprint's cells. The CPU BSDF keeps the exact value: its sampler can draw such a
+// slope from a smooth cell and must find a non-zero pdf there.
+GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params, vec2 slope) {
+  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope));
+}
+
+// One cell's contribution to P22 (model.md 2.5), split so that what is the same for every cell of
+// the footprint is computed once per footprint (glintLevelP22), not once per cell: a cell either
+// is in the smooth limit (its P22 is the Beckmann P22 at the slope) or reads the dictionary (its
+// P22 is the tensor product of two marginals times the scaling Jacobian). dictionaryP22.w holds
+// that product without the Jacobian, .rgb the product times the cell's colour (white unless
+// params.colouredCells); it is 0 for an empty cell, a smooth cell, or a slope outside the support.
+struct GlintCellLobe {
+  vec4 dictionaryP22;
+  bool smoothLimit;
+};
+
+GLINT_FN GlintCellLobe glintCellLobe(DictionaryView dict, GlintParameters params, float logDensity, int cellX,
+                                     int cellY, int level, vec2 unscaled) {
+  GlintCellLobe lobe;
+  lobe.dictionaryP22 = vec4(0.0f);
+  lobe.smoothLimit = false;
   uvec4 h = glintCellHash(params, cellX, cellY, level);
   if (!glintCellHasMicrofacets(params, h)) {
-    return vec4(0.0f);
+    return lobe;
   }
   int dictLevel = glintCellDictionaryLevel(dict, params, logDensity, level, h);
   if (dictLevel == dict.numLevels) {
     // So many microfacets that the smooth limit holds: their colours average out to white too.
-    return vec4(beckmannP22(slope, params.alpha));
+    lobe.smoothLimit = true;
+    return lobe;
   }
-  // A slope beyond the rotated support's circumradius (4 sigma_d sqrt 2, in dictionary units) is
-  // outside the support at every rotation: the cell's sincos and texel reads are skipped. Exact:
+  // Outside the support at every rotation: the cell's sincos and texel reads are skipped. Exact:
   // the per-axis test below would return 0 too.
-  float fourSigma = glintDictionaryDomain(dict);
-  vec2 unscaled = glintUnscaledSlope(dict, params, slope);
-  if (dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma) {
-    return vec4(0.0f);
+  if (glintBeyondEveryRotatedSupport(dict, unscaled)) {
+    return lobe;
   }
+  float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(glintCellRotation(h), unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
-    return vec4(0.0f);
+    return lobe;
   }
-  // Tensor product of two marginals and the Jacobian of the scaling (model.md 2.5).
+  // Tensor product of two marginals (model.md 2.5).
   ivec2 distributions = glintCellDistributions(dict, h);
-  float p22 = glintMarginal(dict, dictLevel, distributions.x, abs(local.x)) *
-              glintMarginal(dict, dictLevel, distributions.y, abs(local.y)) * glintScalingJacobian(dict, params);
+  float p = glintMarginal(dict, dictLevel, distributions.x, abs(local.x)) *
+            glintMarginal(dict, dictLevel, distributions.y, abs(local.y));
   vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
-  return vec4(colour * p22, p22);
+  lobe.dictionaryP22 = vec4(colour * p, p);
+  return lobe;
 }
 
 // The cells of one footprint level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
-// pbrt-v3's EWA Gaussian over the footprint ellipse. Rows t0..t1 of the ellipse's bounding box are
-// walked between the ellipse's two boundary crossings (glintCellRow), so only cells inside the
-// ellipse are visited (no bounding-box waste, no cap). The P-SDF and the host's sampler enumerate
-// the cells and weigh them with these three functions, so both see the same cells and weights.
+// pbrt-v3's EWA Gaussian over the footprint ellipse. The ellipse is walked line by line between its
+// two boundary crossings (glintCellRow), so only cells inside it are visited (no bounding-box
+// waste, no cap). Lines run along the ellipse's longer extent: a footprint long in v is walked in
+// columns, not rows. Pixels shaded in lockstep (SIMD lanes, GPU warps) pay for the longest line of
+// any of them, line after line; few long lines waste less than many short ones (docs/benchmarks.md).
+// The P-SDF and the host's sampler enumerate the cells and weigh them with these four functions,
+// so both see the same cells and weights.
 struct GlintCellGrid {
-  vec2 centre;  // the footprint's centre in cell units; cell (s, t) is centred on integer (s, t)
-  float ea;     // implicit ellipse ea x^2 + eb x y + ec y^2 < 1 around the centre
+  vec2 centre;      // the footprint's centre in walk coordinates: (along a line, across lines)
+  float ea;         // implicit ellipse ea x^2 + eb x y + ec y^2 < 1 around the centre, same axes
   float eb;
   float ec;
-  int t0;       // first and last row
+  int t0;           // first and last line
   int t1;
+  bool transposed;  // walk coordinates (x, y) are cell (t, s) when set, cell (s, t) otherwise
 };
 
 GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numLevels, int level) {
   float cellsPerUv = exp2(float(numLevels - 1 - level));
-  GlintCellGrid grid;
-  grid.centre = uv * cellsPerUv - vec2(0.5f);
+  vec2 centre = uv * cellsPerUv - vec2(0.5f);  // cell (s, t) is centred on integer (s, t)
   vec2 a0 = footprint.majorAxis * cellsPerUv;
   vec2 a1 = footprint.minorAxis * cellsPerUv;
   // Implicit ellipse A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so it covers at least a cell.
@@ -226,16 +253,21 @@ GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numL
   float eb = -2.0f * (a0.x * a0.y + a1.x * a1.y);
   float ec = a0.x * a0.x + a1.x * a1.x + 1.0f;
   float invF = 1.0f / (ea * ec - 0.25f * eb * eb);
-  grid.ea = ea * invF;
+  GlintCellGrid grid;
+  // The ellipse's extent in t over its extent in s is sqrt(ea / ec): taller than wide, walk columns.
+  grid.transposed = ea > ec;
+  grid.centre = grid.transposed ? vec2(centre.y, centre.x) : centre;
+  grid.ea = (grid.transposed ? ec : ea) * invF;
   grid.eb = eb * invF;
-  grid.ec = ec * invF;
+  grid.ec = (grid.transposed ? ea : ec) * invF;
   float halfHeight = sqrt(4.0f * grid.ea / (4.0f * grid.ea * grid.ec - grid.eb * grid.eb));
   grid.t0 = int(ceil(grid.centre.y - halfHeight));
   grid.t1 = int(floor(grid.centre.y + halfHeight));
   return grid;
 }
 
-// The columns (s0, s1) of row t inside the ellipse; s1 < s0 when the row misses it.
+// The cells (s0, s1) of line t inside the ellipse, in walk coordinates; s1 < s0 when the line
+// misses it.
 GLINT_FN ivec2 glintCellRow(GlintCellGrid grid, int t) {
   float dy = float(t) - grid.centre.y;
   float discriminant = grid.eb * grid.eb * dy * dy - 4.0f * grid.ea * (grid.ec * dy * dy - 1.0f);
@@ -247,7 +279,13 @@ GLINT_FN ivec2 glintCellRow(GlintCellGrid grid, int t) {
                int(floor(grid.centre.x + (-grid.eb * dy + root) / (2.0f * grid.ea))));
 }
 
-// EWA weight of cell (s, t): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0 (model.md 2.4).
+// The cell (s, t) at walk coordinates (x, y).
+GLINT_FN ivec2 glintCellAt(GlintCellGrid grid, int x, int y) {
+  return grid.transposed ? ivec2(y, x) : ivec2(x, y);
+}
+
+// EWA weight of the cell at walk coordinates (s, t): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0
+// (model.md 2.4). The quadratic form is symmetric in the swap, so the weight is the cell's.
 GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
   float dy = float(t) - grid.centre.y;
@@ -255,23 +293,37 @@ GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   return r2 < 1.0f ? exp(-2.0f * r2) - kEwaFilterFloor : 0.0f;
 }
 
-// P22 over the footprint at one level (model.md 2.4): the EWA-weighted mean of its cells' P22.
+// P22 over the footprint at one level (model.md 2.4): the EWA-weighted mean of its cells' P22,
+// in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the Beckmann P22 of the
+// smooth cells are the same for every cell, so they multiply the weighted sums once.
 GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                              int level, vec2 slope) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
+  vec2 unscaled = glintUnscaledSlope(dict, params, slope);
   float weightSum = 0.0f;
-  vec4 p22Sum = vec4(0.0f);
+  float smoothWeightSum = 0.0f;
+  vec4 dictionarySum = vec4(0.0f);
   for (int t = grid.t0; t <= grid.t1; ++t) {
     ivec2 row = glintCellRow(grid, t);
     for (int s = row.x; s <= row.y; ++s) {
       float weight = glintCellWeight(grid, s, t);
       if (weight > 0.0f) {
         weightSum += weight;
-        p22Sum += weight * glintCellP22(dict, params, footprint.logDensity, s, t, level, slope);
+        ivec2 cell = glintCellAt(grid, s, t);
+        GlintCellLobe lobe = glintCellLobe(dict, params, footprint.logDensity, cell.x, cell.y, level, unscaled);
+        dictionarySum += weight * lobe.dictionaryP22;
+        smoothWeightSum += lobe.smoothLimit ? weight : 0.0f;
       }
     }
   }
-  return weightSum > 0.0f ? p22Sum / weightSum : vec4(0.0f);
+  if (!(weightSum > 0.0f)) {
+    return vec4(0.0f);
+  }
+  vec4 p22 = dictionarySum * glintScalingJacobian(dict, params);
+  if (smoothWeightSum > 0.0f) {
+    p22 += vec4(smoothWeightSum * beckmannP22(slope, params.alpha));
+  }
+  return p22 / weightSum;
 }
 
 // The pattern's uv, wrapped to its period (glintFootprintPeriod).

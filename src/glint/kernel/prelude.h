@@ -6,8 +6,10 @@
 //   - float literals carry the f suffix, unsigned ones the u suffix;
 //   - no swizzle assignment, no struct constructors (assign fields), no recursion;
 //   - functions are declared with GLINT_FN, out-parameters with GLINT_OUT(T).
-// The dictionary is reached only through glintDictionaryTexel(), which each language defines:
-// below for C++ (a DictionaryView over host memory), in shaders/ for GLSL (a texture array).
+// The kernel reaches the dictionary only through glintDictionaryTexelPair() (texels k and k+1 of a
+// distribution, 0 past the last), which each language defines: below for C++ (a DictionaryView
+// over host memory), in shaders/ for GLSL (a texture array of pairs). The host's own code reads
+// single texels with glintDictionaryTexel().
 #ifndef GLINT_KERNEL_PRELUDE_H
 #define GLINT_KERNEL_PRELUDE_H
 
@@ -40,6 +42,11 @@ struct DictionaryView {
 
 GLINT_FN float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
   return dict.texels[(level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel];
+}
+
+GLINT_FN vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
+  const float* row = dict.texels + (level * dict.numDistributions + distribution) * dict.texelsPerDistribution;
+  return vec2(row[texel], texel + 1 < dict.texelsPerDistribution ? row[texel + 1] : 0.0f);
 }
 
 GLINT_KERNEL_END
