@@ -84,7 +84,7 @@ void DictionaryParameters::validate() const {
   // 16 levels at most: the kernel's 32-bit cell seed holds 2^16 level-0 cells per axis
   // (kernel/glint_brdf.h, kCellIndexMask).
   requireInRange("levels", numLevels, 1, 16);
-  // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellP22).
+  // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellDistributions).
   requireInRange("distributions", numDistributions, 1, 4096);
   requireInRange("texels", texelsPerDistribution, 2, 4096);
   requireInRange("alpha", alpha, 0.01f, 2.0f);

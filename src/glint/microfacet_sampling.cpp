@@ -109,7 +109,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   }
   uChoice = remapUniform(target, cellStart, cellWeight);
 
-  // The cell's random properties, drawn by the kernel's functions exactly as glintCellP22 draws them.
+  // The cell's random properties, drawn by the kernel's functions exactly as glintCellLobe draws them.
   const glm::uvec4 hash = kernel::glintCellHash(params, cell.x, cell.y, level);
   if (!kernel::glintCellHasMicrofacets(params, hash)) return std::nullopt;
   const int dictLevel = kernel::glintCellDictionaryLevel(dict, params, footprint.logDensity, level, hash);
