@@ -2,7 +2,8 @@
 // Cook-Torrance), lit by point and directional lights and an environment (diffuse by spherical
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
-// SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical.
+// SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
+// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -43,7 +44,6 @@ uniform float uGlintRelativeArea;
 uniform float uGlintDensityRandomisation;
 uniform float uGlintMaxAnisotropy;
 uniform uint uGlintPatternSeed;
-uniform bool uGlintColoured;
 uniform float uGlintUvScale;
 uniform bool uGlintHasLogDensityTexture;
 uniform vec2 uGlintLogDensityRange;
@@ -109,7 +109,9 @@ void main() {
   params.densityRandomisation = uGlintDensityRandomisation;
   params.maxAnisotropy = uGlintMaxAnisotropy;
   params.patternSeed = uGlintPatternSeed;
-  params.colouredCells = uGlintColoured;
+  // A compile-time switch (one program per variant, src/gl/renderer.cpp): llvmpipe executes both
+  // sides of a branch, so a uniform would make every glint material pay for the colours.
+  params.colouredCells = GLINT_COLOURED_CELLS != 0;
   DictionaryView dict = glintDictionary();
 
   vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);

@@ -1,6 +1,6 @@
 // GLSL side of the kernel's dictionary access (the C++ side is in src/glint/kernel/prelude.h):
-// the dictionary is a texture array of RG16F texels, one layer per level, one row per distribution,
-// texel k holding (p[k], p[k+1]) so that one texelFetch serves an interpolation; read with
+// the dictionary is a buffer texture of RG16F texels, distribution after distribution, level after
+// level, texel k holding (p[k], p[k+1]) so that one texelFetch serves an interpolation; read with
 // texelFetch so the kernel's own interpolation (glintMarginal) is the only one, exactly as on the
 // CPU. Its shape and alpha come from uniforms set from the Dictionary the host loaded.
 #ifndef GLINT_DICTIONARY_GLSL
@@ -13,7 +13,7 @@ struct DictionaryView {
   float alpha;
 };
 
-layout(binding = 0) uniform sampler2DArray uGlintDictionary;
+layout(binding = 0) uniform samplerBuffer uGlintDictionary;
 uniform ivec3 uGlintDictionaryShape;  // L, N, R
 uniform float uGlintDictionaryAlpha;  // alpha_d
 
@@ -27,7 +27,7 @@ DictionaryView glintDictionary() {
 }
 
 vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
-  return texelFetch(uGlintDictionary, ivec3(texel, distribution, level), 0).rg;
+  return texelFetch(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
 }
 
 #endif

@@ -2,9 +2,11 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gl/shader.h"
+#include "glint/error.h"
 
 namespace glint::gl {
 
@@ -20,17 +22,25 @@ DictionaryTexture::DictionaryTexture(const Dictionary& dictionary) : parameters_
     pairs[2 * i] = halves[i];
     pairs[2 * i + 1] = lastOfDistribution ? std::uint16_t{0} : halves[i + 1];  // binary16 +0
   }
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
-  glTextureStorage3D(texture_, 1, GL_RG16F, parameters_.texelsPerDistribution, parameters_.numDistributions,
-                     parameters_.numLevels);
-  glTextureSubImage3D(texture_, 0, 0, 0, 0, parameters_.texelsPerDistribution, parameters_.numDistributions,
-                      parameters_.numLevels, GL_RG, GL_HALF_FLOAT, pairs.data());
-  // texelFetch ignores filtering; set it so the texture is complete on every driver.
-  glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  // A buffer texture, not a texture array: llvmpipe's texelFetch on an array computes a mip level,
+  // row and layer stride per pixel, about 100 instructions around each fetch; on a buffer it is a
+  // bounds check and a gather (docs/benchmarks.md, third round).
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  if (static_cast<std::size_t>(maxTexels) < halves.size()) {
+    throw Error("dictionary of " + std::to_string(halves.size()) + " texels exceeds this OpenGL's buffer texture limit (" +
+                std::to_string(maxTexels) + " texels)");
+  }
+  glCreateBuffers(1, &buffer_);
+  glNamedBufferStorage(buffer_, static_cast<GLsizeiptr>(pairs.size() * sizeof(std::uint16_t)), pairs.data(), 0);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture_);
+  glTextureBuffer(texture_, GL_RG16F, buffer_);
 }
 
-DictionaryTexture::~DictionaryTexture() { glDeleteTextures(1, &texture_); }
+DictionaryTexture::~DictionaryTexture() {
+  glDeleteTextures(1, &texture_);
+  glDeleteBuffers(1, &buffer_);
+}
 
 void DictionaryTexture::bind(const ShaderProgram& program) const {
   glBindTextureUnit(0, texture_);

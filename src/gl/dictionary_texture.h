@@ -1,6 +1,6 @@
-// The dictionary on the GPU: a GL_TEXTURE_2D_ARRAY of RG16F texels (layer = level, row =
-// distribution), texel k holding the pair of neighbours (p[k], p[k+1]) that linear interpolation
-// needs: the very binary16 values the CPU evaluates (docs/dictionary.md, "Storage").
+// The dictionary on the GPU: an RG16F buffer texture indexed (level * N + distribution) * R + k,
+// texel k holding the pair of neighbours (p[k], p[k+1]) that linear interpolation needs: the very
+// binary16 values the CPU evaluates (docs/dictionary.md, "Storage").
 #pragma once
 
 #include <glad/gl.h>
@@ -24,6 +24,7 @@ class DictionaryTexture {
 
  private:
   GLuint texture_ = 0;
+  GLuint buffer_ = 0;
   DictionaryParameters parameters_;
 };
 

@@ -88,17 +88,26 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
   return projection * glm::lookAt(camera.position, camera.target, camera.up);
 }
 
-// The forward program of a specular model (shaders/forward.frag, SPECULAR_MODEL).
-ShaderProgram forwardProgram(BrdfModel model) {
-  const char* specular = model == BrdfModel::Glint          ? "SPECULAR_GLINT"
-                         : model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
-                                                            : "SPECULAR_ZIRR_KAPLANYAN";
+// The forward program of a specular model (shaders/forward.frag, SPECULAR_MODEL), for materials
+// with or without coloured glints (GLINT_COLOURED_CELLS). The colour is a compile-time switch, not
+// a uniform: llvmpipe runs both sides of every branch for all pixels, so a uniform flag made every
+// glint material pay for the colour's hash and hue (15% of the glint shader's instructions).
+struct ForwardVariant {
+  BrdfModel model;
+  bool colouredCells;
+  auto operator<=>(const ForwardVariant&) const = default;
+};
+
+ShaderProgram forwardProgram(ForwardVariant variant) {
+  const char* specular = variant.model == BrdfModel::Glint          ? "SPECULAR_GLINT"
+                         : variant.model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
+                                                                    : "SPECULAR_ZIRR_KAPLANYAN";
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
-                       {{"SPECULAR_MODEL", specular}});
+                       {{"SPECULAR_MODEL", specular}, {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"}});
 }
 
 struct Renderer::Gpu {
-  std::map<BrdfModel, ShaderProgram> forward;  // compiled on first use
+  std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
@@ -222,15 +231,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glClearNamedFramebufferfv(g.framebuffer, GL_COLOR, 0, clear);
   glClearNamedFramebufferfi(g.framebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
-  auto program = g.forward.find(settings.brdf);
-  if (program == g.forward.end()) program = g.forward.emplace(settings.brdf, forwardProgram(settings.brdf)).first;
-  const ShaderProgram& p = program->second;
-  glUseProgram(p.id());
-  g.dictionary->bind(p);
-  glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE,
-                     &viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
-                                     scene_.boundsMin(), scene_.boundsMax())[0][0]);
-  glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
+  const glm::mat4 projection = viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
+                                              scene_.boundsMin(), scene_.boundsMax());
   glm::vec4 lightPositions[kMaxLights];
   glm::vec3 lightIntensities[kMaxLights];
   const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size()));
@@ -240,47 +242,67 @@ void Renderer::renderFrame(const FrameSettings& settings) {
                                                                  : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;
   }
-  glUniform1i(p.uniform("uLightCount"), lightCount);
-  glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
-  glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
-  glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
-  glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
-  glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
-  glBindTextureUnit(9, g.environment);
-
   auto texture = [&](int index, GLuint fallback) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
                                                                       : fallback;
   };
-  for (const GpuMesh& mesh : g.meshes) {
-    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const scene::GlintLayer& glint = m.glint;
-    glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
-    glUniform1f(p.uniform("uMetallic"), m.metallic);
-    glUniform1f(p.uniform("uRoughness"), m.roughness);
-    glUniform1f(p.uniform("uNormalScale"), m.normalScale);
-    glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
-    glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
-    glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
-    glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
-    glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
-    glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
-    glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
-    glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
-    glUniform1i(p.uniform("uGlintColoured"), glint.randomColours);
-    glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
-    glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
-    glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
-    glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
-    glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
-    glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
-    glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
-    glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
-    glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
-    glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
-    glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
-    glBindVertexArray(mesh.vertexArray);
-    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+  // One program per variant in use (ForwardVariant); opaque meshes under the depth test, so the
+  // order of the passes does not matter.
+  auto variantOf = [&](const scene::Material& m) {
+    return ForwardVariant{settings.brdf, settings.brdf == BrdfModel::Glint && m.glint.enabled && m.glint.randomColours};
+  };
+  for (const bool coloured : {false, true}) {
+    const ForwardVariant variant{settings.brdf, coloured};
+    if (std::none_of(g.meshes.begin(), g.meshes.end(), [&](const GpuMesh& mesh) {
+          return variantOf(materials_[static_cast<std::size_t>(mesh.material)]) == variant;
+        })) {
+      continue;
+    }
+    auto program = g.forward.find(variant);
+    if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
+    const ShaderProgram& p = program->second;
+    glUseProgram(p.id());
+    g.dictionary->bind(p);
+    glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
+    glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
+    glUniform1i(p.uniform("uLightCount"), lightCount);
+    glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
+    glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
+    glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
+    glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
+    glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
+    glBindTextureUnit(9, g.environment);
+
+    for (const GpuMesh& mesh : g.meshes) {
+      const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+      const scene::GlintLayer& glint = m.glint;
+      if (variantOf(m) != variant) continue;
+      glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
+      glUniform1f(p.uniform("uMetallic"), m.metallic);
+      glUniform1f(p.uniform("uRoughness"), m.roughness);
+      glUniform1f(p.uniform("uNormalScale"), m.normalScale);
+      glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+      glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
+      glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
+      glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
+      glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
+      glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
+      glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
+      glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
+      glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
+      glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
+      glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
+      glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+      glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
+      glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
+      glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
+      glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
+      glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
+      glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
+      glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
+      glBindVertexArray(mesh.vertexArray);
+      glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
   }
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
