@@ -1,5 +1,6 @@
 // Unit tests of the kernel's building blocks against independent references.
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -61,6 +62,28 @@ TEST(Erfinv, InvertsErfInSinglePrecision) {
     const double x = kernel::erfinvApprox(static_cast<float>(y));
     EXPECT_NEAR(std::erf(x), y, 2e-6 * std::abs(y) + 1e-7) << "y = " << y;
   }
+}
+
+TEST(NormalCdf, MatchesErfcInSinglePrecision) {
+  // What matters for the level thresholds (glintLevelDraw) is the absolute error: a cell's level
+  // differs from the exact draw only when its u lies between the exact and the computed threshold,
+  // so the absolute error bounds that probability. The erfc fit's fractional error is 1.2e-7;
+  // near Phi = 1/2 that and the float rounding of 1 - tail (spacing 6e-8) give about 1.7e-7,
+  // so the bound is 2e-7. The far lower tail must keep its relative precision as well: there the
+  // float argument of exp (x^2 up to 32) limits it to about 1e-5.
+  double worstAbsolute = 0.0;
+  double worstTailRelative = 0.0;
+  for (int i = -8000; i <= 8000; ++i) {
+    const float z = static_cast<float>(i / 1000.0);
+    const double exact = 0.5 * std::erfc(-static_cast<double>(z) / std::sqrt(2.0));
+    const double approx = kernel::normalCdf(z);
+    worstAbsolute = std::max(worstAbsolute, std::abs(approx - exact));
+    if (z < -3.0f) worstTailRelative = std::max(worstTailRelative, std::abs(approx / exact - 1.0));
+  }
+  EXPECT_LT(worstAbsolute, 2e-7);
+  EXPECT_LT(worstTailRelative, 1e-5);
+  std::printf("normalCdf: worst absolute error %.2e, worst relative error below z = -3 %.2e\n", worstAbsolute,
+              worstTailRelative);
 }
 
 TEST(Hash, Pcg4dLanesAreUniformAndIndependent) {

@@ -82,8 +82,8 @@ float DictionaryParameters::texelSpacing() const { return slopeDomain() / static
 
 void DictionaryParameters::validate() const {
   // 16 levels at most: the kernel's 32-bit cell seed holds 2^16 level-0 cells per axis
-  // (kernel/glint_brdf.h, kCellIndexMask).
-  requireInRange("levels", numLevels, 1, 16);
+  // (kernel/glint_brdf.h, kCellIndexMask), and its level draw has room for 16 thresholds.
+  requireInRange("levels", numLevels, 1, kernel::kMaxDictionaryLevels);
   // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellDistributions).
   requireInRange("distributions", numDistributions, 1, 4096);
   requireInRange("texels", texelsPerDistribution, 2, 4096);

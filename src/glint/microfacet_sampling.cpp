@@ -112,7 +112,8 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   // The cell's random properties, drawn by the kernel's functions exactly as glintCellLobe draws them.
   const glm::uvec4 hash = kernel::glintCellHash(params, cell.x, cell.y, level);
   if (!kernel::glintCellHasMicrofacets(params, hash)) return std::nullopt;
-  const int dictLevel = kernel::glintCellDictionaryLevel(dict, params, footprint.logDensity, level, hash);
+  const int dictLevel =
+      kernel::glintCellDictionaryLevel(kernel::glintLevelDraw(dict, params, footprint.logDensity, level), hash);
   if (dictLevel == dict.numLevels) return sampleBeckmannSlope(params.alpha, u);
   const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
   // Tensor product: x' and y' independent, each from its marginal (model.md 2.5).

@@ -124,13 +124,63 @@ GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
 
 // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
 // log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L means "so
-// many microfacets that the smooth Beckmann limit holds".
-GLINT_FN int glintCellDictionaryLevel(DictionaryView dict, GlintParameters params, float logDensity, int level,
-                                      uvec4 h) {
-  float log4Count = float(level - (dict.numLevels - 1)) + logDensity * kInvLn4;
-  float randomLevel = log4Count +
-      params.densityRandomisation * 1.41421356f * erfinvApprox(2.0f * hashToUnitOpen(h.y) - 1.0f);
-  return int(clamp(floor(randomLevel + 0.5f), 0.0f, float(dict.numLevels)));
+// many microfacets that the smooth Beckmann limit holds": round(log4(n) + zeta N) clamped to [0, L],
+// N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u.
+//
+// The same draw without inverting the normal per cell: the level reaches j exactly when
+// log4(n) + 1/2 + zeta N >= j, that is when u >= Phi((j - log4(n) - 1/2) / zeta). The L thresholds
+// depend on the footprint level only, so glintLevelDraw computes them once per footprint and a
+// cell's level is the number of thresholds its u passes: L comparisons instead of a logarithm and
+// two polynomials per cell (the inverse error function was 19% of the glint shader's instructions).
+// Thresholds past the dictionary's L are above every u, so the loop has a fixed length.
+GLINT_CONST int kMaxDictionaryLevels = 16;  // the largest L a Dictionary accepts
+
+struct GlintLevelDraw {
+  float threshold[kMaxDictionaryLevels];  // threshold[j - 1]: the u from which the level is >= j
+};
+
+// The threshold from which a cell of this footprint level reaches dictionary level j. The margin
+// j - log4(n) - 1/2 is an exact integer minus a part that is the same at every level, so the
+// thresholds of level + 1 are bit for bit those of level shifted by one (glintNextLevelDraw).
+GLINT_FN float glintLevelThreshold(DictionaryView dict, GlintParameters params, float logDensity, int level, int j) {
+  if (j > dict.numLevels) {
+    return 2.0f;  // never: u < 2
+  }
+  float margin = float(j + (dict.numLevels - 1) - level) - (logDensity * kInvLn4 + 0.5f);
+  if (params.densityRandomisation > 0.0f) {
+    return normalCdf(margin / params.densityRandomisation);  // the normal must reach margin / zeta
+  }
+  return margin <= 0.0f ? 0.0f : 2.0f;  // no randomisation: round(log4(n)) itself
+}
+
+GLINT_FN GlintLevelDraw glintLevelDraw(DictionaryView dict, GlintParameters params, float logDensity, int level) {
+  GlintLevelDraw draw;
+  for (int j = 1; j <= kMaxDictionaryLevels; ++j) {
+    draw.threshold[j - 1] = glintLevelThreshold(dict, params, logDensity, level, j);
+  }
+  return draw;
+}
+
+// glintLevelDraw(level + 1) from glintLevelDraw(level), with one normalCdf instead of L: the next
+// level's cells are 4 times larger, so log4(n) is one more and its threshold for j is this level's
+// for j - 1.
+GLINT_FN GlintLevelDraw glintNextLevelDraw(DictionaryView dict, GlintParameters params, float logDensity, int level,
+                                           GlintLevelDraw draw) {
+  GlintLevelDraw next;
+  next.threshold[0] = glintLevelThreshold(dict, params, logDensity, level + 1, 1);
+  for (int j = 2; j <= kMaxDictionaryLevels; ++j) {
+    next.threshold[j - 1] = j > dict.numLevels ? 2.0f : draw.threshold[j - 2];
+  }
+  return next;
+}
+
+GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
+  float u = hashToUnitOpen(h.y);
+  int dictLevel = 0;
+  for (int j = 0; j < kMaxDictionaryLevels; ++j) {
+    dictLevel += u >= draw.threshold[j] ? 1 : 0;
+  }
+  return dictLevel;
 }
 
 // The cell's random rotation theta = 2 pi hash (model.md 2.5), as (cos theta, sin theta). The
@@ -203,7 +253,7 @@ struct GlintCellLobe {
   bool smoothLimit;
 };
 
-GLINT_FN GlintCellLobe glintCellLobe(DictionaryView dict, GlintParameters params, float logDensity, int cellX,
+GLINT_FN GlintCellLobe glintCellLobe(DictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX,
                                      int cellY, int level, vec2 unscaled) {
   GlintCellLobe lobe;
   lobe.dictionaryP22 = vec4(0.0f);
@@ -212,7 +262,7 @@ GLINT_FN GlintCellLobe glintCellLobe(DictionaryView dict, GlintParameters params
   if (!glintCellHasMicrofacets(params, h)) {
     return lobe;
   }
-  int dictLevel = glintCellDictionaryLevel(dict, params, logDensity, level, h);
+  int dictLevel = glintCellDictionaryLevel(draw, h);
   if (dictLevel == dict.numLevels) {
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     lobe.smoothLimit = true;
@@ -309,7 +359,7 @@ GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
 // in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the Beckmann P22 of the
 // smooth cells are the same for every cell, so they multiply the weighted sums once.
 GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
-                             int level, vec2 slope) {
+                             int level, GlintLevelDraw draw, vec2 slope) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   vec2 unscaled = glintUnscaledSlope(dict, params, slope);
   float weightSum = 0.0f;
@@ -322,7 +372,7 @@ GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFo
       if (weight > 0.0f) {
         weightSum += weight;
         ivec2 cell = glintCellAt(grid, s, t);
-        GlintCellLobe lobe = glintCellLobe(dict, params, footprint.logDensity, cell.x, cell.y, level, unscaled);
+        GlintCellLobe lobe = glintCellLobe(dict, params, draw, cell.x, cell.y, level, unscaled);
         dictionarySum += weight * lobe.dictionaryP22;
         smoothWeightSum += lobe.smoothLimit ? weight : 0.0f;
       }
@@ -366,9 +416,11 @@ GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2
   vec2 wrapped = glintWrapUv(uv, dict.numLevels);
   int level = glintLodLevel(footprint);
   float blend = glintLodBlend(footprint);
-  vec4 p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, slope);
+  GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
+  vec4 p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, draw, slope);
   if (blend > 0.0f) {
-    p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, slope);
+    GlintLevelDraw next = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
+    p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, next, slope);
   }
   return p22;
 }

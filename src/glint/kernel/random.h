@@ -24,8 +24,10 @@ GLINT_FN uvec4 pcg4d(uvec4 v) {
   return v;
 }
 
-// A uniform float in (0, 1) from the top 24 bits of a hash: exactly representable, identical on
-// CPU and GPU, and never 0 or 1 (the half-step offset keeps erfinv below finite).
+// A uniform float in (0, 1] from the top 24 bits k of a hash, identical on CPU and GPU:
+// (k + 1/2) / 2^24, which float rounds to a multiple of 2^-24 once k >= 2^23 (24-bit mantissa), so
+// the top value is exactly 1 (a 2^-24 chance, which every caller tolerates). Never 0: erfinv(2u - 1)
+// and log(u) stay finite.
 GLINT_FN float hashToUnitOpen(uint h) {
   return (float(h >> 8u) + 0.5f) * (1.0f / 16777216.0f);
 }
@@ -60,6 +62,27 @@ GLINT_FN float erfinvApprox(float x) {
     p = 2.83297682f + p * w;
   }
   return p * x;
+}
+
+// Standard normal CDF Phi(z) = erfc(-z / sqrt 2) / 2, with erfc from the Chebyshev fit of Press et
+// al., "Numerical Recipes" (2nd ed., section 6.2, erfcc): fractional error below 1.2e-7 for every
+// argument, so Phi keeps its relative precision deep in the lower tail, where the dictionary-level
+// thresholds of glintLevelDraw lie.
+GLINT_FN float normalCdf(float z) {
+  float x = abs(z) * 0.70710678f;
+  float t = 1.0f / (1.0f + 0.5f * x);
+  float p = 0.17087277f;
+  p = -0.82215223f + t * p;
+  p = 1.48851587f + t * p;
+  p = -1.13520398f + t * p;
+  p = 0.27886807f + t * p;
+  p = -0.18628806f + t * p;
+  p = 0.09678418f + t * p;
+  p = 0.37409196f + t * p;
+  p = 1.00002368f + t * p;
+  p = -1.26551223f + t * p;
+  float upperTail = 0.5f * t * exp(p - x * x);  // Phi(-|z|)
+  return z < 0.0f ? upperTail : 1.0f - upperTail;
 }
 
 GLINT_KERNEL_END
