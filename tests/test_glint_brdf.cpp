@@ -164,6 +164,7 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
   Pcg32 rng(404, 3);
   int transposed = 0;
   int compared = 0;
+  double worstWeightError = 0.0;  // the centre's weight is 1 - exp(-2) = 0.86
   for (int i = 0; i < 400; ++i) {
     const SurfaceFootprint surface = randomFootprint(rng, 1e-5f, 1e-2f);
     const kernel::GlintFootprint footprint = kernel::glintFootprint(surface.duvdx, surface.duvdy, 8.0f, 20.0f, 16);
@@ -172,15 +173,6 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
       if (level > 15) continue;
       const kernel::GlintCellGrid grid = kernel::glintCellGrid(footprint, uv, dict.numLevels, level);
       transposed += grid.transposed ? 1 : 0;
-      std::set<std::pair<int, int>> walked;
-      for (int t = grid.t0; t <= grid.t1; ++t) {
-        const glm::ivec2 row = kernel::glintCellRow(grid, t);
-        for (int s = row.x; s <= row.y; ++s) {
-          if (!(kernel::glintCellWeight(grid, s, t) > 0.0f)) continue;
-          const glm::ivec2 cell = kernel::glintCellAt(grid, s, t);
-          EXPECT_TRUE(walked.insert({cell.x, cell.y}).second) << "cell visited twice, case " << i;
-        }
-      }
       // The ellipse in cell units, straight from the footprint (pbrt-v3's EWA form, +1 widening).
       const float cellsPerUv = std::exp2(float(15 - level));
       const glm::vec2 centre = uv * cellsPerUv - glm::vec2(0.5f);
@@ -190,6 +182,24 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
       const double B = -2.0 * (a0.x * a0.y + a1.x * a1.y);
       const double C = a0.x * a0.x + a1.x * a1.x + 1.0;
       const double F = A * C - 0.25 * B * B;
+      std::set<std::pair<int, int>> walked;
+      for (int t = grid.t0; t <= grid.t1; ++t) {
+        const glm::ivec2 row = kernel::glintCellRow(grid, t);
+        kernel::GlintRowWeights weights = kernel::glintRowWeights(grid, row.x, t);
+        for (int s = row.x; s <= row.y; ++s) {
+          const float weight = kernel::glintNextCellWeight(grid, weights);
+          if (!(weight > 0.0f)) continue;
+          const glm::ivec2 cell = kernel::glintCellAt(grid, s, t);
+          EXPECT_TRUE(walked.insert({cell.x, cell.y}).second) << "cell visited twice, case " << i;
+          // The weight, stepped along the line, against the filter evaluated directly, in double,
+          // on the grid's own float ellipse: what differs is the stepping alone.
+          const double dx = s - double(grid.centre.x);
+          const double dy = t - double(grid.centre.y);
+          const double r2 = double(grid.ea) * dx * dx + double(grid.eb) * dx * dy + double(grid.ec) * dy * dy;
+          const double direct = r2 < 1.0 ? std::exp(-2.0 * r2) - std::exp(-2.0) : 0.0;
+          worstWeightError = std::max(worstWeightError, std::abs(weight - direct));
+        }
+      }
       const int reach = int(std::ceil(glm::length(a0) + glm::length(a1))) + 2;
       for (int t = int(centre.y) - reach; t <= int(centre.y) + reach; ++t) {
         for (int s = int(centre.x) - reach; s <= int(centre.x) + reach; ++s) {
@@ -206,7 +216,11 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
   }
   EXPECT_GT(transposed, 50);  // both walk directions are exercised
   EXPECT_LT(transposed, 750);
+  EXPECT_LT(worstWeightError, 1e-5);
   RecordProperty("cells_compared", std::to_string(compared));
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", worstWeightError);
+  RecordProperty("worst_weight_error", text);
 }
 
 TEST(GlintBrdf, CellRotationMatchesTheAngle) {

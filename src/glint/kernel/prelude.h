@@ -5,7 +5,8 @@
 //   - integer hashing on uint (wrap-around is defined in both languages);
 //   - float literals carry the f suffix, unsigned ones the u suffix;
 //   - no swizzle assignment, no struct constructors (assign fields), no recursion;
-//   - functions are declared with GLINT_FN, out-parameters with GLINT_OUT(T).
+//   - functions are declared with GLINT_FN, out-parameters with GLINT_OUT(T), in-out ones with
+//     GLINT_INOUT(T).
 // The kernel reaches the dictionary only through glintDictionaryTexelPair() (texels k and k+1 of a
 // distribution, 0 past the last), which each language defines: below for C++ (a DictionaryView
 // over host memory), in shaders/ for GLSL (a texture array of pairs). The host's own code reads
@@ -26,6 +27,7 @@
 #define GLINT_FN inline
 #define GLINT_CONST inline constexpr
 #define GLINT_OUT(T) T&
+#define GLINT_INOUT(T) T&
 
 GLINT_KERNEL_BEGIN
 
@@ -60,6 +62,7 @@ GLINT_KERNEL_END
 #define GLINT_FN
 #define GLINT_CONST const
 #define GLINT_OUT(T) out T
+#define GLINT_INOUT(T) inout T
 
 #endif
 
