@@ -9,7 +9,7 @@
 //     GLINT_INOUT(T).
 // The kernel reaches the dictionary only through glintDictionaryTexelPair() (texels k and k+1 of a
 // distribution, 0 past the last), which each language defines: below for C++ (a DictionaryView
-// over host memory), in shaders/ for GLSL (a texture array of pairs). The host's own code reads
+// over host memory), in shaders/ for GLSL (a buffer texture of pairs). The host's own code reads
 // single texels with glintDictionaryTexel().
 #ifndef GLINT_KERNEL_PRELUDE_H
 #define GLINT_KERNEL_PRELUDE_H
