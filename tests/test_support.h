@@ -53,6 +53,29 @@ double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, gl
 // keep under 1e-7 of their mass.
 glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha);
 
+// CPU versus GLSL (tests/test_gl_kernel.cpp, tests/test_zirr_kaplanyan.cpp): relative agreement
+// with an absolute floor, values under 1e-5 (invisible in 8-bit output under an intensity of 1)
+// counting as equal.
+inline bool cpuAndGpuAgree(float gpu, float cpu) { return std::abs(gpu - cpu) <= 1e-3f * std::abs(cpu) + 1e-5f; }
+
+// A disagreement is explained when the CPU result itself jumps by at least half as much under a
+// perturbation of the inputs far below any visible scale (uv by 1e-6, wi by 1e-5): the input sits
+// on one of the model's branch boundaries, where the two languages' float differences (sin, exp,
+// log) legitimately pick different sides. `Case` has footprint.uv and wi; evaluateOnCpu(Case)
+// returns the float compared.
+template <typename Case, typename EvaluateOnCpu>
+bool onBranchBoundary(const Case& c, float gpu, EvaluateOnCpu evaluateOnCpu) {
+  const float cpu = evaluateOnCpu(c);
+  for (int k = 0; k < 16; ++k) {
+    Case moved = c;
+    const float e = (k & 1 ? 1.0f : -1.0f);
+    moved.footprint.uv += glm::vec2(k & 2 ? 1e-6f : 0.0f, k & 4 ? 1e-6f : 0.0f) * e;
+    if (k & 8) moved.wi = glm::normalize(moved.wi + glm::vec3(1e-5f * e, -1e-5f * e, 0.0f));
+    if (std::abs(evaluateOnCpu(moved) - cpu) >= 0.5f * std::abs(gpu - cpu)) return true;
+  }
+  return false;
+}
+
 // Directional albedo integral of f(wo, wi) cos(theta_i) dwi of a reflection-only BSDF (F = 1 for a
 // white furnace), substituted to the slope plane of the half vector: dwi = 4 (wo.m) dwm and
 // dwm = m.z^3 ds, over glintSlopeExtent(defaultDictionary(), alpha) with cells x cells midpoints.

@@ -1,8 +1,10 @@
 #include "gl/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -246,18 +248,18 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
                                                                       : fallback;
   };
-  // One program per variant in use (ForwardVariant); opaque meshes under the depth test, so the
-  // order of the passes does not matter.
-  auto variantOf = [&](const scene::Material& m) {
-    return ForwardVariant{settings.brdf, settings.brdf == BrdfModel::Glint && m.glint.enabled && m.glint.randomColours};
-  };
+  // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass; opaque
+  // meshes under the depth test, so the order of the passes does not matter.
+  std::array<std::vector<const GpuMesh*>, 2> meshesByColour;
+  for (const GpuMesh& mesh : g.meshes) {
+    const scene::GlintLayer& glint = materials_[static_cast<std::size_t>(mesh.material)].glint;
+    const bool coloured = settings.brdf == BrdfModel::Glint && glint.enabled && glint.randomColours;
+    meshesByColour[coloured ? 1 : 0].push_back(&mesh);
+  }
   for (const bool coloured : {false, true}) {
+    const std::vector<const GpuMesh*>& meshes = meshesByColour[coloured ? 1 : 0];
+    if (meshes.empty()) continue;
     const ForwardVariant variant{settings.brdf, coloured};
-    if (std::none_of(g.meshes.begin(), g.meshes.end(), [&](const GpuMesh& mesh) {
-          return variantOf(materials_[static_cast<std::size_t>(mesh.material)]) == variant;
-        })) {
-      continue;
-    }
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
@@ -273,10 +275,9 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
     glBindTextureUnit(9, g.environment);
 
-    for (const GpuMesh& mesh : g.meshes) {
-      const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    for (const GpuMesh* mesh : meshes) {
+      const scene::Material& m = materials_[static_cast<std::size_t>(mesh->material)];
       const scene::GlintLayer& glint = m.glint;
-      if (variantOf(m) != variant) continue;
       glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
       glUniform1f(p.uniform("uMetallic"), m.metallic);
       glUniform1f(p.uniform("uRoughness"), m.roughness);
@@ -300,8 +301,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
       glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
       glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
-      glBindVertexArray(mesh.vertexArray);
-      glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+      glBindVertexArray(mesh->vertexArray);
+      glDrawElements(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
   glBindVertexArray(0);

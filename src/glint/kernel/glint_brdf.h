@@ -186,7 +186,7 @@ GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
 // The cell's random rotation theta = 2 pi hash (model.md 2.5), as (cos theta, sin theta). The
 // angle is reduced to [-pi/4, pi/4] in quarter turns, exactly (hash * 4 and its rounding are exact),
 // and cos and sin there are Cephes' single-precision minimax polynomials (cosf, sinf; error below
-// 3e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
+// 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
 // their own: the pair was 12% of the glint shader's instructions, this is about a third of that.
 GLINT_FN vec2 glintCellRotation(uvec4 h) {
   float quarterTurns = 4.0f * hashToUnitOpen(h.z);
