@@ -3,10 +3,13 @@
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
-// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1).
+// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1). The light
+// count is compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF
+// over one walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
+#define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
 #include "zirr_kaplanyan.h"
@@ -48,10 +51,8 @@ uniform float uGlintUvScale;
 uniform bool uGlintHasLogDensityTexture;
 uniform vec2 uGlintLogDensityRange;
 
-#define MAX_LIGHTS 8
-uniform int uLightCount;
-uniform vec4 uLightPosition[MAX_LIGHTS];  // w = 1: point at xyz; w = 0: xyz = unit direction towards the light
-uniform vec3 uLightIntensity[MAX_LIGHTS];
+uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point at xyz; w = 0: xyz = unit direction towards the light
+uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
 uniform float uEnvironmentIntensity;
@@ -118,12 +119,37 @@ void main() {
   vec3 diffuse = baseColour.rgb * (1.0f - metallic) / kPi;
   vec2 specularAlpha = uGlintLayer ? params.alpha : vec2(roughness * roughness);
 
-  vec3 radiance = emissive;
-  for (int i = 0; i < uLightCount; ++i) {
+  // Each light's direction in the shading frame, and its squared distance (1 for a directional one).
+  vec3 lightDirection[GLINT_SLOPE_COUNT];
+  float lightDistance2[GLINT_SLOPE_COUNT];
+  for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 toLight = uLightPosition[i].xyz - vPosition * uLightPosition[i].w;
-    float distance2 = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
+    lightDistance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
     vec3 l = normalize(toLight);
-    vec3 wi = vec3(dot(l, t), dot(l, b), dot(l, n));
+    lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
+  }
+
+#if SPECULAR_MODEL == SPECULAR_GLINT
+  // The glint P-SDF at every light's half vector, from one walk over the footprint's cells. A light
+  // below the horizon, or whose slope is negligible (glintSlopeIsNegligible), reflects nothing; when
+  // no light is left the walk is skipped.
+  GlintSlopeSet glintSlopes;
+  bool glintLit[GLINT_SLOPE_COUNT];
+  bool anyGlintLit = false;
+  for (int i = 0; i < LIGHT_COUNT; ++i) {
+    glintSlopes.slope[i] = slopeFromNormal(normalize(wo + lightDirection[i]));
+    glintLit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, params, glintSlopes.slope[i]);
+    anyGlintLit = anyGlintLit || glintLit[i];
+  }
+  GlintP22Set glintP22s;
+  if (uGlintLayer && anyGlintLit) {
+    glintP22s = glintP22Set(dict, params, glintUv, duvdx, duvdy, glintSlopes);
+  }
+#endif
+
+  vec3 radiance = emissive;
+  for (int i = 0; i < LIGHT_COUNT; ++i) {
+    vec3 wi = lightDirection[i];
     if (wi.z <= 0.0f) {
       continue;
     }
@@ -132,10 +158,7 @@ void main() {
     vec3 specular;
 #if SPECULAR_MODEL == SPECULAR_GLINT
     if (uGlintLayer) {
-      vec2 slope = slopeFromNormal(wh);
-      vec4 p22 = glintSlopeIsNegligible(dict, params, slope)
-                     ? vec4(0.0f)
-                     : glintP22Coloured(dict, params, glintUv, duvdx, duvdy, slope);
+      vec4 p22 = glintLit[i] ? glintP22s.p22[i] : vec4(0.0f);
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
     } else {
@@ -153,7 +176,7 @@ void main() {
 #else
     specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
 #endif
-    radiance += (diffuse + specular) * wi.z * uLightIntensity[i] / distance2;
+    radiance += (diffuse + specular) * wi.z * uLightIntensity[i] / lightDistance2[i];
   }
   vec3 reflected = reflect(-view, n);
   vec3 ambient = diffuse * irradiance(n) +

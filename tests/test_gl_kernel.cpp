@@ -35,10 +35,7 @@ Values evaluateOnCpu(const Case& c) {
           CookTorranceBsdf(c.parameters.alpha).f(c.wo, c.wi).x};
 }
 
-std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases) {
-  useGlContext();
-  gl::ShaderProgram program({{GL_COMPUTE_SHADER, "kernel_eval.comp"}});
-  gl::DictionaryTexture dictionary(defaultDictionary());
+std::vector<KernelInput> kernelInputs(const std::vector<Case>& cases) {
   std::vector<KernelInput> inputs;
   for (const Case& c : cases) {
     const GlintParameters& p = c.parameters;
@@ -48,7 +45,23 @@ std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases) {
                       {c.wi, p.relativeArea},
                       {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), 0.0f}});
   }
-  return dispatchCompute<Values>(program, inputs, [&] { dictionary.bind(program); });
+  return inputs;
+}
+
+std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases) {
+  useGlContext();
+  gl::ShaderProgram program({{GL_COMPUTE_SHADER, "kernel_eval.comp"}});
+  gl::DictionaryTexture dictionary(defaultDictionary());
+  return dispatchCompute<Values>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
+}
+
+// The renderer's walk for several lights (glintP22Set, three slopes): P22 of case i's footprint at
+// the half vectors of its wo and the wi of cases i, i + 1, i + 2 (kernel_eval.comp, SLOPE_SET).
+std::vector<glm::vec4> evaluateSlopeSetOnGpu(const std::vector<Case>& cases) {
+  useGlContext();
+  gl::ShaderProgram program({{GL_COMPUTE_SHADER, "kernel_eval.comp"}}, {{"GLINT_SLOPE_COUNT", "3"}, {"SLOPE_SET", "1"}});
+  gl::DictionaryTexture dictionary(defaultDictionary());
+  return dispatchCompute<glm::vec4>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
 }
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
@@ -111,6 +124,38 @@ TEST(KernelGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
   RecordProperty("disagreements", disagreements);
   std::printf("CPU vs GLSL: %d of %zu disagree beyond 1e-3 relative (+1e-5 absolute); largest relative difference "
               "where f > 1e-3: %.2e\n", disagreements, cases.size(), largestRelative);
+}
+
+// The renderer evaluates all of a pixel's lights over one walk of the footprint's cells: each slope
+// must get what a walk for it alone gets. Same GPU, same operations in the same order, so the
+// values must be equal; 1e-6 relative only absorbs a compiler that schedules them differently.
+TEST(KernelGl, SlopeSetMatchesOneSlopeAtATime) {
+  constexpr int kSlopes = 3;
+  const std::vector<Case> cases = randomCases(3000);
+  const std::size_t n = cases.size();
+  std::vector<Case> alone;  // case i with the wi of case i + k, for k = 0, 1, 2
+  for (int k = 0; k < kSlopes; ++k) {
+    for (std::size_t i = 0; i < n; ++i) {
+      Case c = cases[i];
+      c.wi = cases[(i + static_cast<std::size_t>(k)) % n].wi;
+      alone.push_back(c);
+    }
+  }
+  const std::vector<Values> single = evaluateOnGpu(alone);
+  const std::vector<glm::vec4> set = evaluateSlopeSetOnGpu(cases);
+  int equal = 0;
+  int nonZero = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < kSlopes; ++k) {
+      const float expected = single[static_cast<std::size_t>(k) * n + i].p22;
+      const float got = set[i][k];
+      nonZero += expected > 1e-3f;
+      equal += got == expected;
+      EXPECT_LE(std::abs(got - expected), 1e-6f * std::abs(expected)) << "case " << i << ", slope " << k;
+    }
+  }
+  EXPECT_GT(nonZero, 1000);  // the slopes see lobes: the agreement is not between zeros
+  std::printf("slope set: %d of %zu P22 values bit-equal to one slope at a time\n", equal, kSlopes * n);
 }
 
 TEST(KernelGl, ContextIsOpenGl45) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,7 +18,7 @@ namespace glint::gl {
 
 namespace {
 
-constexpr int kMaxLights = 8;  // MAX_LIGHTS in shaders/forward.frag
+constexpr int kMaxLights = 8;  // the most lights a forward program is compiled for (LIGHT_COUNT)
 
 struct GpuMesh {
   GLuint vertexArray = 0;
@@ -91,12 +92,14 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 }
 
 // The forward program of a specular model (shaders/forward.frag, SPECULAR_MODEL), for materials
-// with or without coloured glints (GLINT_COLOURED_CELLS). The colour is a compile-time switch, not
-// a uniform: llvmpipe runs both sides of every branch for all pixels, so a uniform flag made every
-// glint material pay for the colour's hash and hue (15% of the glint shader's instructions).
+// with or without coloured glints (GLINT_COLOURED_CELLS), for the scene's number of lights
+// (LIGHT_COUNT). The colour is a compile-time switch, not a uniform: llvmpipe runs both sides of
+// every branch for all pixels, so a uniform flag made every glint material pay for the colour's
+// hash and hue (15% of the glint shader's instructions).
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
+  int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -105,7 +108,9 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                          : variant.model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
                                                                     : "SPECULAR_ZIRR_KAPLANYAN";
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
-                       {{"SPECULAR_MODEL", specular}, {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"}});
+                       {{"SPECULAR_MODEL", specular},
+                        {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},
+                        {"LIGHT_COUNT", std::to_string(variant.lightCount)}});
 }
 
 struct Renderer::Gpu {
@@ -259,7 +264,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   for (const bool coloured : {false, true}) {
     const std::vector<const GpuMesh*>& meshes = meshesByColour[coloured ? 1 : 0];
     if (meshes.empty()) continue;
-    const ForwardVariant variant{settings.brdf, coloured};
+    const ForwardVariant variant{settings.brdf, coloured, lightCount};
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
@@ -267,7 +272,6 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     g.dictionary->bind(p);
     glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
     glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
-    glUniform1i(p.uniform("uLightCount"), lightCount);
     glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
     glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
     glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);

@@ -111,12 +111,13 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   }
   uChoice = remapUniform(target, cellStart, cellWeight);
 
-  // The cell's random properties, drawn by the kernel's functions exactly as glintCellLobe draws them.
-  const glm::uvec4 hash = kernel::glintCellHash(params, cell.x, cell.y, level);
-  if (!kernel::glintCellHasMicrofacets(params, hash)) return std::nullopt;
-  const int dictLevel =
-      kernel::glintCellDictionaryLevel(kernel::glintLevelDraw(dict, params, footprint.logDensity, level), hash);
-  if (dictLevel == dict.numLevels) return sampleBeckmannSlope(params.alpha, u);
+  // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them.
+  const kernel::GlintCell drawn = kernel::glintCell(
+      dict, params, kernel::glintLevelDraw(dict, params, footprint.logDensity, level), cell.x, cell.y, level);
+  if (drawn.smoothLimit) return sampleBeckmannSlope(params.alpha, u);
+  if (!drawn.readsDictionary) return std::nullopt;
+  const glm::uvec4 hash = drawn.hash;
+  const int dictLevel = drawn.dictionaryLevel;
   const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
   // Tensor product: x' and y' independent, each from its marginal (model.md 2.5).
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);

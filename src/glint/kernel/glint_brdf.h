@@ -243,48 +243,71 @@ GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params
 }
 
 // One cell's contribution to P22 (model.md 2.5), split so that what is the same for every cell of
-// the footprint is computed once per footprint (glintLevelP22), not once per cell: a cell either
-// is in the smooth limit (its P22 is the Beckmann P22 at the slope) or reads the dictionary (its
-// P22 is the tensor product of two marginals times the scaling Jacobian). dictionaryP22.w holds
-// that product without the Jacobian, .rgb the product times the cell's colour (white unless
-// params.colouredCells); it is 0 for an empty cell, a smooth cell, or a slope outside the support.
-struct GlintCellLobe {
-  vec4 dictionaryP22;
+// the footprint is computed once per footprint (glintLevelP22), not once per cell, and what is the
+// same for every slope once per cell: a cell is empty, in the smooth limit (its P22 is the Beckmann
+// P22 at the slope), or reads the dictionary (its P22 is the tensor product of two marginals at its
+// rotated slope, times the scaling Jacobian).
+struct GlintCell {
+  uvec4 hash;
+  bool readsDictionary;
   bool smoothLimit;
+  int dictionaryLevel;  // when it reads the dictionary
 };
 
-GLINT_FN GlintCellLobe glintCellLobe(DictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX,
-                                     int cellY, int level, vec2 unscaled) {
-  GlintCellLobe lobe;
-  lobe.dictionaryP22 = vec4(0.0f);
-  lobe.smoothLimit = false;
-  uvec4 h = glintCellHash(params, cellX, cellY, level);
-  if (!glintCellHasMicrofacets(params, h)) {
-    return lobe;
-  }
-  int dictLevel = glintCellDictionaryLevel(draw, h);
-  if (dictLevel == dict.numLevels) {
+GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
+                             int level) {
+  GlintCell cell;
+  cell.hash = glintCellHash(params, cellX, cellY, level);
+  cell.readsDictionary = false;
+  cell.smoothLimit = false;
+  cell.dictionaryLevel = 0;
+  if (glintCellHasMicrofacets(params, cell.hash)) {
+    cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
     // So many microfacets that the smooth limit holds: their colours average out to white too.
-    lobe.smoothLimit = true;
-    return lobe;
+    cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
+    cell.readsDictionary = !cell.smoothLimit;
   }
-  // Outside the support at every rotation: the cell's sincos and texel reads are skipped. Exact:
-  // the per-axis test below would return 0 too.
-  if (glintBeyondEveryRotatedSupport(dict, unscaled)) {
-    return lobe;
-  }
+  return cell;
+}
+
+// The product of a dictionary cell's two marginals at an unscaled slope (glintUnscaledSlope),
+// without the scaling Jacobian; 0 outside the cell's rotated support.
+GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions, vec2 rotation,
+                                  vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
-  vec2 local = glintDictionarySlope(glintCellRotation(h), unscaled);
+  vec2 local = glintDictionarySlope(rotation, unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
-    return lobe;
+    return 0.0f;
   }
-  // Tensor product of two marginals (model.md 2.5).
-  ivec2 distributions = glintCellDistributions(dict, h);
-  float p = glintMarginal(dict, dictLevel, distributions.x, abs(local.x)) *
-            glintMarginal(dict, dictLevel, distributions.y, abs(local.y));
-  vec3 colour = params.colouredCells ? glintCellColour(h) : vec3(1.0f);
-  lobe.dictionaryP22 = vec4(colour * p, p);
-  return lobe;
+  return glintMarginal(dict, dictionaryLevel, distributions.x, abs(local.x)) *
+         glintMarginal(dict, dictionaryLevel, distributions.y, abs(local.y));
+}
+
+// The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
+// a pixel's lights at once, one half vector each, so that a cell's hash, dictionary level, rotation
+// and distributions are drawn once per pixel instead of once per light (docs/renderer.md, "Cost");
+// each slope gets exactly the sums that a walk for it alone would make. The count is a compile-time
+// constant: the renderer's programs define it as their scene's light count; the CPU library and
+// its sampler evaluate one slope at a time.
+#ifndef GLINT_SLOPE_COUNT
+#define GLINT_SLOPE_COUNT 1
+#endif
+
+struct GlintSlopeSet {
+  vec2 slope[GLINT_SLOPE_COUNT];
+};
+
+struct GlintP22Set {
+  vec4 p22[GLINT_SLOPE_COUNT];  // each as glintP22Coloured's
+};
+
+// A set whose every slope is this one (the single-slope functions below).
+GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
+  GlintSlopeSet slopes;
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    slopes.slope[k] = slope;
+  }
+  return slopes;
 }
 
 // The cells of one footprint level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
@@ -377,16 +400,25 @@ GLINT_FN float glintNextCellWeight(GlintCellGrid grid, GLINT_INOUT(GlintRowWeigh
   return weight;
 }
 
-// P22 over the footprint at one level (model.md 2.4): the EWA-weighted mean of its cells' P22,
-// in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the Beckmann P22 of the
-// smooth cells are the same for every cell, so they multiply the weighted sums once.
-GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
-                             int level, GlintLevelDraw draw, vec2 slope) {
+// P22 over the footprint at one level (model.md 2.4), at each slope of the set: the EWA-weighted
+// mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
+// Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
+// once.
+GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
+                                   int level, GlintLevelDraw draw, GlintSlopeSet slopes) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
-  vec2 unscaled = glintUnscaledSlope(dict, params, slope);
+  vec2 unscaled[GLINT_SLOPE_COUNT];
+  vec4 dictionarySum[GLINT_SLOPE_COUNT];
+  // Slopes beyond every rotated support read no dictionary cell; when all are, the cells' rotations
+  // and texel reads are skipped (exact: the per-axis test of glintCellMarginals would give 0 too).
+  bool anyInSupport = false;
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
+    dictionarySum[k] = vec4(0.0f);
+    anyInSupport = anyInSupport || !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
+  }
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
-  vec4 dictionarySum = vec4(0.0f);
   for (int t = grid.t0; t <= grid.t1; ++t) {
     ivec2 row = glintCellRow(grid, t);
     GlintRowWeights weights = glintRowWeights(grid, row.x, t);
@@ -394,21 +426,33 @@ GLINT_FN vec4 glintLevelP22(DictionaryView dict, GlintParameters params, GlintFo
       float weight = glintNextCellWeight(grid, weights);
       if (weight > 0.0f) {
         weightSum += weight;
-        ivec2 cell = glintCellAt(grid, s, t);
-        GlintCellLobe lobe = glintCellLobe(dict, params, draw, cell.x, cell.y, level, unscaled);
-        dictionarySum += weight * lobe.dictionaryP22;
-        smoothWeightSum += lobe.smoothLimit ? weight : 0.0f;
+        ivec2 index = glintCellAt(grid, s, t);
+        GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
+        smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
+        if (cell.readsDictionary && anyInSupport) {
+          vec2 rotation = glintCellRotation(cell.hash);
+          ivec2 distributions = glintCellDistributions(dict, cell.hash);
+          vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
+          for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+            float p = glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
+            dictionarySum[k] += weight * vec4(colour * p, p);
+          }
+        }
       }
     }
   }
-  if (!(weightSum > 0.0f)) {
-    return vec4(0.0f);
+  GlintP22Set p22;
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    p22.p22[k] = vec4(0.0f);
+    if (weightSum > 0.0f) {
+      p22.p22[k] = dictionarySum[k] * glintScalingJacobian(dict, params);
+      if (smoothWeightSum > 0.0f) {
+        p22.p22[k] += vec4(smoothWeightSum * beckmannP22(slopes.slope[k], params.alpha));
+      }
+      p22.p22[k] = p22.p22[k] / weightSum;
+    }
   }
-  vec4 p22 = dictionarySum * glintScalingJacobian(dict, params);
-  if (smoothWeightSum > 0.0f) {
-    p22 += vec4(smoothWeightSum * beckmannP22(slope, params.alpha));
-  }
-  return p22 / weightSum;
+  return p22;
 }
 
 // The pattern's uv, wrapped to its period (glintFootprintPeriod).
@@ -427,25 +471,42 @@ GLINT_FN float glintLodBlend(GlintFootprint footprint) {
   return footprint.lod - float(glintLodLevel(footprint));
 }
 
-// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3), in .w;
-// .rgb weighted by the cells' colours (equal to .w unless params.colouredCells).
-GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
-                               vec2 slope) {
+// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3), at each
+// slope of the set, in .w; .rgb weighted by the cells' colours (equal to .w unless
+// params.colouredCells).
+GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                                 GlintSlopeSet slopes) {
   GlintFootprint footprint =
       glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
+  GlintP22Set p22;
   if (footprint.degenerate) {
-    return vec4(beckmannP22(slope, params.alpha));
+    for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+      p22.p22[k] = vec4(beckmannP22(slopes.slope[k], params.alpha));
+    }
+    return p22;
   }
   vec2 wrapped = glintWrapUv(uv, dict.numLevels);
   int level = glintLodLevel(footprint);
   float blend = glintLodBlend(footprint);
   GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
-  vec4 p22 = (1.0f - blend) * glintLevelP22(dict, params, footprint, wrapped, level, draw, slope);
+  p22 = glintLevelP22(dict, params, footprint, wrapped, level, draw, slopes);
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    p22.p22[k] = (1.0f - blend) * p22.p22[k];
+  }
   if (blend > 0.0f) {
     GlintLevelDraw next = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
-    p22 += blend * glintLevelP22(dict, params, footprint, wrapped, level + 1, next, slope);
+    GlintP22Set coarser = glintLevelP22(dict, params, footprint, wrapped, level + 1, next, slopes);
+    for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+      p22.p22[k] += blend * coarser.p22[k];
+    }
   }
   return p22;
+}
+
+// The P-SDF at one slope.
+GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                               vec2 slope) {
+  return glintP22Set(dict, params, uv, duvdx, duvdy, glintSingleSlope(slope)).p22[0];
 }
 
 GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
