@@ -403,18 +403,20 @@ GLINT_FN float glintNextCellWeight(GlintCellGrid grid, GLINT_INOUT(GlintRowWeigh
 // P22 over the footprint at one level (model.md 2.4), at each slope of the set: the EWA-weighted
 // mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
 // Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
-// once.
+// once. Uncoloured cells are white, so their .rgb is .w: only coloured ones sum colours.
 GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                                    int level, GlintLevelDraw draw, GlintSlopeSet slopes) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   vec2 unscaled[GLINT_SLOPE_COUNT];
-  vec4 dictionarySum[GLINT_SLOPE_COUNT];
+  float dictionarySum[GLINT_SLOPE_COUNT];
+  vec3 colouredSum[GLINT_SLOPE_COUNT];
   // Slopes beyond every rotated support read no dictionary cell; when all are, the cells' rotations
   // and texel reads are skipped (exact: the per-axis test of glintCellMarginals would give 0 too).
   bool anyInSupport = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
-    dictionarySum[k] = vec4(0.0f);
+    dictionarySum[k] = 0.0f;
+    colouredSum[k] = vec3(0.0f);
     anyInSupport = anyInSupport || !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
   }
   float weightSum = 0.0f;
@@ -435,7 +437,10 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
           vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
           for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
             float p = glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
-            dictionarySum[k] += weight * vec4(colour * p, p);
+            dictionarySum[k] += weight * p;
+            if (params.colouredCells) {
+              colouredSum[k] += weight * (colour * p);
+            }
           }
         }
       }
@@ -445,7 +450,8 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     p22.p22[k] = vec4(0.0f);
     if (weightSum > 0.0f) {
-      p22.p22[k] = dictionarySum[k] * glintScalingJacobian(dict, params);
+      vec3 colourWeighted = params.colouredCells ? colouredSum[k] : vec3(dictionarySum[k]);
+      p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
         p22.p22[k] += vec4(smoothWeightSum * beckmannP22(slopes.slope[k], params.alpha));
       }
