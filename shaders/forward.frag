@@ -137,8 +137,11 @@ void main() {
   bool glintLit[GLINT_SLOPE_COUNT];
   bool anyGlintLit = false;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
-    glintSlopes.slope[i] = slopeFromNormal(normalize(wo + lightDirection[i]));
-    glintLit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, params, glintSlopes.slope[i]);
+    vec2 slope = slopeFromNormal(normalize(wo + lightDirection[i]));
+    glintLit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, params, slope);
+    // An unlit light's result is discarded; a finite slope keeps its texel reads in range (a light
+    // below the horizon can have an infinite one).
+    glintSlopes.slope[i] = glintLit[i] ? slope : vec2(0.0f);
     anyGlintLit = anyGlintLit || glintLit[i];
   }
   GlintP22Set glintP22s;

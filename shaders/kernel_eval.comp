@@ -14,7 +14,18 @@ struct KernelInput {
 };
 
 layout(std430, binding = 0) readonly buffer Inputs { KernelInput inputs[]; };
+#ifdef SLOPE_SET
+#if GLINT_SLOPE_COUNT != 3
+#error "SLOPE_SET expects GLINT_SLOPE_COUNT 3"
+#endif
+struct SlopeSetOutput {
+  vec4 together[3];  // (colour-weighted P22, P22) of each slope from one walk
+  vec4 alone[3];     // the same, each slope walked alone
+};
+layout(std430, binding = 1) writeonly buffer Outputs { SlopeSetOutput slopeSetOutputs[]; };
+#else
 layout(std430, binding = 1) writeonly buffer Outputs { vec4 outputs[]; };  // f, D(wh), P22(wh), Cook-Torrance f
+#endif
 
 uniform uint uCount;
 
@@ -47,18 +58,23 @@ void main() {
   readCase(i, params, uv, duvdx, duvdy, wo, wi);
   DictionaryView dict = glintDictionary();
 #ifdef SLOPE_SET
-  // The renderer's several-lights walk (glintP22Set, compiled with GLINT_SLOPE_COUNT = 3): case i's
-  // footprint at the half vectors of its wo with the wi of cases i, i + 1 and i + 2; P22 in .xyz,
+  // The renderer's several-lights walk (glintP22Set): case i's footprint, with coloured cells, at
+  // the half vectors of its wo with the wi of cases i, i + 1 and i + 2, each also walked alone;
   // 0 where a half vector is below the surface.
   GlintSlopeSet slopes;
   bool above[GLINT_SLOPE_COUNT];
+  params.colouredCells = true;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     vec3 wh = normalize(wo + inputs[(i + uint(k)) % uCount].wiAndRelativeArea.xyz);
     above[k] = wh.z > 0.0f;
     slopes.slope[k] = above[k] ? slopeFromNormal(wh) : vec2(0.0f);
   }
-  GlintP22Set p22 = glintP22Set(dict, params, uv, duvdx, duvdy, slopes);
-  outputs[i] = vec4(above[0] ? p22.p22[0].w : 0.0f, above[1] ? p22.p22[1].w : 0.0f, above[2] ? p22.p22[2].w : 0.0f, 0.0f);
+  GlintP22Set together = glintP22Set(dict, params, uv, duvdx, duvdy, slopes);
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    vec4 alone = glintP22Coloured(dict, params, uv, duvdx, duvdy, slopes.slope[k]);
+    slopeSetOutputs[i].together[k] = above[k] ? together.p22[k] : vec4(0.0f);
+    slopeSetOutputs[i].alone[k] = above[k] ? alone : vec4(0.0f);
+  }
 #else
   vec3 wh = normalize(wo + wi);
   float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;

@@ -55,13 +55,19 @@ std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases) {
   return dispatchCompute<Values>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
 }
 
-// The renderer's walk for several lights (glintP22Set, three slopes): P22 of case i's footprint at
-// the half vectors of its wo and the wi of cases i, i + 1, i + 2 (kernel_eval.comp, SLOPE_SET).
-std::vector<glm::vec4> evaluateSlopeSetOnGpu(const std::vector<Case>& cases) {
+// The renderer's walk for several lights (glintP22Set, three slopes, coloured cells): P22 of case
+// i's footprint at the half vectors of its wo and the wi of cases i, i + 1, i + 2, from one walk
+// and from each slope walked alone in the same program (kernel_eval.comp, SLOPE_SET).
+struct SlopeSetValues {
+  glm::vec4 together[3];
+  glm::vec4 alone[3];
+};
+
+std::vector<SlopeSetValues> evaluateSlopeSetOnGpu(const std::vector<Case>& cases) {
   useGlContext();
   gl::ShaderProgram program({{GL_COMPUTE_SHADER, "kernel_eval.comp"}}, {{"GLINT_SLOPE_COUNT", "3"}, {"SLOPE_SET", "1"}});
   gl::DictionaryTexture dictionary(defaultDictionary());
-  return dispatchCompute<glm::vec4>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
+  return dispatchCompute<SlopeSetValues>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
 }
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
@@ -127,8 +133,10 @@ TEST(KernelGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
 }
 
 // The renderer evaluates all of a pixel's lights over one walk of the footprint's cells: each slope
-// must get what a walk for it alone gets. Same GPU, same operations in the same order, so the
-// values must be equal; 1e-6 relative only absorbs a compiler that schedules them differently.
+// must get what a walk for it alone gets, in P22 (against the one-slope program of the test above)
+// and in the colour-weighted channels (against the same program walking that slope alone). Same
+// GPU, same operations in the same order, so the values must be equal; 1e-6 relative only absorbs
+// a compiler that schedules them differently.
 TEST(KernelGl, SlopeSetMatchesOneSlopeAtATime) {
   constexpr int kSlopes = 3;
   const std::vector<Case> cases = randomCases(3000);
@@ -142,20 +150,28 @@ TEST(KernelGl, SlopeSetMatchesOneSlopeAtATime) {
     }
   }
   const std::vector<Values> single = evaluateOnGpu(alone);
-  const std::vector<glm::vec4> set = evaluateSlopeSetOnGpu(cases);
+  const std::vector<SlopeSetValues> set = evaluateSlopeSetOnGpu(cases);
+  auto agree = [](float got, float expected) { return std::abs(got - expected) <= 1e-6f * std::abs(expected); };
   int equal = 0;
   int nonZero = 0;
+  int tinted = 0;
   for (std::size_t i = 0; i < n; ++i) {
     for (int k = 0; k < kSlopes; ++k) {
       const float expected = single[static_cast<std::size_t>(k) * n + i].p22;
-      const float got = set[i][k];
+      const glm::vec4 together = set[i].together[k];
+      const glm::vec4 walkedAlone = set[i].alone[k];
       nonZero += expected > 1e-3f;
-      equal += got == expected;
-      EXPECT_LE(std::abs(got - expected), 1e-6f * std::abs(expected)) << "case " << i << ", slope " << k;
+      tinted += together.x != together.w || together.y != together.w;
+      equal += together.w == expected && together == walkedAlone;
+      EXPECT_TRUE(agree(together.w, expected)) << "case " << i << ", slope " << k << ": " << together.w << " vs " << expected;
+      for (int c = 0; c < 4; ++c) {
+        EXPECT_TRUE(agree(together[c], walkedAlone[c])) << "case " << i << ", slope " << k << ", channel " << c;
+      }
     }
   }
   EXPECT_GT(nonZero, 1000);  // the slopes see lobes: the agreement is not between zeros
-  std::printf("slope set: %d of %zu P22 values bit-equal to one slope at a time\n", equal, kSlopes * n);
+  EXPECT_GT(tinted, 1000);   // and the cells' colours: the colour sums are compared too
+  std::printf("slope set: %d of %zu (P22, colour) values bit-equal to one slope at a time\n", equal, kSlopes * n);
 }
 
 TEST(KernelGl, ContextIsOpenGl45) {

@@ -85,6 +85,67 @@ TEST(RenderGl, EveryBrdfRendersEveryBenchmarkSceneWithoutGlErrors) {
   }
 }
 
+// The glint programs evaluate all of a pixel's lights over one walk of the footprint's cells, with
+// the light count compiled in (LIGHT_COUNT): radiance is still linear in the lights, so a frame lit
+// by the first k lights, minus the unlit frame, must be the sum of the frames lit by each of them.
+// Counts 0, 1, 2, 3 and the renderer's largest, 8 (each count is a program compiled by llvmpipe in
+// about a second, so not all nine). A light given another light's P22 would break the sum at its
+// glints. The bound, 1e-4 of the pixel's magnitude, is far above the float rounding
+// of summing nine frames (about 1e-6) and far below a misplaced glint.
+TEST(RenderGl, LightsAddUp) {
+  useGlContext();
+  const scene::Scene showroom = scene::makeBuiltinScene("showroom");  // coloured and plain glints
+  std::vector<scene::Light> lights = showroom.lights;
+  const glm::vec3 extraPositions[] = {{-1.0f, 2.5f, 3.0f}, {2.5f, 0.8f, 1.5f}, {0.0f, 4.0f, -1.0f}, {-3.0f, 1.0f, 1.0f}};
+  for (const glm::vec3& position : extraPositions) {
+    scene::Light light = lights.front();
+    light.position = position;
+    lights.push_back(light);
+  }
+  scene::Light sun;
+  sun.type = scene::Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, -0.6f));
+  sun.intensity = glm::vec3(0.7f);
+  lights.push_back(sun);
+  ASSERT_EQ(lights.size(), 8u);
+
+  gl::Renderer renderer(showroom, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = 128;
+  frame.height = 128;
+  frame.brdf = gl::BrdfModel::Glint;
+  frame.camera = showroom.cameras.at("default");
+  auto litBy = [&](std::vector<scene::Light> subset) {
+    renderer.lights() = std::move(subset);
+    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << renderer.lights().size() << " lights";
+    return image;
+  };
+  const ImageRgbF unlit = litBy({});
+  std::vector<ImageRgbF> alone;
+  for (const scene::Light& light : lights) alone.push_back(litBy({light}));
+  double largest = 0.0;
+  for (const std::size_t count : {std::size_t{2}, std::size_t{3}, lights.size()}) {
+    const ImageRgbF together = litBy(std::vector<scene::Light>(lights.begin(), lights.begin() + count));
+    int wrong = 0;
+    for (std::size_t p = 0; p < unlit.pixels.size(); ++p) {
+      for (int c = 0; c < 3; ++c) {
+        double sum = unlit.pixels[p][c];
+        double magnitude = std::abs(unlit.pixels[p][c]);
+        for (std::size_t j = 0; j < count; ++j) {
+          sum += alone[j].pixels[p][c] - unlit.pixels[p][c];
+          magnitude += std::abs(alone[j].pixels[p][c]);
+        }
+        const double difference = std::abs(together.pixels[p][c] - sum);
+        largest = std::max(largest, difference / (magnitude + 1e-6));
+        wrong += difference > 1e-4 * magnitude + 1e-6;
+      }
+    }
+    EXPECT_EQ(wrong, 0) << count << " lights";
+  }
+  std::printf("lights add up: largest difference %.2e of the pixel's magnitude (bound 1e-4)\n", largest);
+}
+
 TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
   const scene::Scene scene = scene::makeBuiltinScene("sphere");
   const ImageRgbF a = render(scene, gl::BrdfModel::Glint);

@@ -235,9 +235,10 @@ GLINT_FN bool glintBeyondEveryRotatedSupport(DictionaryView dict, vec2 unscaled)
 
 // The real-time renderer's one approximation (docs/renderer.md, "Cost"): beyond every rotated
 // support no dictionary cell reflects, and the smooth cells' Beckmann P22 there is below exp(-16)
-// = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 without
-// visiting the footprint's cells. The CPU BSDF keeps the exact value: its sampler can draw such a
-// slope from a smooth cell and must find a non-zero pdf there.
+// = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for
+// that light, and skips the walk of the footprint's cells when no light is left. The CPU BSDF
+// keeps the exact value: its sampler can draw such a slope from a smooth cell and must find a
+// non-zero pdf there.
 GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params, vec2 slope) {
   return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope));
 }
@@ -410,14 +411,17 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   vec2 unscaled[GLINT_SLOPE_COUNT];
   float dictionarySum[GLINT_SLOPE_COUNT];
   vec3 colouredSum[GLINT_SLOPE_COUNT];
-  // Slopes beyond every rotated support read no dictionary cell; when all are, the cells' rotations
-  // and texel reads are skipped (exact: the per-axis test of glintCellMarginals would give 0 too).
+  // A slope beyond every rotated support reads no dictionary cell (glintCellMarginals' per-axis
+  // test agrees but for the rotation's rounding, so the slope is gated as a walk for it alone
+  // would be); when all are, the cells' rotations and texel reads are skipped.
+  bool inSupport[GLINT_SLOPE_COUNT];
   bool anyInSupport = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
     colouredSum[k] = vec3(0.0f);
-    anyInSupport = anyInSupport || !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
+    inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
+    anyInSupport = anyInSupport || inSupport[k];
   }
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
@@ -436,7 +440,9 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
           ivec2 distributions = glintCellDistributions(dict, cell.hash);
           vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
           for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-            float p = glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
+            float p = inSupport[k]
+                          ? glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k])
+                          : 0.0f;
             dictionarySum[k] += weight * p;
             if (params.colouredCells) {
               colouredSum[k] += weight * (colour * p);
