@@ -9,6 +9,7 @@
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
+// One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
