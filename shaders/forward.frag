@@ -12,6 +12,7 @@
 // One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
+#include "environment.glsl"
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
 #include "zirr_kaplanyan.h"
 #endif
@@ -23,7 +24,8 @@ in vec2 vUv;
 
 layout(location = 0) out vec4 outRadiance;
 
-// Texture units; unit 0 is the dictionary (glint_dictionary.glsl).
+// Texture units; unit 0 is the dictionary (glint_dictionary.glsl), 9 the environment
+// (environment.glsl).
 layout(binding = 1) uniform sampler2D uBaseColourTexture;
 layout(binding = 2) uniform sampler2D uMetallicRoughnessTexture;
 layout(binding = 3) uniform sampler2D uNormalTexture;
@@ -32,7 +34,6 @@ layout(binding = 5) uniform sampler2D uOcclusionTexture;
 layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
 layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
 layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
-layout(binding = 9) uniform sampler2D uEnvironment;
 
 uniform vec3 uCameraPosition;
 uniform vec4 uBaseColour;
@@ -56,20 +57,12 @@ uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point at xyz; w = 0: 
 uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
-uniform float uEnvironmentIntensity;
-uniform float uEnvironmentMaxLod;
 
 vec3 irradiance(vec3 n) {
   return uIrradianceSh[0] * 0.282095f + uIrradianceSh[1] * (0.488603f * n.y) + uIrradianceSh[2] * (0.488603f * n.z) +
          uIrradianceSh[3] * (0.488603f * n.x) + uIrradianceSh[4] * (1.092548f * n.x * n.y) +
          uIrradianceSh[5] * (1.092548f * n.y * n.z) + uIrradianceSh[6] * (0.315392f * (3.0f * n.z * n.z - 1.0f)) +
          uIrradianceSh[7] * (1.092548f * n.x * n.z) + uIrradianceSh[8] * (0.546274f * (n.x * n.x - n.y * n.y));
-}
-
-vec3 environmentRadiance(vec3 d, float alpha) {
-  vec2 uv = vec2(atan(d.x, -d.z) / (2.0f * kPi) + 0.5f, acos(clamp(d.y, -1.0f, 1.0f)) / kPi);
-  float lod = clamp(log2(max(alpha, 1e-3f) * float(textureSize(uEnvironment, 0).x)), 0.0f, uEnvironmentMaxLod);
-  return textureLod(uEnvironment, uv, lod).rgb * uEnvironmentIntensity;
 }
 
 void main() {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -115,6 +116,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
 
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
+  std::unique_ptr<ShaderProgram> background;        // likewise
+  GLuint emptyVertexArray = 0;                      // the background's triangle has no attributes
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
@@ -139,6 +142,7 @@ struct Renderer::Gpu {
     glDeleteTextures(1, &white);
     glDeleteTextures(1, &flatNormal);
     glDeleteTextures(1, &environment);
+    glDeleteVertexArrays(1, &emptyVertexArray);
     releaseTarget();
   }
 
@@ -309,6 +313,30 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glDrawElements(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
+
+  // The environment where no mesh was drawn (shaders/background.frag): at the far plane, the
+  // triangle passes the depth test only where the depth is still the cleared 1, so meshes hide it
+  // before it is shaded.
+  if (!g.background) {
+    g.background = std::make_unique<ShaderProgram>(
+        std::vector<std::pair<GLenum, std::string>>{{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                                     {GL_FRAGMENT_SHADER, "background.frag"}},
+        std::vector<std::pair<std::string, std::string>>{{"FULLSCREEN_AT_FAR_PLANE", "1"}});
+    glCreateVertexArrays(1, &g.emptyVertexArray);
+  }
+  const ShaderProgram& background = *g.background;
+  const glm::mat4 inverseProjection = glm::inverse(projection);
+  glUseProgram(background.id());
+  glUniformMatrix4fv(background.uniform("uInverseViewProjection"), 1, GL_FALSE, &inverseProjection[0][0]);
+  glUniform1f(background.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
+  glUniform1f(background.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
+  glBindTextureUnit(9, g.environment);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(g.emptyVertexArray);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
