@@ -11,6 +11,8 @@
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "test_support.h"
+#include "trace/camera.h"
+#include "trace/environment.h"
 
 namespace glint {
 namespace {
@@ -144,6 +146,41 @@ TEST(RenderGl, LightsAddUp) {
     EXPECT_EQ(wrong, 0) << count << " lights";
   }
   std::printf("lights add up: largest difference %.2e of the pixel's magnitude (bound 1e-4)\n", largest);
+}
+
+// Where no mesh is drawn the rasteriser shows the environment, as the path tracer's camera rays
+// that escape do: the grazing plane's sky, pixel by pixel, against the tracer's camera and
+// environment lookup. The bound, 1% of the radiance, covers llvmpipe's 8-bit bilinear weights on a
+// smooth sky; a wrong mapping (the sky upside down, or at the wrong height) is off by far more.
+TEST(RenderGl, BackgroundIsTheEnvironmentTheTracerSees) {
+  useGlContext();
+  const scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
+  constexpr int kSide = 64;
+  gl::Renderer renderer(scene, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = kSide;
+  frame.height = kSide;
+  frame.brdf = gl::BrdfModel::CookTorrance;
+  frame.camera = scene.cameras.at("default");
+  const ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+  const trace::PinholeCamera camera(frame.camera, kSide, kSide);
+  const trace::EnvironmentLight environment(scene.environment);
+  int sky = 0;
+  double largest = 0.0;
+  for (int y = 0; y < kSide / 4; ++y) {  // the plane fills the lower half of the frame
+    for (int x = 0; x < kSide; ++x) {
+      const glm::vec3 expected = environment.radiance(camera.direction({x + 0.5f, y + 0.5f}));
+      const glm::vec3 got = image.at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        const double relative = std::abs(got[c] - expected[c]) / expected[c];
+        largest = std::max(largest, relative);
+        EXPECT_LT(relative, 0.01) << "pixel (" << x << ", " << y << ") channel " << c;
+      }
+      ++sky;
+    }
+  }
+  EXPECT_GT(environment.radiance(camera.direction({0.5f, 0.5f})).b, 0.0f);  // a sky, not black
+  std::printf("background: %d sky pixels, largest relative difference to the tracer's sky %.2e\n", sky, largest);
 }
 
 TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
