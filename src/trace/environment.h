@@ -1,5 +1,5 @@
 // The scene's environment as a light at infinity: an equirectangular radiance map (the real-time
-// renderer's mapping, shaders/forward.frag environmentRadiance: u = atan(d.x, -d.z) / 2pi + 1/2,
+// renderer's mapping, shaders/environment.glsl environmentRadiance: u = atan(d.x, -d.z) / 2pi + 1/2,
 // v = acos(d.y) / pi, +y up, rows from the top) importance-sampled by luminance times sin(theta)
 // with a 2D piecewise-constant distribution; or a uniform radiance, sampled cosine-weighted
 // about the shading normal.
