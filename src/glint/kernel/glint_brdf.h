@@ -315,8 +315,7 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
 // pbrt-v3's EWA Gaussian over the footprint ellipse. The ellipse is walked line by line between its
 // two boundary crossings (glintCellRow), so only cells inside it are visited (no bounding-box
 // waste, no cap). Lines run along the ellipse's longer extent: a footprint long in v is walked in
-// columns, not rows. Pixels shaded in lockstep (SIMD lanes, GPU warps) pay for the longest line of
-// any of them, line after line; few long lines waste less than many short ones (docs/benchmarks.md).
+// columns, not rows.
 // The P-SDF and the host's sampler enumerate the cells and weigh them with these functions, so
 // both see the same cells and weights.
 struct GlintCellGrid {
@@ -425,28 +424,41 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   }
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
-  for (int t = grid.t0; t <= grid.t1; ++t) {
-    ivec2 row = glintCellRow(grid, t);
-    GlintRowWeights weights = glintRowWeights(grid, row.x, t);
-    for (int s = row.x; s <= row.y; ++s) {
-      float weight = glintNextCellWeight(grid, weights);
-      if (weight > 0.0f) {
-        weightSum += weight;
-        ivec2 index = glintCellAt(grid, s, t);
-        GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
-        smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
-        if (cell.readsDictionary && anyInSupport) {
-          vec2 rotation = glintCellRotation(cell.hash);
-          ivec2 distributions = glintCellDistributions(dict, cell.hash);
-          vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
-          for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-            float p = inSupport[k]
-                          ? glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k])
-                          : 0.0f;
-            dictionarySum[k] += weight * p;
-            if (params.colouredCells) {
-              colouredSum[k] += weight * (colour * p);
-            }
+  // One loop over the cells, moving to the next line when a line is done, rather than a loop over
+  // lines around a loop over a line's cells: pixels shaded in lockstep (llvmpipe's SIMD lanes, GPU
+  // warps) then pay for the most cells any of them visits, not for the longest line of any of them,
+  // line after line. Where branches are predicated (llvmpipe) every iteration pays for the move to
+  // the next line; measured, the single loop still costs less (docs/benchmarks.md, "Fifth round").
+  // The cells, their weights and their order are those of the nested loops, bit for bit.
+  int t = grid.t0;
+  ivec2 row = glintCellRow(grid, t);
+  GlintRowWeights weights = glintRowWeights(grid, row.x, t);
+  int s = row.x;
+  while (t <= grid.t1) {
+    float weight = s <= row.y ? glintNextCellWeight(grid, weights) : 0.0f;  // 0: an empty line
+    ivec2 index = glintCellAt(grid, s, t);
+    s += 1;
+    if (s > row.y) {
+      t += 1;
+      row = glintCellRow(grid, t);
+      weights = glintRowWeights(grid, row.x, t);
+      s = row.x;
+    }
+    if (weight > 0.0f) {
+      weightSum += weight;
+      GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
+      smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
+      if (cell.readsDictionary && anyInSupport) {
+        vec2 rotation = glintCellRotation(cell.hash);
+        ivec2 distributions = glintCellDistributions(dict, cell.hash);
+        vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
+        for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+          float p = inSupport[k]
+                        ? glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k])
+                        : 0.0f;
+          dictionarySum[k] += weight * p;
+          if (params.colouredCells) {
+            colouredSum[k] += weight * (colour * p);
           }
         }
       }
