@@ -185,14 +185,13 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
       std::set<std::pair<int, int>> walked;
       for (int t = grid.t0; t <= grid.t1; ++t) {
         const glm::ivec2 row = kernel::glintCellRow(grid, t);
-        kernel::GlintRowWeights weights = kernel::glintRowWeights(grid, row.x, t);
         for (int s = row.x; s <= row.y; ++s) {
-          const float weight = kernel::glintNextCellWeight(grid, weights);
+          const float weight = kernel::glintCellWeight(grid, s, t);
           if (!(weight > 0.0f)) continue;
           const glm::ivec2 cell = kernel::glintCellAt(grid, s, t);
           EXPECT_TRUE(walked.insert({cell.x, cell.y}).second) << "cell visited twice, case " << i;
-          // The weight, stepped along the line, against the filter evaluated directly, in double,
-          // on the grid's own float ellipse: what differs is the stepping alone.
+          // The weight against the filter evaluated in double on the grid's own float ellipse: what
+          // differs is the float arithmetic of r^2 and exp alone.
           const double dx = s - double(grid.centre.x);
           const double dy = t - double(grid.centre.y);
           const double r2 = double(grid.ea) * dx * dx + double(grid.eb) * dx * dy + double(grid.ec) * dy * dy;

@@ -80,9 +80,8 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   float weightSum = 0.0f;
   for (int t = grid.t0; t <= grid.t1; ++t) {
     const glm::ivec2 row = kernel::glintCellRow(grid, t);
-    kernel::GlintRowWeights weights = kernel::glintRowWeights(grid, row.x, t);
     for (int s = row.x; s <= row.y; ++s) {
-      const float weight = kernel::glintNextCellWeight(grid, weights);
+      const float weight = kernel::glintCellWeight(grid, s, t);
       if (weight > 0.0f) weightSum += weight;
     }
   }
@@ -97,9 +96,8 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   bool found = false;
   for (int t = grid.t0; t <= grid.t1 && !found; ++t) {
     const glm::ivec2 row = kernel::glintCellRow(grid, t);
-    kernel::GlintRowWeights weights = kernel::glintRowWeights(grid, row.x, t);
     for (int s = row.x; s <= row.y && !found; ++s) {
-      const float weight = kernel::glintNextCellWeight(grid, weights);
+      const float weight = kernel::glintCellWeight(grid, s, t);
       if (weight > 0.0f) {
         cell = kernel::glintCellAt(grid, s, t);
         cellWeight = weight;

@@ -326,7 +326,6 @@ struct GlintCellGrid {
   int t0;           // first and last line
   int t1;
   bool transposed;  // walk coordinates (x, y) are cell (t, s) when set, cell (s, t) otherwise
-  float stepRatio;  // exp(-4 ea): see glintRowWeights
 };
 
 GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numLevels, int level) {
@@ -349,7 +348,6 @@ GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numL
   float halfHeight = sqrt(4.0f * grid.ea / (4.0f * grid.ea * grid.ec - grid.eb * grid.eb));
   grid.t0 = int(ceil(grid.centre.y - halfHeight));
   grid.t1 = int(floor(grid.centre.y + halfHeight));
-  grid.stepRatio = exp(-4.0f * grid.ea);
   return grid;
 }
 
@@ -371,33 +369,16 @@ GLINT_FN ivec2 glintCellAt(GlintCellGrid grid, int x, int y) {
   return grid.transposed ? ivec2(y, x) : ivec2(x, y);
 }
 
-// EWA weights along line t of the walk, from cell s on (model.md 2.4): exp(-2 r^2) - exp(-2) for
-// r^2 < 1, else 0. Along a line r^2 is quadratic in s, so exp(-2 r^2) goes from cell to cell by a
-// factor that itself changes by the constant factor exp(-4 ea): two multiplications per cell
-// instead of an exp (forward differencing). Over a line the drift stays below 5e-6 of the centre's
-// weight (GlintBrdf.CellWalkVisitsExactlyTheCellsInsideTheEllipse). The quadratic form is
-// symmetric in the transposition, so the weights are the cells'.
-struct GlintRowWeights {
-  float gaussian;  // exp(-2 r^2) at the current cell
-  float step;      // exp(-2 (r^2(s + 1) - r^2(s))): to the next cell
-};
-
-GLINT_FN GlintRowWeights glintRowWeights(GlintCellGrid grid, int s, int t) {
+// The EWA weight of the cell at walk coordinates (s, t) (model.md 2.4): exp(-2 r^2) - exp(-2) for
+// r^2 < 1, else 0. The quadratic form is symmetric in the transposition, so the weights are the
+// cells'. Each cell takes its own exp: stepping the Gaussian along a line by forward differencing
+// needs two exps at the start of every line, which the single-loop walk of glintLevelP22 would pay
+// on every iteration (docs/benchmarks.md, "Fifth round").
+GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
   float dy = float(t) - grid.centre.y;
   float r2 = grid.ea * dx * dx + grid.eb * dx * dy + grid.ec * dy * dy;
-  GlintRowWeights weights;
-  weights.gaussian = exp(-2.0f * r2);
-  weights.step = exp(-2.0f * (grid.ea * (2.0f * dx + 1.0f) + grid.eb * dy));
-  return weights;
-}
-
-// The current cell's weight; moves the weights on to the next cell of the line.
-GLINT_FN float glintNextCellWeight(GlintCellGrid grid, GLINT_INOUT(GlintRowWeights) weights) {
-  float weight = max(weights.gaussian - kEwaFilterFloor, 0.0f);  // 0 where r^2 >= 1
-  weights.gaussian *= weights.step;
-  weights.step *= grid.stepRatio;
-  return weight;
+  return max(exp(-2.0f * r2) - kEwaFilterFloor, 0.0f);
 }
 
 // P22 over the footprint at one level (model.md 2.4), at each slope of the set: the EWA-weighted
@@ -432,16 +413,14 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // The cells, their weights and their order are those of the nested loops, bit for bit.
   int t = grid.t0;
   ivec2 row = glintCellRow(grid, t);
-  GlintRowWeights weights = glintRowWeights(grid, row.x, t);
   int s = row.x;
   while (t <= grid.t1) {
-    float weight = s <= row.y ? glintNextCellWeight(grid, weights) : 0.0f;  // 0: an empty line
+    float weight = s <= row.y ? glintCellWeight(grid, s, t) : 0.0f;  // 0: an empty line
     ivec2 index = glintCellAt(grid, s, t);
     s += 1;
     if (s > row.y) {
       t += 1;
       row = glintCellRow(grid, t);
-      weights = glintRowWeights(grid, row.x, t);
       s = row.x;
     }
     if (weight > 0.0f) {
