@@ -107,6 +107,43 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectOneLineError(wrongExtension, "out.jpg: the output must end in .png or .exr");
 }
 
+// A triangle lit by `lights` point lights of the file (KHR_lights_punctual).
+std::filesystem::path writeTriangleWithLights(const std::filesystem::path& folder, int lights) {
+  const float positions[9] = {-1, -1, 0, 1, -1, 0, 0, 1, 0};
+  std::ofstream(folder / "tri.bin", std::ios::binary).write(reinterpret_cast<const char*>(positions), sizeof positions);
+  std::string lightList;
+  std::string lightNodes;
+  std::string nodeList = "0";
+  for (int i = 0; i < lights; ++i) {
+    lightList += std::string(i ? "," : "") + R"({"type": "point", "intensity": 300})";
+    lightNodes += R"(,{"translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": )" + std::to_string(i) + "}}}";
+    nodeList += "," + std::to_string(i + 1);
+  }
+  const std::filesystem::path path = folder / "tri.gltf";
+  std::ofstream(path) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {"KHR_lights_punctual": {"lights": [)" << lightList << R"(]}},
+    "buffers": [{"uri": "tri.bin", "byteLength": 36}], "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "nodes": [{"mesh": 0})" << lightNodes << R"(], "scenes": [{"nodes": [)" << nodeList << R"(]}], "scene": 0})";
+  return path;
+}
+
+TEST(RenderCli, SaysWhenTheRasteriserDrawsOnlySomeOfTheLights) {
+  // The rasteriser draws the first 8 lights: a file with 9 renders, with a one-line warning.
+  const auto folder = temporaryFolder("cli_many_lights");
+  const std::string nine = writeTriangleWithLights(folder, 9).string();
+  RunResult result = runGlint(folder, "render " + nine + " -o nine.png --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("has 9 lights; the rasteriser draws the first 8"), std::string::npos) << result.err;
+  expectPlausibleImage(folder / "nine.png", 32, 32);
+  const auto fewFolder = temporaryFolder("cli_few_lights");
+  const std::string two = writeTriangleWithLights(fewFolder, 2).string();
+  result = runGlint(fewFolder, "render " + two + " -o two.png --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err.find("warning"), std::string::npos) << result.err;
+}
+
 TEST(BenchCli, PrintsTheJsonTable) {
   const auto folder = temporaryFolder("bench");
   const RunResult result = runGlint(folder, "bench sphere grazing-rough --size 48x32 --frames 2 --warmup 0 --json");

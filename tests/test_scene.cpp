@@ -220,6 +220,98 @@ TEST(GltfLoader, FlattensTheHierarchyAndFillsInWhatIsMissing) {
   }
 }
 
+// A one-triangle file whose nodes carry a perspective camera, a point light and a directional
+// light (KHR_lights_punctual); `edit` changes it before it is written.
+static fs::path writeLitTriangle(const std::string& folderName, const std::function<void(json&)>& edit) {
+  const fs::path folder = test::temporaryFolder(folderName);
+  const float positions[9] = {-1, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(folder / "tri.bin", std::ios::binary).write(reinterpret_cast<const char*>(positions), sizeof positions);
+  const double s = std::sqrt(0.5);
+  json document = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_lights_punctual"}},
+      {"extensions",
+       {{"KHR_lights_punctual",
+         {{"lights",
+           {{{"type", "point"}, {"name", "bulb"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 683.0}},
+            {{"type", "directional"}, {"intensity", 1366.0}}}}}}}},
+      {"buffers", {{{"uri", "tri.bin"}, {"byteLength", 36}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+                      {"min", {-1, 0, 0}}, {"max", {1, 1, 0}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+      {"cameras", {{{"type", "perspective"}, {"name", "shot"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                   {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}}},
+      {"nodes", {{{"mesh", 0}},
+                 {{"translation", {0, 0.5, 4}}, {"camera", 0}},
+                 {{"translation", {0, 2, 1}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                 // Turned -90 degrees about x: its -z points down.
+                 {{"rotation", {-s, 0, 0, s}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}},
+                 {{"camera", 1}}}},
+      {"scenes", {{{"nodes", {0, 1, 2, 3, 4}}}}},
+      {"scene", 0},
+  };
+  edit(document);
+  std::ofstream(folder / "tri.gltf") << document.dump();
+  return folder / "tri.gltf";
+}
+
+TEST(GltfLoader, ReadsPunctualLightsAndPerspectiveCameras) {
+  const Scene scene = loadGltf(writeLitTriangle("gltf_lights", [](json&) {}));
+  expectWellFormed(scene);
+  // The file's two lights replace the default ones; candela and lux become W/sr and W/m^2 at
+  // 683 lm/W.
+  ASSERT_EQ(scene.lights.size(), 2u);
+  const Light& bulb = scene.lights[0];
+  EXPECT_EQ(bulb.type, Light::Type::Point);
+  EXPECT_NEAR(glm::length(bulb.position - glm::vec3(0, 2, 1)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(bulb.intensity - glm::vec3(1.0f, 0.5f, 0.25f)), 0.0f, 1e-6f);
+  const Light& sun = scene.lights[1];
+  EXPECT_EQ(sun.type, Light::Type::Directional);
+  EXPECT_NEAR(glm::length(sun.direction - glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(sun.intensity - glm::vec3(2.0f)), 0.0f, 1e-5f);
+  // The perspective camera under its own name and as "default"; the orthographic one left out;
+  // the bounding-box presets kept.
+  ASSERT_EQ(scene.cameras.count("shot"), 1u);
+  const Camera& shot = scene.cameras.at("shot");
+  EXPECT_NEAR(glm::length(shot.position - glm::vec3(0, 0.5f, 4)), 0.0f, 1e-6f);
+  EXPECT_NEAR(shot.verticalFovDegrees, 0.5f * 180.0f / 3.14159265f, 1e-4f);
+  EXPECT_NEAR(glm::length(shot.up - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+  const glm::vec3 view = glm::normalize(shot.target - shot.position);
+  EXPECT_NEAR(glm::length(view - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+  EXPECT_EQ(scene.cameras.at("default").position, shot.position);
+  EXPECT_EQ(scene.cameras.count("camera1"), 0u);
+  EXPECT_EQ(scene.cameras.count("front"), 1u);
+
+  // Without lights or cameras in the file: the default lighting and presets.
+  const Scene bare = loadGltf(writeLitTriangle("gltf_no_lights", [](json& d) {
+    d["nodes"] = {{{"mesh", 0}}};
+    d["scenes"] = {{{"nodes", {0}}}};
+  }));
+  ASSERT_EQ(bare.lights.size(), 2u);
+  EXPECT_EQ(bare.lights[0].type, Light::Type::Point);
+  EXPECT_EQ(bare.cameras.at("default").position, bare.cameras.at("front").position);
+  EXPECT_EQ(bare.environment.uniform, scene.environment.uniform);
+}
+
+TEST(GltfErrors, BadPunctualLightsAndCameras) {
+  expectLoadError(writeLitTriangle("gltf_spot", [](json& d) {
+                    d["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "spot";
+                    d["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = {{"outerConeAngle", 0.5}};
+                  }),
+                  "node 2: light 0 'bulb': spot lights are not supported");
+  expectLoadError(writeLitTriangle("gltf_light_index", [](json& d) {
+                    d["nodes"][2]["extensions"]["KHR_lights_punctual"]["light"] = 7;
+                  }),
+                  "light 7 does not exist (the file has 2)");
+  expectLoadError(writeLitTriangle("gltf_light_intensity", [](json& d) {
+                    d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = -3.0;
+                  }),
+                  "light 1: intensity -3 is not a finite number >= 0");
+  expectLoadError(writeLitTriangle("gltf_camera_fov", [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 4.0; }),
+                  "camera 0 'shot': yfov 4 is not in (0, pi) radians");
+}
+
 // ---- Glint parameters from extras -------------------------------------------------------------
 
 TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {

@@ -67,6 +67,7 @@ void runBench(const BenchOptions& options) {
                            {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const scene::Scene& scene = scenes[s];
+    warnAboutUndrawnLights(scene);
     gl::Renderer renderer(scene, dictionary);
     gl::FrameSettings frame;
     frame.width = width;

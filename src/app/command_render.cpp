@@ -38,6 +38,7 @@ void runRender(const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
 
   gl::HeadlessContext context;
+  warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   gl::FrameSettings frame;
   frame.width = width;

@@ -86,6 +86,7 @@ void runView(const ViewOptions& options) {
   const Dictionary dictionary = options.scene.loadDictionary();
   gl::WindowContext window(options.width, options.height, "glint view: " + options.scene.scene);
   const gl::ContextInfo info = gl::currentContextInfo();
+  warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   gl::ShaderProgram display({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}});
   GLuint emptyVertexArray = 0;

@@ -1,7 +1,9 @@
 #include "app/scene_options.h"
 
+#include <cstdio>
 #include <regex>
 
+#include "gl/renderer.h"
 #include "glint/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -77,6 +79,13 @@ std::pair<int, int> parseImageSize(const std::string& text) {
   const int h = std::stoi(match[2]);
   if (w < 1 || h < 1 || w > 8192 || h > 8192) throw Error("--size must be between 1x1 and 8192x8192, got " + text);
   return {w, h};
+}
+
+void warnAboutUndrawnLights(const scene::Scene& scene) {
+  if (scene.lights.size() > static_cast<std::size_t>(gl::kMaxLights)) {
+    std::fprintf(stderr, "glint: warning: scene '%s' has %zu lights; the rasteriser draws the first %d\n",
+                 scene.name.c_str(), scene.lights.size(), gl::kMaxLights);
+  }
 }
 
 }  // namespace glint::app

@@ -33,6 +33,9 @@ struct SceneOptions {
   Dictionary loadDictionary() const;
 };
 
+// Says on stderr, in one line, when the scene has more lights than the rasteriser draws.
+void warnAboutUndrawnLights(const scene::Scene& scene);
+
 // `--size WxH` of the commands that write images: each side in [1, 8192]; throws Error with one line.
 std::pair<int, int> parseImageSize(const std::string& text);
 

@@ -19,8 +19,6 @@ namespace glint::gl {
 
 namespace {
 
-constexpr int kMaxLights = 8;  // the most lights a forward program is compiled for (LIGHT_COUNT)
-
 struct GpuMesh {
   GLuint vertexArray = 0;
   GLuint vertexBuffer = 0;

@@ -16,6 +16,10 @@
 
 namespace glint::gl {
 
+// The most lights the rasteriser draws (the first ones of the scene): a forward program is
+// compiled per light count (LIGHT_COUNT). The path tracer draws them all.
+constexpr int kMaxLights = 8;
+
 enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan };
 // Every model, in the order tables list them.
 std::vector<BrdfModel> allBrdfModels();

@@ -332,9 +332,13 @@ class GltfReader {
     std::size_t triangles = 0;
     for (const Mesh& mesh : scene_.meshes) triangles += mesh.indices.size() / 3;
     if (triangles == 0) throw error("no triangles in the scene");
-    scene_.cameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
-    // KHR_lights_punctual is not read: every glTF scene gets the same default lighting.
+    addCameras();
+    // The file's KHR_lights_punctual lights replace the default ones; glTF has no environment, so
+    // the default one stays either way.
+    std::vector<Light> fileLights = std::move(scene_.lights);
+    scene_.lights.clear();
     addDefaultLighting(scene_);
+    if (!fileLights.empty()) scene_.lights = std::move(fileLights);
     scene_.exposure = 1.0f;
     return std::move(scene_);
   }
@@ -424,8 +428,99 @@ class GltfReader {
         withContext(context, [&] { addPrimitive(mesh, node.mesh, p, world); });
       }
     }
+    if (node.camera >= 0) withContext("node " + std::to_string(index) + ": ", [&] { addCamera(node.camera, world); });
+    const auto lightExtension = node.extensions.find("KHR_lights_punctual");
+    if (lightExtension != node.extensions.end()) {
+      withContext("node " + std::to_string(index) + ": ", [&] { addLight(lightExtension->second, world); });
+    }
     for (int child : node.children) visitNode(child, world, onPath, depth + 1);
     onPath[slot] = false;
+  }
+
+  // A glTF camera looks down its node's -z with +y up (glTF 2.0, "Cameras"). Orthographic
+  // cameras are left out (glint's cameras are perspective); docs/scenes.md says so.
+  void addCamera(int index, const glm::dmat4& world) {
+    if (static_cast<std::size_t>(index) >= model_.cameras.size()) {
+      throw error("camera ", index, " does not exist (the file has ", model_.cameras.size(), ")");
+    }
+    const tinygltf::Camera& source = model_.cameras[static_cast<std::size_t>(index)];
+    const std::string label = "camera " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+    if (source.type != "perspective") return;
+    const double yfov = source.perspective.yfov;
+    if (!(yfov > 0.0 && yfov < 3.14159)) throw error(label, ": yfov ", yfov, " is not in (0, pi) radians");
+    const glm::dvec3 position(world * glm::dvec4(0, 0, 0, 1));
+    const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0));
+    const glm::dvec3 up(world * glm::dvec4(0, 1, 0, 0));
+    if (!(glm::length(forward) > 0.0 && glm::length(up) > 0.0 && glm::length(glm::cross(forward, up)) > 0.0)) {
+      throw error(label, ": its node's transform collapses the view direction");
+    }
+    Camera camera;
+    camera.position = glm::vec3(position);
+    camera.up = glm::vec3(glm::normalize(up));
+    camera.verticalFovDegrees = static_cast<float>(glm::degrees(yfov));
+    // The viewer orbits around the target: put it on the view ray, as far as the scene's centre.
+    fileCameras_.push_back({source.name.empty() ? "camera" + std::to_string(index) : source.name, camera,
+                            glm::normalize(forward)});
+  }
+
+  // The file's perspective cameras after the bounding-box presets, under their own names (or
+  // "cameraN"), a file camera winning over a preset of the same name; the first one in node order
+  // is also "default" unless one is named so.
+  void addCameras() {
+    scene_.cameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
+    const glm::vec3 centre = 0.5f * (scene_.boundsMin() + scene_.boundsMax());
+    for (FileCamera& file : fileCameras_) {
+      const float distance = std::max(glm::length(centre - file.camera.position), 1e-3f);
+      file.camera.target = file.camera.position + distance * glm::vec3(file.forward);
+      scene_.cameras[file.name] = file.camera;
+    }
+    const bool namedDefault =
+        std::any_of(fileCameras_.begin(), fileCameras_.end(), [](const FileCamera& c) { return c.name == "default"; });
+    if (!fileCameras_.empty() && !namedDefault) scene_.cameras["default"] = fileCameras_.front().camera;
+  }
+
+  // KHR_lights_punctual: point and directional lights. Its photometric units become radiometric
+  // ones at 683 lm/W (the luminous efficacy at 555 nm, as glTF exporters convert watts): a point
+  // light's candela to W/sr, a directional light's lux to W/m^2. Spot lights are refused rather
+  // than drawn as point lights that light outside their cone; `range` (a cut-off hint) is not used.
+  void addLight(const tinygltf::Value& extension, const glm::dmat4& world) {
+    if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber()) {
+      throw error("KHR_lights_punctual has no light index");
+    }
+    const int index = extension.Get("light").GetNumberAsInt();
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.lights.size()) {
+      throw error("light ", index, " does not exist (the file has ", model_.lights.size(), ")");
+    }
+    const tinygltf::Light& source = model_.lights[static_cast<std::size_t>(index)];
+    const std::string label = "light " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+    constexpr double kLumensPerWatt = 683.0;
+    glm::dvec3 colour(1.0);
+    if (!source.color.empty()) {
+      if (source.color.size() != 3) throw error(label, ": color has ", source.color.size(), " numbers, expected 3");
+      colour = glm::make_vec3(source.color.data());
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (!(std::isfinite(colour[c]) && colour[c] >= 0.0)) throw error(label, ": color ", colour[c], " is not a finite number >= 0");
+    }
+    if (!(std::isfinite(source.intensity) && source.intensity >= 0.0)) {
+      throw error(label, ": intensity ", source.intensity, " is not a finite number >= 0");
+    }
+    Light light;
+    light.intensity = glm::vec3(colour * (source.intensity / kLumensPerWatt));
+    if (source.type == "point") {
+      light.type = Light::Type::Point;
+      light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+    } else if (source.type == "directional") {
+      const glm::dvec3 direction(world * glm::dvec4(0, 0, -1, 0));  // it shines down its node's -z
+      if (!(glm::length(direction) > 0.0)) throw error(label, ": its node's transform collapses its direction");
+      light.type = Light::Type::Directional;
+      light.direction = glm::vec3(glm::normalize(direction));
+    } else if (source.type == "spot") {
+      throw error(label, ": spot lights are not supported (point and directional lights are)");
+    } else {
+      throw error(label, ": unknown type '", source.type, "'");
+    }
+    scene_.lights.push_back(light);
   }
 
   std::vector<std::uint32_t> triangleIndices(const tinygltf::Primitive& primitive, int mode, std::size_t vertexCount) const {
@@ -714,8 +809,15 @@ class GltfReader {
     return layer;
   }
 
+  struct FileCamera {
+    std::string name;
+    Camera camera;  // its target is set once the scene's bounds are known (addCameras)
+    glm::dvec3 forward;
+  };
+
   const tinygltf::Model& model_;
   Scene scene_;
+  std::vector<FileCamera> fileCameras_;
   std::map<std::pair<int, bool>, int> textureOf_;  // (image, sRGB) -> scene texture
   int defaultMaterial_ = -1;
 };
