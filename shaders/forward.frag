@@ -1,5 +1,5 @@
 // Forward shading of glTF metal-roughness materials whose specular lobe is the glint BRDF (or
-// Cook-Torrance), lit by point and directional lights and an environment (diffuse by spherical
+// Cook-Torrance), lit by point, spot and directional lights and an environment (diffuse by spherical
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
@@ -12,6 +12,7 @@
 // One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
+#include "lights.h"
 #include "environment.glsl"
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
 #include "zirr_kaplanyan.h"
@@ -53,8 +54,10 @@ uniform float uGlintUvScale;
 uniform bool uGlintHasLogDensityTexture;
 uniform vec2 uGlintLogDensityRange;
 
-uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point at xyz; w = 0: xyz = unit direction towards the light
+uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point or spot at xyz; w = 0: xyz = unit direction towards the light
 uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
+uniform vec3 uSpotAxis[GLINT_SLOPE_COUNT];  // the direction a spot shines along (kernel/lights.h)
+uniform vec2 uSpotCone[GLINT_SLOPE_COUNT];  // spotConeScaleOffset; (0, 1) for lights without a cone
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
 
@@ -113,14 +116,17 @@ void main() {
   vec3 diffuse = baseColour.rgb * (1.0f - metallic) / kPi;
   vec2 specularAlpha = uGlintLayer ? params.alpha : vec2(roughness * roughness);
 
-  // Each light's direction in the shading frame, and its squared distance (1 for a directional one).
+  // Each light's direction in the shading frame, its squared distance (1 for a directional one)
+  // and the fraction of its intensity its cone sends this way (1 but for spots).
   vec3 lightDirection[GLINT_SLOPE_COUNT];
   float lightDistance2[GLINT_SLOPE_COUNT];
+  float lightCone[GLINT_SLOPE_COUNT];
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 toLight = uLightPosition[i].xyz - vPosition * uLightPosition[i].w;
     lightDistance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
     vec3 l = normalize(toLight);
     lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
+    lightCone[i] = spotAttenuation(uSpotAxis[i], l, uSpotCone[i]);
   }
 
 #if SPECULAR_MODEL == SPECULAR_GLINT
@@ -173,7 +179,7 @@ void main() {
 #else
     specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
 #endif
-    radiance += (diffuse + specular) * wi.z * uLightIntensity[i] / lightDistance2[i];
+    radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightCone[i]) / lightDistance2[i];
   }
   vec3 reflected = reflect(-view, n);
   vec3 ambient = diffuse * irradiance(n) +

@@ -148,6 +148,84 @@ TEST(RenderGl, LightsAddUp) {
   std::printf("lights add up: largest difference %.2e of the pixel's magnitude (bound 1e-4)\n", largest);
 }
 
+// A spot light (KHR_lights_punctual's cone) lights the grazing plane like a point light of the
+// same intensity within its inner cone, not at all beyond its outer one, and in between something
+// between the two. Seen straight down from above the spot, a pixel's floor point and so its angle
+// from the spot's axis follow from the camera alone (the frame is symmetric about the axis, so
+// the image's orientation does not matter). Pixels within 0.03 radians of a cone are left out.
+TEST(RenderGl, SpotLightsLightTheirConeOnly) {
+  useGlContext();
+  scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
+  constexpr float kCameraHeight = 3.0f;
+  constexpr float kSpotHeight = 1.5f;
+  constexpr float kInner = 0.25f;
+  constexpr float kOuter = 0.5f;
+  scene::Camera down;
+  down.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
+  down.target = glm::vec3(0.0f);
+  down.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  down.verticalFovDegrees = 45.0f;
+  scene::Light point;
+  point.type = scene::Light::Type::Point;
+  point.position = glm::vec3(0.0f, kSpotHeight, 0.0f);
+  point.intensity = glm::vec3(2.0f);
+  scene::Light spot = point;
+  spot.type = scene::Light::Type::Spot;
+  spot.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  spot.innerConeAngle = kInner;
+  spot.outerConeAngle = kOuter;
+
+  gl::Renderer renderer(scene, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = 128;
+  frame.height = 128;
+  frame.brdf = gl::BrdfModel::Glint;
+  frame.camera = down;
+  auto litBy = [&](std::vector<scene::Light> lights) {
+    renderer.lights() = std::move(lights);
+    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return image;
+  };
+  const ImageRgbF dark = litBy({});
+  const ImageRgbF byPoint = litBy({point});
+  const ImageRgbF bySpot = litBy({spot});
+  const double halfHeight = kCameraHeight * std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+  int inside = 0;
+  int outside = 0;
+  int between = 0;
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      const double nx = 2.0 * (x + 0.5) / frame.width - 1.0;
+      const double ny = 2.0 * (y + 0.5) / frame.height - 1.0;
+      const double angle = std::atan(halfHeight * std::hypot(nx, ny) / kSpotHeight);
+      const std::size_t p = static_cast<std::size_t>(y) * frame.width + x;
+      for (int c = 0; c < 3; ++c) {
+        const double s = bySpot.pixels[p][c];
+        const double full = byPoint.pixels[p][c];
+        const double none = dark.pixels[p][c];
+        ASSERT_GT(full, none + 1e-4) << "the point light lights pixel " << x << "," << y;
+        if (angle < kInner - 0.03) {
+          EXPECT_NEAR(s, full, 1e-5 * full) << x << "," << y;
+          inside += c == 0;
+        } else if (angle > kOuter + 0.03) {
+          EXPECT_NEAR(s, none, 1e-5 * none + 1e-7) << x << "," << y;
+          outside += c == 0;
+        } else if (angle > kInner + 0.03 && angle < kOuter - 0.03) {
+          EXPECT_GT(s, none) << x << "," << y;
+          EXPECT_LT(s, full) << x << "," << y;
+          between += c == 0;
+        }
+      }
+    }
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 2000);
+  EXPECT_GT(between, 1000);
+  std::printf("spot light: %d pixels inside its inner cone, %d between the cones, %d outside\n", inside, between,
+              outside);
+}
+
 // Where no mesh is drawn the rasteriser shows the environment, as the path tracer's camera rays
 // that escape do: the grazing plane's sky, pixel by pixel, against the tracer's camera and
 // environment lookup. The bound, 1% of the radiance, covers llvmpipe's 8-bit bilinear weights on a

@@ -1,4 +1,5 @@
 // Unit tests of the kernel's building blocks against independent references.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -7,6 +8,7 @@
 
 #include "half.h"
 #include "kernel/glint_brdf.h"
+#include "kernel/lights.h"
 #include "pcg.h"
 #include "test_support.h"
 
@@ -38,6 +40,31 @@ TEST(Half, RoundsToTheNearestHalf) {
   EXPECT_EQ(floatToHalf(1.0f), 0x3C00u);
   EXPECT_EQ(floatToHalf(65504.0f), 0x7BFFu);
   EXPECT_EQ(floatToHalf(1e6f), 0x7C00u);
+}
+
+TEST(SpotLight, FallsOffBetweenItsConesAsTheGltfExtensionSays) {
+  // KHR_lights_punctual: full intensity within the inner cone, none beyond the outer one, and in
+  // between the square of the cosine's linear ramp, (cos a - cos outer) / (cos inner - cos outer),
+  // evaluated here in double from the angle a between the axis and the direction to the point.
+  const double inner = 0.3;
+  const double outer = 0.7;
+  const glm::vec2 cone = kernel::spotConeScaleOffset(float(inner), float(outer));
+  const glm::vec3 axis = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  // Directions at angle a from the axis, turned about a perpendicular.
+  const glm::vec3 side = glm::normalize(glm::cross(axis, glm::vec3(1, 0, 0)));
+  double worst = 0.0;
+  for (int k = 0; k <= 100; ++k) {
+    const double a = 1.0 * k / 100;
+    const glm::vec3 away = float(std::cos(a)) * axis + float(std::sin(a)) * side;  // from the light to the point
+    const float got = kernel::spotAttenuation(axis, -away, cone);
+    const double ramp = std::clamp((std::cos(a) - std::cos(outer)) / (std::cos(inner) - std::cos(outer)), 0.0, 1.0);
+    worst = std::max(worst, std::abs(got - ramp * ramp));
+    if (a < inner) EXPECT_EQ(got, 1.0f) << a;
+    if (a > outer) EXPECT_EQ(got, 0.0f) << a;
+  }
+  EXPECT_LT(worst, 1e-5);  // float cosines of angles within the ramp
+  // A light without a cone, (0, 1), sends its full intensity every way.
+  EXPECT_EQ(kernel::spotAttenuation(axis, axis, glm::vec2(0.0f, 1.0f)), 1.0f);
 }
 
 TEST(NormalQuantile, MatchesBisectionOfTheNormalCdf) {

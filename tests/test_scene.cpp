@@ -270,6 +270,22 @@ TEST(GltfLoader, ReadsPunctualLightsAndPerspectiveCameras) {
   EXPECT_EQ(sun.type, Light::Type::Directional);
   EXPECT_NEAR(glm::length(sun.direction - glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::length(sun.intensity - glm::vec3(2.0f)), 0.0f, 1e-5f);
+  // The same light as a spot on the sun's node: it shines down that node's -z, with its cones.
+  const Scene spot = loadGltf(writeLitTriangle("gltf_spot_light", [](json& d) {
+    d["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "spot";
+    d["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}};
+    d["nodes"][3]["translation"] = {0, 3, 0};
+    d["nodes"][3]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+  }));
+  ASSERT_EQ(spot.lights.size(), 2u);
+  const Light& cone = spot.lights[1];
+  EXPECT_EQ(cone.type, Light::Type::Spot);
+  EXPECT_NEAR(glm::length(cone.position - glm::vec3(0, 3, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(cone.direction - glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(cone.innerConeAngle, 0.2f);
+  EXPECT_FLOAT_EQ(cone.outerConeAngle, 0.5f);
+  EXPECT_NEAR(glm::length(cone.intensity - glm::vec3(1.0f, 0.5f, 0.25f)), 0.0f, 1e-6f);
+
   // The perspective camera under its own name and as "default"; the orthographic one left out;
   // the bounding-box presets kept.
   ASSERT_EQ(scene.cameras.count("shot"), 1u);
@@ -297,9 +313,10 @@ TEST(GltfLoader, ReadsPunctualLightsAndPerspectiveCameras) {
 TEST(GltfErrors, BadPunctualLightsAndCameras) {
   expectLoadError(writeLitTriangle("gltf_spot", [](json& d) {
                     d["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "spot";
-                    d["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = {{"outerConeAngle", 0.5}};
+                    d["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = {{"innerConeAngle", 0.6},
+                                                                                   {"outerConeAngle", 0.5}};
                   }),
-                  "node 2: light 0 'bulb': spot lights are not supported");
+                  "node 2: light 0 'bulb': spot cone angles (inner 0.6, outer 0.5) are not 0 <= inner < outer <= pi/2");
   expectLoadError(writeLitTriangle("gltf_light_index", [](json& d) {
                     d["nodes"][2]["extensions"]["KHR_lights_punctual"]["light"] = 7;
                   }),

@@ -128,8 +128,9 @@ void runView(const ViewOptions& options) {
                                 std::sin(controls.lightElevation),
                                 std::cos(controls.lightElevation) * std::cos(controls.lightAzimuth));
       scene::Light& light = renderer.lights().front();
-      if (light.type == scene::Light::Type::Point) {
+      if (light.positional()) {
         light.position = centre + direction * glm::length(originalLights.front().position - centre);
+        if (light.type == scene::Light::Type::Spot) light.direction = -direction;  // still aimed at the centre
       } else {
         light.direction = -direction;
       }

@@ -244,12 +244,16 @@ void Renderer::renderFrame(const FrameSettings& settings) {
                                               scene_.boundsMin(), scene_.boundsMax());
   glm::vec4 lightPositions[kMaxLights];
   glm::vec3 lightIntensities[kMaxLights];
+  glm::vec3 spotAxes[kMaxLights];
+  glm::vec2 spotCones[kMaxLights];
   const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size()));
   for (int i = 0; i < lightCount; ++i) {
     const scene::Light& light = lights_[static_cast<std::size_t>(i)];
-    lightPositions[i] = light.type == scene::Light::Type::Point ? glm::vec4(light.position, 1.0f)
-                                                                 : glm::vec4(-glm::normalize(light.direction), 0.0f);
+    lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
+                                           : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;
+    spotAxes[i] = light.type == scene::Light::Type::Spot ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
+    spotCones[i] = light.coneScaleOffset();
   }
   auto texture = [&](int index, GLuint fallback) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
@@ -276,6 +280,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
     glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
     glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
+    glUniform3fv(p.uniform("uSpotAxis"), lightCount, &spotAxes[0].x);
+    glUniform2fv(p.uniform("uSpotCone"), lightCount, &spotCones[0].x);
     glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);

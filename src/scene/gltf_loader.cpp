@@ -479,10 +479,10 @@ class GltfReader {
     if (!fileCameras_.empty() && !namedDefault) scene_.cameras["default"] = fileCameras_.front().camera;
   }
 
-  // KHR_lights_punctual: point and directional lights. Its photometric units become radiometric
-  // ones at 683 lm/W (the luminous efficacy at 555 nm, as glTF exporters convert watts): a point
-  // light's candela to W/sr, a directional light's lux to W/m^2. Spot lights are refused rather
-  // than drawn as point lights that light outside their cone; `range` (a cut-off hint) is not used.
+  // KHR_lights_punctual: point, spot and directional lights. Its photometric units become
+  // radiometric ones at 683 lm/W (the luminous efficacy at 555 nm, as glTF exporters convert
+  // watts): a point or spot light's candela to W/sr, a directional light's lux to W/m^2. `range`
+  // (a cut-off hint) is not used.
   void addLight(const tinygltf::Value& extension, const glm::dmat4& world) {
     if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber()) {
       throw error("KHR_lights_punctual has no light index");
@@ -507,18 +507,27 @@ class GltfReader {
     }
     Light light;
     light.intensity = glm::vec3(colour * (source.intensity / kLumensPerWatt));
-    if (source.type == "point") {
-      light.type = Light::Type::Point;
-      light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
-    } else if (source.type == "directional") {
-      const glm::dvec3 direction(world * glm::dvec4(0, 0, -1, 0));  // it shines down its node's -z
-      if (!(glm::length(direction) > 0.0)) throw error(label, ": its node's transform collapses its direction");
-      light.type = Light::Type::Directional;
-      light.direction = glm::vec3(glm::normalize(direction));
-    } else if (source.type == "spot") {
-      throw error(label, ": spot lights are not supported (point and directional lights are)");
-    } else {
+    if (source.type != "point" && source.type != "spot" && source.type != "directional") {
       throw error(label, ": unknown type '", source.type, "'");
+    }
+    light.type = source.type == "point" ? Light::Type::Point
+                 : source.type == "spot" ? Light::Type::Spot
+                                         : Light::Type::Directional;
+    light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+    if (light.type != Light::Type::Point) {
+      const glm::dvec3 direction(world * glm::dvec4(0, 0, -1, 0));  // spots and suns shine down their node's -z
+      if (!(glm::length(direction) > 0.0)) throw error(label, ": its node's transform collapses its direction");
+      light.direction = glm::vec3(glm::normalize(direction));
+    }
+    if (light.type == Light::Type::Spot) {
+      const double inner = source.spot.innerConeAngle;
+      const double outer = source.spot.outerConeAngle;
+      // The extension's ranges: 0 <= inner < outer <= pi / 2.
+      if (!(inner >= 0.0 && inner < outer && outer <= 1.5707964)) {
+        throw error(label, ": spot cone angles (inner ", inner, ", outer ", outer, ") are not 0 <= inner < outer <= pi/2");
+      }
+      light.innerConeAngle = static_cast<float>(inner);
+      light.outerConeAngle = static_cast<float>(outer);
     }
     scene_.lights.push_back(light);
   }

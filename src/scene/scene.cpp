@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "glint/error.h"
+#include "glint/kernel/lights.h"
 
 namespace glint::scene {
 
@@ -115,6 +116,10 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
       {"top", at({0, distance, 0}, {0, 0, -1})},
       {"close", at({0, 0, 0.5f * distance}, {0, 1, 0})},
   };
+}
+
+glm::vec2 Light::coneScaleOffset() const {
+  return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
 void addDefaultLighting(Scene& scene) {

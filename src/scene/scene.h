@@ -77,11 +77,17 @@ struct Material {
 };
 
 struct Light {
-  enum class Type { Point, Directional };
+  enum class Type { Point, Directional, Spot };
   Type type = Type::Point;
-  glm::vec3 position{0.0f};        // point lights
-  glm::vec3 direction{0, -1, 0};   // directional lights: the direction the light travels
-  glm::vec3 intensity{1.0f};       // point: W/sr (radiant intensity); directional: W/m^2 (irradiance)
+  glm::vec3 position{0.0f};        // point and spot lights
+  glm::vec3 direction{0, -1, 0};   // directional lights: the direction the light travels; spots: their axis
+  glm::vec3 intensity{1.0f};       // point, spot: W/sr (radiant intensity, on the axis); directional: W/m^2
+  float innerConeAngle = 0.0f;     // spots, radians from the axis: full intensity within the inner
+  float outerConeAngle = 0.7853982f;  // cone, none beyond the outer (kernel/lights.h)
+
+  bool positional() const { return type != Type::Directional; }
+  // kernel::spotConeScaleOffset of a spot's cones; (0, 1), no falloff, for the other lights.
+  glm::vec2 coneScaleOffset() const;
 };
 
 // Ambient light: an equirectangular radiance map (linear RGB, rows from the top, +y up); a

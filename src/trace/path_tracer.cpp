@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "glint/error.h"
+#include "glint/kernel/lights.h"
 #include "trace/sampling.h"
 
 namespace glint::trace {
@@ -64,17 +65,19 @@ PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, 
 glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& shaded) const {
   glm::vec3 sum(0.0f);
   for (const scene::Light& light : scene_.lights) {
-    // As forward.frag: point lights give intensity / distance^2, directional lights irradiance.
+    // As forward.frag: point and spot lights give intensity / distance^2 (a spot's times its cone),
+    // directional lights irradiance.
     glm::vec3 toLight;
     float distance = std::numeric_limits<float>::infinity();
     float falloff = 1.0f;
-    if (light.type == scene::Light::Type::Point) {
+    if (light.positional()) {
       toLight = light.position - point.position;
       const float distance2 = glm::dot(toLight, toLight);
       if (!(distance2 > 0.0f)) continue;
       distance = std::sqrt(distance2);
       toLight /= distance;
-      falloff = 1.0f / distance2;
+      falloff = kernel::spotAttenuation(light.direction, toLight, light.coneScaleOffset()) / distance2;
+      if (!(falloff > 0.0f)) continue;
     } else {
       toLight = -glm::normalize(light.direction);
     }
