@@ -252,7 +252,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
                                            : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;
-    spotAxes[i] = light.type == scene::Light::Type::Spot ? glm::normalize(light.direction) : glm::vec3(0, -1, 0);
+    spotAxes[i] = light.spotAxis();
     spotCones[i] = light.coneScaleOffset();
   }
   auto texture = [&](int index, GLuint fallback) {

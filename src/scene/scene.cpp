@@ -122,6 +122,8 @@ glm::vec2 Light::coneScaleOffset() const {
   return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
+glm::vec3 Light::spotAxis() const { return type == Type::Spot ? glm::normalize(direction) : glm::vec3(0, -1, 0); }
+
 void addDefaultLighting(Scene& scene) {
   const glm::vec3 low = scene.boundsMin();
   const glm::vec3 high = scene.boundsMax();

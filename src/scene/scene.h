@@ -88,6 +88,9 @@ struct Light {
   bool positional() const { return type != Type::Directional; }
   // kernel::spotConeScaleOffset of a spot's cones; (0, 1), no falloff, for the other lights.
   glm::vec2 coneScaleOffset() const;
+  // A spot's unit axis, as kernel::spotAttenuation takes it; any unit vector for the other lights,
+  // whose cone (0, 1) ignores it.
+  glm::vec3 spotAxis() const;
 };
 
 // Ambient light: an equirectangular radiance map (linear RGB, rows from the top, +y up); a

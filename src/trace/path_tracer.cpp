@@ -76,7 +76,7 @@ glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& 
       if (!(distance2 > 0.0f)) continue;
       distance = std::sqrt(distance2);
       toLight /= distance;
-      falloff = kernel::spotAttenuation(light.direction, toLight, light.coneScaleOffset()) / distance2;
+      falloff = kernel::spotAttenuation(light.spotAxis(), toLight, light.coneScaleOffset()) / distance2;
       if (!(falloff > 0.0f)) continue;
     } else {
       toLight = -glm::normalize(light.direction);
