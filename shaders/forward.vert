@@ -10,6 +10,9 @@ out vec3 vPosition;
 out vec3 vNormal;
 out vec4 vTangent;
 out vec2 vUv;
+// The depth pre-pass and the shading pass both transform with this shader; invariant makes their
+// depths bit-identical, which the shading pass's equal-depth test relies on.
+invariant gl_Position;
 
 void main() {
   vPosition = aPosition;

@@ -10,6 +10,7 @@
 #include "gl_support.h"
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
+#include "scene/geometry.h"
 #include "test_support.h"
 #include "trace/camera.h"
 #include "trace/environment.h"
@@ -224,6 +225,77 @@ TEST(RenderGl, SpotLightsLightTheirConeOnly) {
   EXPECT_GT(between, 1000);
   std::printf("spot light: %d pixels inside its inner cone, %d between the cones, %d outside\n", inside, between,
               outside);
+}
+
+// A scene of emissive quads facing +z, seen by a camera on the z axis, for the visibility tests:
+// each quad's emission is far above anything the lights or the environment give, so a pixel shows
+// which quad (if any) was shaded there.
+struct Sheet {
+  float z;
+  glm::vec3 emissive;
+  bool doubleSided;
+};
+
+ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ) {
+  useGlContext();
+  scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");  // for its lights and sky
+  scene.meshes.clear();
+  scene.materials.clear();
+  for (const Sheet& sheet : sheets) {
+    scene::Material m;
+    m.name = "sheet";
+    m.emissive = sheet.emissive;
+    m.doubleSided = sheet.doubleSided;
+    scene.materials.push_back(m);
+    // cross(halfV, halfU) = +z: counter-clockwise, a front face, seen from +z.
+    scene.meshes.push_back(scene::makeQuad("sheet", static_cast<int>(scene.materials.size()) - 1,
+                                           glm::vec3(0.0f, 0.0f, sheet.z), {0, 1, 0}, {1, 0, 0}));
+  }
+  gl::Renderer renderer(scene, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = 64;
+  frame.height = 64;
+  frame.brdf = gl::BrdfModel::Glint;
+  frame.camera.position = glm::vec3(0.0f, 0.0f, cameraZ);
+  frame.camera.target = glm::vec3(0.0f);
+  ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  return image;
+}
+
+// The pixels (of 64 x 64) whose radiance is dominated by `emissive`'s channel: more than 50 in it.
+int pixelsShowing(const ImageRgbF& image, int channel) {
+  return static_cast<int>(std::count_if(image.pixels.begin(), image.pixels.end(),
+                                        [channel](const glm::vec3& p) { return p[channel] > 50.0f; }));
+}
+
+// glTF's doubleSided: a single-sided sheet is drawn from the front only, a double-sided one from
+// both sides. From 3 m a 2 m sheet covers the middle of the 45-degree view, about 1,100 pixels.
+TEST(RenderGl, SingleSidedMaterialsAreDrawnFromTheFrontOnly) {
+  const glm::vec3 red(100.0f, 0.0f, 0.0f);
+  const int front = pixelsShowing(renderSheets({{0.0f, red, false}}, 3.0f), 0);
+  EXPECT_GT(front, 1000);
+  EXPECT_EQ(pixelsShowing(renderSheets({{0.0f, red, false}}, -3.0f), 0), 0);
+  EXPECT_EQ(pixelsShowing(renderSheets({{0.0f, red, true}}, -3.0f), 0), front);
+}
+
+// The depth pre-pass leaves the image that of a single depth-tested pass: the nearest sheet shows
+// whatever the order they are drawn in, and of two sheets at the same depth the first drawn shows,
+// as under GL_LESS (the shading pass's stencil keeps the first fragment that matches the depth).
+TEST(RenderGl, TheNearestSurfaceShowsAndAtEqualDepthTheFirstDrawn) {
+  const glm::vec3 red(100.0f, 0.0f, 0.0f);
+  const glm::vec3 green(0.0f, 100.0f, 0.0f);
+  const ImageRgbF nearFirst = renderSheets({{0.5f, red, false}, {0.0f, green, false}}, 3.0f);
+  const ImageRgbF nearLast = renderSheets({{0.0f, green, false}, {0.5f, red, false}}, 3.0f);
+  EXPECT_GT(pixelsShowing(nearFirst, 0), 1000);
+  EXPECT_EQ(pixelsShowing(nearFirst, 1), 0);
+  EXPECT_TRUE(nearFirst.pixels == nearLast.pixels);
+  const ImageRgbF redFirst = renderSheets({{0.0f, red, false}, {0.0f, green, false}}, 3.0f);
+  const ImageRgbF greenFirst = renderSheets({{0.0f, green, false}, {0.0f, red, false}}, 3.0f);
+  EXPECT_GT(pixelsShowing(redFirst, 0), 1000);
+  EXPECT_EQ(pixelsShowing(redFirst, 1), 0);
+  EXPECT_EQ(pixelsShowing(greenFirst, 1), pixelsShowing(redFirst, 0));
+  EXPECT_EQ(pixelsShowing(greenFirst, 0), 0);
 }
 
 // Where no mesh is drawn the rasteriser shows the environment, as the path tracer's camera rays

@@ -256,7 +256,7 @@ static fs::path writeLitTriangle(const std::string& folderName, const std::funct
   return folder / "tri.gltf";
 }
 
-TEST(GltfLoader, ReadsPunctualLightsAndPerspectiveCameras) {
+TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   const Scene scene = loadGltf(writeLitTriangle("gltf_lights", [](json&) {}));
   expectWellFormed(scene);
   // The file's two lights replace the default ones; candela and lux become W/sr and W/m^2 at
@@ -285,6 +285,18 @@ TEST(GltfLoader, ReadsPunctualLightsAndPerspectiveCameras) {
   EXPECT_FLOAT_EQ(cone.innerConeAngle, 0.2f);
   EXPECT_FLOAT_EQ(cone.outerConeAngle, 0.5f);
   EXPECT_NEAR(glm::length(cone.intensity - glm::vec3(1.0f, 0.5f, 0.25f)), 0.0f, 1e-6f);
+
+  // glTF's doubleSided, false unless the material says so.
+  const Scene twoSided = loadGltf(writeLitTriangle("gltf_double_sided", [](json& d) {
+    d["materials"] = {{{"name", "two-sided"}, {"doubleSided", true}}, {{"name", "one-sided"}}};
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+    d["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 1}}}}});
+    d["nodes"].push_back({{"mesh", 1}});
+    d["scenes"][0]["nodes"].push_back(5);
+  }));
+  ASSERT_EQ(twoSided.meshes.size(), 2u);
+  EXPECT_TRUE(twoSided.materials[static_cast<std::size_t>(twoSided.meshes[0].material)].doubleSided);
+  EXPECT_FALSE(twoSided.materials[static_cast<std::size_t>(twoSided.meshes[1].material)].doubleSided);
 
   // The perspective camera under its own name and as "default"; the orthographic one left out;
   // the bounding-box presets kept.

@@ -115,6 +115,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<ShaderProgram> background;        // likewise
+  std::unique_ptr<ShaderProgram> depthPrepass;      // likewise
   GLuint emptyVertexArray = 0;                      // the background's triangle has no attributes
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
@@ -161,10 +162,10 @@ struct Renderer::Gpu {
     glTextureParameteri(radiance, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(radiance, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glCreateRenderbuffers(1, &depth);
-    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, w, h);
+    glNamedRenderbufferStorage(depth, GL_DEPTH24_STENCIL8, w, h);  // stencil: renderFrame's shading pass
     glCreateFramebuffers(1, &framebuffer);
     glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, radiance, 0);
-    glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
     if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
       throw Error("OpenGL: cannot make a " + std::to_string(w) + "x" + std::to_string(h) + " RGBA32F render target");
     }
@@ -234,7 +235,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer);
   glViewport(0, 0, settings.width, settings.height);
   glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);  // sheets such as curtains are seen from both sides
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
   const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   glClearNamedFramebufferfv(g.framebuffer, GL_COLOR, 0, clear);
@@ -259,8 +261,43 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
                                                                       : fallback;
   };
-  // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass; opaque
-  // meshes under the depth test, so the order of the passes does not matter.
+  // Depth pre-pass: every mesh's depth first, without colour, so that the shading passes below run
+  // the forward shader only for the fragment that stays visible in each pixel. Without it every
+  // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
+  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "Sixth round").
+  if (!g.depthPrepass) {
+    g.depthPrepass = std::make_unique<ShaderProgram>(std::vector<std::pair<GLenum, std::string>>{
+        {GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "depth_prepass.frag"}});
+  }
+  glUseProgram(g.depthPrepass->id());
+  glUniformMatrix4fv(g.depthPrepass->uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  // glTF: back faces of single-sided materials are culled; double-sided ones (curtains) are drawn
+  // from both sides.
+  auto setCulling = [&](const GpuMesh& mesh) {
+    if (materials_[static_cast<std::size_t>(mesh.material)].doubleSided) {
+      glDisable(GL_CULL_FACE);
+    } else {
+      glEnable(GL_CULL_FACE);
+    }
+  };
+  for (const GpuMesh& mesh : g.meshes) {
+    setCulling(mesh);
+    glBindVertexArray(mesh.vertexArray);
+    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  // Shading pass: a fragment is shaded where its depth is the one the pre-pass kept and no fragment
+  // of that pixel has been shaded yet (stencil 0, then 1). Where several fragments share the
+  // nearest depth the first one drawn wins, as it did under GL_LESS without a pre-pass, so the
+  // images are those of a single pass, bit for bit.
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0, 0xFF);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+
+  // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass.
   std::array<std::vector<const GpuMesh*>, 2> meshesByColour;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::GlintLayer& glint = materials_[static_cast<std::size_t>(mesh.material)].glint;
@@ -313,10 +350,14 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
       glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
       glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
+      setCulling(*mesh);
       glBindVertexArray(mesh->vertexArray);
       glDrawElements(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
+
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_CULL_FACE);
 
   // The environment where no mesh was drawn (shaders/background.frag): at the far plane, the
   // triangle passes the depth test only where the depth is still the cleared 1, so meshes hide it
@@ -336,7 +377,6 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glUniform1f(background.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
   glBindTextureUnit(9, g.environment);
   glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
   glBindVertexArray(g.emptyVertexArray);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);

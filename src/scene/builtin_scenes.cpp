@@ -193,6 +193,7 @@ Material glitterCurtain() {
   m.roughness = roughnessFor(0.4f);
   m.glint = glintLayer(0.4f, 14.0f, 4.0f);
   m.glint.relativeArea = 0.3f;  // only some cells hold flakes: scattered sparkles on cloth
+  m.doubleSided = true;         // a single sheet, seen from either side
   return m;
 }
 

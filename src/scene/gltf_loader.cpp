@@ -754,6 +754,7 @@ class GltfReader {
       throw error("emissiveFactor has ", source.emissiveFactor.size(), " numbers, expected 3");
     }
     m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
+    m.doubleSided = source.doubleSided;
     // Extras are free-form: only an object with a "glint" member concerns glint. They are read from
     // the original JSON: tinygltf's own Value drops empty objects and truncates integers to 32 bits.
     if (!source.extras_json_string.empty()) {

@@ -73,6 +73,10 @@ struct Material {
   glm::vec3 emissive{0.0f};
   int emissiveTexture = -1;
   int occlusionTexture = -1;
+  // glTF's doubleSided: when false the rasteriser culls back faces (counter-clockwise triangles are
+  // front faces); when true both sides are drawn, a back face shaded with its normal turned to the
+  // camera. The path tracer sees both sides of every triangle either way.
+  bool doubleSided = false;
   GlintLayer glint;
 };
 
