@@ -458,7 +458,6 @@ class GltfReader {
     camera.position = glm::vec3(position);
     camera.up = glm::vec3(glm::normalize(up));
     camera.verticalFovDegrees = static_cast<float>(glm::degrees(yfov));
-    // The viewer orbits around the target: put it on the view ray, as far as the scene's centre.
     fileCameras_.push_back({source.name.empty() ? "camera" + std::to_string(index) : source.name, camera,
                             glm::normalize(forward)});
   }
@@ -468,6 +467,7 @@ class GltfReader {
   // is also "default" unless one is named so.
   void addCameras() {
     scene_.cameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
+    // The viewer orbits around a camera's target: put it on the view ray, as far as the scene's centre.
     const glm::vec3 centre = 0.5f * (scene_.boundsMin() + scene_.boundsMax());
     for (FileCamera& file : fileCameras_) {
       const float distance = std::max(glm::length(centre - file.camera.position), 1e-3f);
