@@ -341,6 +341,79 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "camera 0 'shot': yfov 4 is not in (0, pi) radians");
 }
 
+// tinygltf takes a mistyped optional property for absent and keeps its default (doubleSided "yes"
+// would load as false, byteOffset "12" as 0): the loader names the property and its type instead.
+TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
+  const std::pair<std::function<void(json&)>, std::string> cases[] = {
+      {[](json& d) { d["materials"] = {{{"doubleSided", "yes"}}}; },
+       "materials[0].doubleSided must be true or false, got the string \"yes\""},
+      {[](json& d) { d["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", "0.5"}}}}}; },
+       "materials[0].pbrMetallicRoughness.metallicFactor must be a number, got the string \"0.5\""},
+      {[](json& d) { d["materials"] = {{{"emissiveFactor", {0, 0, true}}}}; },
+       "materials[0].emissiveFactor[2] must be a number, got true"},
+      {[](json& d) { d["bufferViews"][0]["byteOffset"] = "12"; },
+       "bufferViews[0].byteOffset must be an integer >= 0, got the string \"12\""},
+      {[](json& d) { d["accessors"][0]["normalized"] = 0; }, "accessors[0].normalized must be true or false, got 0"},
+      {[](json& d) { d["accessors"][0]["byteOffset"] = -4; }, "accessors[0].byteOffset must be an integer >= 0, got -4"},
+      {[](json& d) { d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = nullptr; },
+       "meshes[0].primitives[0].attributes.NORMAL must be an integer >= 0, got null"},
+      {[](json& d) { d["nodes"][1]["translation"][2] = "4"; },
+       "nodes[1].translation[2] must be a number, got the string \"4\""},
+      {[](json& d) { d["nodes"][2]["extensions"] = json::array(); }, "nodes[2].extensions must be an object, got an array"},
+      {[](json& d) { d["cameras"][0]["perspective"]["yfov"] = "wide"; },
+       "cameras[0].perspective.yfov must be a number, got the string \"wide\""},
+      {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = {1366}; },
+       "extensions.KHR_lights_punctual.lights[1].intensity must be a number, got an array"},
+      {[](json& d) { d["scenes"] = {{{"nodes", "all"}}}; }, "scenes[0].nodes must be an array, got the string \"all\""},
+  };
+  int which = 0;
+  for (const auto& [edit, problem] : cases) {
+    SCOPED_TRACE(problem);
+    expectLoadError(writeLitTriangle("gltf_mistyped_" + std::to_string(which++), edit), problem);
+  }
+  // Integral numbers written as 3.0 are integers (JSON Schema), as tinygltf reads them.
+  const Scene scene = loadGltf(writeLitTriangle("gltf_integral_float", [](json& d) { d["scene"] = 0.0; }));
+  EXPECT_EQ(triangleCount(scene), 1u);
+}
+
+// The same check on the JSON chunk of a binary glTF.
+TEST(GltfErrors, MistypedPropertiesInABinaryGltf) {
+  const fs::path folder = test::temporaryFolder("gltf_mistyped_glb");
+  const float positions[9] = {-1, 0, 0, 1, 0, 0, 0, 1, 0};
+  auto writeGlb = [&](const fs::path& path, const json& document) {
+    std::string text = document.dump();
+    text.resize((text.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned; JSON pads with spaces
+    const std::string binary(reinterpret_cast<const char*>(positions), sizeof positions);
+    std::string out = "glTF";
+    auto append32 = [&](std::size_t value) {
+      for (int i = 0; i < 4; ++i) out += static_cast<char>((value >> (8 * i)) & 0xFFu);
+    };
+    append32(2);
+    append32(12 + 8 + text.size() + 8 + binary.size());
+    append32(text.size());
+    append32(0x4E4F534Au);  // "JSON"
+    out += text;
+    append32(binary.size());
+    append32(0x004E4942u);  // "BIN"
+    out += binary;
+    std::ofstream(path, std::ios::binary) << out;
+  };
+  json document = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", 36}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+                      {"min", {-1, 0, 0}}, {"max", {1, 1, 0}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+  };
+  writeGlb(folder / "good.glb", document);
+  EXPECT_EQ(triangleCount(loadGltf(folder / "good.glb")), 1u);
+  document["materials"] = {{{"doubleSided", "yes"}}};
+  writeGlb(folder / "bad.glb", document);
+  expectLoadError(folder / "bad.glb", "materials[0].doubleSided must be true or false, got the string \"yes\"");
+}
+
 // ---- Glint parameters from extras -------------------------------------------------------------
 
 TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {

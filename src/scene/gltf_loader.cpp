@@ -20,6 +20,7 @@
 
 #include "glint/error.h"
 #include "scene/geometry.h"
+#include "scene/gltf_field_types.h"
 
 namespace glint::scene {
 
@@ -846,6 +847,7 @@ Scene loadGltf(const fs::path& path) {
     std::error_code ignored;
     if (!fs::exists(path, ignored)) throw error("no such file");
     if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
+    if (const std::optional<nlohmann::json> document = readGltfJson(path)) checkGltfFieldTypes(*document);
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
     tinygltf::Model model;

@@ -1,0 +1,209 @@
+#include "scene/gltf_field_types.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
+
+#include "glint/error.h"
+
+namespace glint::scene {
+
+namespace {
+
+enum class JsonType { Boolean, Number, Index, String };
+
+// A property glint reads, as a path of member names from the document's root: "name[]" is an
+// array of which every element goes on along the path, "*" every member of an object.
+struct FieldType {
+  std::string_view path;
+  JsonType type;
+};
+
+// In the document's order, so the first mistyped property in the file is the one reported.
+// glTF 2.0 schema types; indices, counts, offsets and enumerations are integers >= 0.
+constexpr std::array kFieldTypes = {
+    FieldType{"extensionsRequired[]", JsonType::String},
+    FieldType{"extensions.KHR_lights_punctual.lights[].name", JsonType::String},
+    FieldType{"extensions.KHR_lights_punctual.lights[].type", JsonType::String},
+    FieldType{"extensions.KHR_lights_punctual.lights[].color[]", JsonType::Number},
+    FieldType{"extensions.KHR_lights_punctual.lights[].intensity", JsonType::Number},
+    FieldType{"extensions.KHR_lights_punctual.lights[].spot.innerConeAngle", JsonType::Number},
+    FieldType{"extensions.KHR_lights_punctual.lights[].spot.outerConeAngle", JsonType::Number},
+    FieldType{"scene", JsonType::Index},
+    FieldType{"scenes[].nodes[]", JsonType::Index},
+    FieldType{"nodes[].name", JsonType::String},
+    FieldType{"nodes[].children[]", JsonType::Index},
+    FieldType{"nodes[].mesh", JsonType::Index},
+    FieldType{"nodes[].camera", JsonType::Index},
+    FieldType{"nodes[].matrix[]", JsonType::Number},
+    FieldType{"nodes[].translation[]", JsonType::Number},
+    FieldType{"nodes[].rotation[]", JsonType::Number},
+    FieldType{"nodes[].scale[]", JsonType::Number},
+    FieldType{"nodes[].extensions.KHR_lights_punctual.light", JsonType::Index},
+    FieldType{"cameras[].name", JsonType::String},
+    FieldType{"cameras[].type", JsonType::String},
+    FieldType{"cameras[].perspective.yfov", JsonType::Number},
+    FieldType{"meshes[].name", JsonType::String},
+    FieldType{"meshes[].primitives[].attributes.*", JsonType::Index},
+    FieldType{"meshes[].primitives[].indices", JsonType::Index},
+    FieldType{"meshes[].primitives[].material", JsonType::Index},
+    FieldType{"meshes[].primitives[].mode", JsonType::Index},
+    FieldType{"materials[].name", JsonType::String},
+    FieldType{"materials[].pbrMetallicRoughness.baseColorFactor[]", JsonType::Number},
+    FieldType{"materials[].pbrMetallicRoughness.metallicFactor", JsonType::Number},
+    FieldType{"materials[].pbrMetallicRoughness.roughnessFactor", JsonType::Number},
+    FieldType{"materials[].pbrMetallicRoughness.baseColorTexture.index", JsonType::Index},
+    FieldType{"materials[].pbrMetallicRoughness.metallicRoughnessTexture.index", JsonType::Index},
+    FieldType{"materials[].normalTexture.index", JsonType::Index},
+    FieldType{"materials[].normalTexture.scale", JsonType::Number},
+    FieldType{"materials[].occlusionTexture.index", JsonType::Index},
+    FieldType{"materials[].emissiveTexture.index", JsonType::Index},
+    FieldType{"materials[].emissiveFactor[]", JsonType::Number},
+    FieldType{"materials[].doubleSided", JsonType::Boolean},
+    FieldType{"textures[].source", JsonType::Index},
+    FieldType{"images[].uri", JsonType::String},
+    FieldType{"images[].mimeType", JsonType::String},
+    FieldType{"images[].bufferView", JsonType::Index},
+    FieldType{"accessors[].bufferView", JsonType::Index},
+    FieldType{"accessors[].byteOffset", JsonType::Index},
+    FieldType{"accessors[].componentType", JsonType::Index},
+    FieldType{"accessors[].normalized", JsonType::Boolean},
+    FieldType{"accessors[].count", JsonType::Index},
+    FieldType{"accessors[].type", JsonType::String},
+    FieldType{"accessors[].sparse.count", JsonType::Index},
+    FieldType{"accessors[].sparse.indices.bufferView", JsonType::Index},
+    FieldType{"accessors[].sparse.indices.byteOffset", JsonType::Index},
+    FieldType{"accessors[].sparse.indices.componentType", JsonType::Index},
+    FieldType{"accessors[].sparse.values.bufferView", JsonType::Index},
+    FieldType{"accessors[].sparse.values.byteOffset", JsonType::Index},
+    FieldType{"bufferViews[].buffer", JsonType::Index},
+    FieldType{"bufferViews[].byteOffset", JsonType::Index},
+    FieldType{"bufferViews[].byteLength", JsonType::Index},
+    FieldType{"bufferViews[].byteStride", JsonType::Index},
+    FieldType{"buffers[].uri", JsonType::String},
+    FieldType{"buffers[].byteLength", JsonType::Index},
+};
+
+// How a value is described after "got": the value itself where it is short.
+std::string described(const nlohmann::json& value) {
+  if (value.is_number() || value.is_boolean() || value.is_null()) return value.dump();
+  if (value.is_string()) {
+    constexpr std::size_t kLongest = 40;
+    return value.get_ref<const std::string&>().size() <= kLongest ? "the string " + value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+                                                               : "a string";
+  }
+  if (value.is_array()) return "an array";
+  return "an object";
+}
+
+bool isIndex(const nlohmann::json& value) {
+  if (value.is_number_unsigned()) return true;
+  if (value.is_number_integer()) return value.get<std::int64_t>() >= 0;
+  // 3.0 is the integer 3 in JSON Schema (draft 6 on); tinygltf reads it as 3 too.
+  if (value.is_number_float()) {
+    const double number = value.get<double>();
+    return number >= 0.0 && number == std::floor(number);
+  }
+  return false;
+}
+
+void expectType(const nlohmann::json& value, JsonType type, const std::string& location) {
+  switch (type) {
+    case JsonType::Boolean:
+      if (!value.is_boolean()) throw Error(location + " must be true or false, got " + described(value));
+      return;
+    case JsonType::Number:
+      if (!value.is_number()) throw Error(location + " must be a number, got " + described(value));
+      return;
+    case JsonType::Index:
+      if (!isIndex(value)) throw Error(location + " must be an integer >= 0, got " + described(value));
+      return;
+    case JsonType::String:
+      if (!value.is_string()) throw Error(location + " must be a string, got " + described(value));
+      return;
+  }
+}
+
+void expectObject(const nlohmann::json& value, const std::string& location) {
+  if (!value.is_object()) throw Error(location + " must be an object, got " + described(value));
+}
+
+std::string memberLocation(const std::string& parent, const std::string& name) {
+  return parent.empty() ? name : parent + "." + name;
+}
+
+// Checks `path` (the rest of a FieldType's path) inside `object`, at `location`.
+void checkPath(const nlohmann::json& object, std::string_view path, JsonType type, const std::string& location) {
+  const std::size_t dot = path.find('.');
+  const std::string_view segment = path.substr(0, dot);
+  const std::string_view rest = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
+  // The next step: the value's type at the path's end, an object on the way.
+  auto visit = [&](const nlohmann::json& value, const std::string& at) {
+    if (rest.empty()) {
+      expectType(value, type, at);
+    } else {
+      expectObject(value, at);
+      checkPath(value, rest, type, at);
+    }
+  };
+  if (segment == "*") {
+    for (const auto& member : object.items()) visit(member.value(), memberLocation(location, member.key()));
+    return;
+  }
+  const bool array = segment.ends_with("[]");
+  const std::string name(array ? segment.substr(0, segment.size() - 2) : segment);
+  const auto found = object.find(name);
+  if (found == object.end()) return;
+  const std::string at = memberLocation(location, name);
+  if (!array) {
+    visit(*found, at);
+    return;
+  }
+  if (!found->is_array()) throw Error(at + " must be an array, got " + described(*found));
+  for (std::size_t i = 0; i < found->size(); ++i) visit((*found)[i], at + "[" + std::to_string(i) + "]");
+}
+
+std::uint32_t littleEndian32(const unsigned char* bytes) {
+  return static_cast<std::uint32_t>(bytes[0]) | static_cast<std::uint32_t>(bytes[1]) << 8 |
+         static_cast<std::uint32_t>(bytes[2]) << 16 | static_cast<std::uint32_t>(bytes[3]) << 24;
+}
+
+}  // namespace
+
+std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return std::nullopt;
+  std::string text;
+  // A .glb: a 12-byte header ("glTF", version, length), then the JSON chunk's length and type
+  // ("JSON") and the JSON itself (glTF 2.0, "GLB File Format Specification").
+  std::array<unsigned char, 20> header{};
+  file.read(reinterpret_cast<char*>(header.data()), header.size());
+  const std::size_t headerBytes = static_cast<std::size_t>(file.gcount());
+  if (headerBytes >= 4 && std::string_view(reinterpret_cast<const char*>(header.data()), 4) == "glTF") {
+    if (headerBytes < header.size() || littleEndian32(header.data() + 16) != 0x4E4F534Au) return std::nullopt;
+    const std::uint32_t length = littleEndian32(header.data() + 12);
+    std::error_code ignored;
+    const std::uintmax_t fileSize = std::filesystem::file_size(path, ignored);
+    if (ignored || length > fileSize) return std::nullopt;  // a truncated file: tinygltf says so
+    text.resize(length);
+    file.read(text.data(), static_cast<std::streamsize>(length));
+    if (static_cast<std::uint32_t>(file.gcount()) != length) return std::nullopt;
+  } else {
+    text.assign(reinterpret_cast<const char*>(header.data()), headerBytes);
+    text.append(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  }
+  nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded()) return std::nullopt;
+  return document;
+}
+
+void checkGltfFieldTypes(const nlohmann::json& document) {
+  if (!document.is_object()) throw Error("the JSON document must be an object, got " + described(document));
+  for (const FieldType& field : kFieldTypes) checkPath(document, field.path, field.type, "");
+}
+
+}  // namespace glint::scene

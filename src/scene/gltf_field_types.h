@@ -1,0 +1,25 @@
+// The JSON types of the glTF properties glint reads, checked on the file's own JSON before tinygltf
+// parses it: tinygltf 2.7 (Debian's) takes a mistyped optional property for absent and keeps its
+// default, so "doubleSided": "yes" would load as single-sided and "byteOffset": "12" as 0.
+#ifndef GLINT_SCENE_GLTF_FIELD_TYPES_H
+#define GLINT_SCENE_GLTF_FIELD_TYPES_H
+
+#include <filesystem>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+namespace glint::scene {
+
+// The JSON of a .gltf file or of a .glb's JSON chunk; nullopt when the file cannot be read or its
+// JSON does not parse (tinygltf then reports the problem in its own words).
+std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path);
+
+// Throws glint::Error "PATH must be TYPE, got TYPE" (e.g. "materials[2].doubleSided must be true
+// or false, got a string") for the first property glint reads whose JSON type is not the one the
+// glTF 2.0 schema (and KHR_lights_punctual's) gives it. Absent properties are fine.
+void checkGltfFieldTypes(const nlohmann::json& document);
+
+}  // namespace glint::scene
+
+#endif
