@@ -117,8 +117,8 @@ void runBench(const BenchOptions& options) {
     std::cout << report.dump() << std::endl;
     return;
   }
-  std::printf("%dx%d on %s, %s timer, median of %d frames after %d warm-up (min..max)\n", width, height,
-              info.renderer.c_str(), timer.method(), options.frames, options.warmup);
+  std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max)\n", width, height,
+              info.renderer.c_str(), timer.method(), options.frames, options.frames == 1 ? "" : "s", options.warmup);
   std::printf("%-16s", "scene");
   for (gl::BrdfModel model : models) std::printf("  %-26s", gl::toString(model));
   for (gl::BrdfModel model : models) {
