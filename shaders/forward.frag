@@ -3,9 +3,10 @@
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
-// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1). The light
-// count is compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF
-// over one walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes).
+// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), and so do
+// glTF alphaMode MASK materials (ALPHA_MASK = 1). The light count is compiled in too (LIGHT_COUNT,
+// at most 8): glint programs evaluate every light's P-SDF over one walk of the footprint's cells
+// (glintP22Set, GLINT_SLOPE_COUNT slopes).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -42,6 +43,7 @@ uniform float uMetallic;
 uniform float uRoughness;
 uniform float uNormalScale;
 uniform vec3 uEmissive;
+uniform float uAlphaCutoff;  // alphaMode MASK (ALPHA_MASK = 1): the alpha below which nothing is drawn
 
 uniform bool uGlintLayer;   // the material has a glint layer (its roughness is the layer's)
 uniform vec2 uGlintAlpha;
@@ -185,5 +187,12 @@ void main() {
   vec3 ambient = diffuse * irradiance(n) +
                  fresnelSchlick(f0, wo.z) * environmentRadiance(reflected, max(specularAlpha.x, specularAlpha.y));
   radiance += ambient * occlusion;
+#if ALPHA_MASK
+  // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth
+  // test only where it ties with the surface behind; it is dropped last, after every derivative.
+  if (baseColour.a < uAlphaCutoff) {
+    discard;
+  }
+#endif
   outRadiance = vec4(radiance, 1.0f);
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include <functional>
+
 #include <gtest/gtest.h>
 
 #include "gl/renderer.h"
@@ -236,7 +238,9 @@ struct Sheet {
   bool doubleSided;
 };
 
-ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ) {
+// `edit` changes the scene before it is drawn.
+ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
+                       const std::function<void(scene::Scene&)>& edit = nullptr) {
   useGlContext();
   scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");  // for its lights and sky
   scene.meshes.clear();
@@ -251,6 +255,7 @@ ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ) {
     scene.meshes.push_back(scene::makeQuad("sheet", static_cast<int>(scene.materials.size()) - 1,
                                            glm::vec3(0.0f, 0.0f, sheet.z), {0, 1, 0}, {1, 0, 0}));
   }
+  if (edit) edit(scene);
   gl::Renderer renderer(scene, defaultDictionary());
   gl::FrameSettings frame;
   frame.width = 64;
@@ -296,6 +301,50 @@ TEST(RenderGl, TheNearestSurfaceShowsAndAtEqualDepthTheFirstDrawn) {
   EXPECT_EQ(pixelsShowing(redFirst, 1), 0);
   EXPECT_EQ(pixelsShowing(greenFirst, 1), pixelsShowing(redFirst, 0));
   EXPECT_EQ(pixelsShowing(greenFirst, 0), 0);
+}
+
+// glTF alphaMode MASK: the near (red) sheet's texture has alpha 0 on the half of the sheet below
+// y = 0 and 1 above, so masked, the far (green) sheet shows through the lower half; opaque (the
+// default) or BLEND (drawn opaque), the red covers both halves. A base colour alpha of 0.4 under
+// the cutoff 0.5 cuts out the whole sheet, with or without a texture.
+TEST(RenderGl, AlphaMaskCutsOutWhereAlphaIsBelowTheCutoff) {
+  const glm::vec3 red(100.0f, 0.0f, 0.0f);
+  const glm::vec3 green(0.0f, 100.0f, 0.0f);
+  auto render = [&](scene::Material::AlphaMode mode, float alpha, bool textured) {
+    return renderSheets({{0.5f, red, false}, {0.0f, green, false}}, 3.0f, [&](scene::Scene& scene) {
+      scene::Material& near = scene.materials[0];
+      near.alphaMode = mode;
+      near.baseColour.a = alpha;
+      if (!textured) return;
+      // u runs along +y on the sheets (makeQuad's halfU): u < 0.5, below y = 0, is cut out.
+      scene.textures.push_back({"mask", 4, 1, {255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 255}, true});
+      near.baseColourTexture = static_cast<int>(scene.textures.size()) - 1;
+    });
+  };
+  const ImageRgbF opaque = render(scene::Material::AlphaMode::Opaque, 1.0f, true);
+  const int sheet = pixelsShowing(opaque, 0);
+  EXPECT_GT(sheet, 1000);
+  EXPECT_EQ(pixelsShowing(opaque, 1), 0);
+  EXPECT_TRUE(render(scene::Material::AlphaMode::Blend, 1.0f, true).pixels == opaque.pixels);
+
+  const ImageRgbF masked = render(scene::Material::AlphaMode::Mask, 1.0f, true);
+  EXPECT_NEAR(pixelsShowing(masked, 0), sheet / 2, sheet / 20);
+  EXPECT_GT(pixelsShowing(masked, 1), sheet / 4);  // the far sheet, smaller in perspective
+  // Which half: the masked image's red rows are the opaque image's upper rows.
+  int redAboveMiddle = 0;
+  for (int y = 0; y < masked.height; ++y) {
+    for (int x = 0; x < masked.width; ++x) {
+      const bool upper = y < masked.height / 2;  // rows from the top
+      if (masked.pixels[static_cast<std::size_t>(y * masked.width + x)].r > 50.0f && upper) ++redAboveMiddle;
+    }
+  }
+  EXPECT_EQ(redAboveMiddle, pixelsShowing(masked, 0));
+
+  for (const bool textured : {false, true}) {
+    const ImageRgbF cut = render(scene::Material::AlphaMode::Mask, 0.4f, textured);
+    EXPECT_EQ(pixelsShowing(cut, 0), 0) << textured;
+    EXPECT_GT(pixelsShowing(cut, 1), 1000) << textured;
+  }
 }
 
 // Where no mesh is drawn the rasteriser shows the environment, as the path tracer's camera rays

@@ -341,6 +341,24 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "camera 0 'shot': yfov 4 is not in (0, pi) radians");
 }
 
+TEST(GltfLoader, ReadsAlphaModeAndCutoff) {
+  const Scene scene = loadGltf(writeLitTriangle("gltf_alpha_mode", [](json& d) {
+    d["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}}, {{"alphaMode", "BLEND"}}, json::object()};
+  }));
+  ASSERT_EQ(scene.materials.size(), 4u);  // and the default material of the unassigned primitive
+  EXPECT_EQ(scene.materials[0].alphaMode, Material::AlphaMode::Mask);
+  EXPECT_EQ(scene.materials[0].alphaCutoff, 0.25f);
+  EXPECT_EQ(scene.materials[1].alphaMode, Material::AlphaMode::Blend);
+  EXPECT_EQ(scene.materials[2].alphaMode, Material::AlphaMode::Opaque);
+  EXPECT_EQ(scene.materials[2].alphaCutoff, 0.5f);  // glTF's default
+  expectLoadError(writeLitTriangle("gltf_alpha_mode_unknown", [](json& d) { d["materials"] = {{{"alphaMode", "CLEAR"}}}; }),
+                  "material 0: alphaMode must be OPAQUE, MASK or BLEND, got 'CLEAR'");
+  expectLoadError(writeLitTriangle("gltf_alpha_cutoff", [](json& d) {
+                    d["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", -0.5}}};
+                  }),
+                  "material 0: alphaCutoff must be a finite number >= 0, got -0.5");
+}
+
 // tinygltf takes a mistyped optional property for absent and keeps its default (doubleSided "yes"
 // would load as false, byteOffset "12" as 0): the loader names the property and its type instead.
 TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {

@@ -138,6 +138,49 @@ TEST(Trace, CameraRaysHitWhatTheRasteriserDrawsAtThePixelCentre) {
 // approximations of a derivative. They are computed here from gl::viewProjection alone (unproject,
 // intersect the plane, evaluate the uv map) and must equal the ray differentials' duv/dx, duv/dy.
 // Sign: duv/dy is towards the next image row (down); dFdy is towards window y (up), its negative.
+// glTF alphaMode MASK in the tracer: rays pass through the near sheet where its base colour's alpha
+// is below the cutoff, both to find the nearest hit and to test for shadows. The near sheet's
+// texture has alpha 0 for u < 0.5 (below y = 0: makeQuad's u runs along halfU = +y) and 1 above,
+// as in RenderGl.AlphaMaskCutsOutWhereAlphaIsBelowTheCutoff.
+TEST(Trace, AlphaMaskLetsRaysThroughWhereAlphaIsBelowTheCutoff) {
+  auto sheets = [](scene::Material::AlphaMode mode, float alpha, bool textured) {
+    scene::Scene scene;
+    scene.materials.resize(2);
+    scene.materials[0].alphaMode = mode;
+    scene.materials[0].baseColour.a = alpha;
+    if (textured) {
+      scene.textures.push_back({"mask", 4, 1, {255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 255}, true});
+      scene.materials[0].baseColourTexture = 0;
+    }
+    scene.meshes.push_back(scene::makeQuad("near", 0, glm::vec3(0.0f), {0, 1, 0}, {1, 0, 0}));
+    scene.meshes.push_back(scene::makeQuad("far", 1, glm::vec3(0.0f, 0.0f, -0.5f), {0, 1, 0}, {1, 0, 0}));
+    return scene;
+  };
+  const trace::Ray below{glm::vec3(0.0f, -0.5f, 3.0f), glm::vec3(0.0f, 0.0f, -1.0f)};
+  const trace::Ray above{glm::vec3(0.0f, 0.5f, 3.0f), glm::vec3(0.0f, 0.0f, -1.0f)};
+  auto meshHit = [](const trace::SceneGeometry& geometry, const trace::Ray& ray) {
+    const auto hit = geometry.intersect(ray);
+    return hit ? static_cast<int>(hit->mesh) : -1;
+  };
+  const trace::SceneGeometry opaque(sheets(scene::Material::AlphaMode::Opaque, 1.0f, true));
+  EXPECT_EQ(meshHit(opaque, below), 0);
+  EXPECT_EQ(meshHit(opaque, above), 0);
+  EXPECT_TRUE(opaque.occluded(below, 3.2f));
+
+  const trace::SceneGeometry masked(sheets(scene::Material::AlphaMode::Mask, 1.0f, true));
+  EXPECT_EQ(meshHit(masked, below), 1);
+  EXPECT_NEAR(masked.intersect(below)->t, 3.5f, 1e-5f);
+  EXPECT_EQ(meshHit(masked, above), 0);
+  EXPECT_FALSE(masked.occluded(below, 3.2f));  // up to a point between the sheets
+  EXPECT_TRUE(masked.occluded(above, 3.2f));
+
+  for (const bool textured : {false, true}) {
+    const trace::SceneGeometry cut(sheets(scene::Material::AlphaMode::Mask, 0.4f, textured));
+    EXPECT_EQ(meshHit(cut, above), 1) << textured;
+    EXPECT_FALSE(cut.occluded(above, 3.2f)) << textured;
+  }
+}
+
 TEST(Trace, RayDifferentialsGiveTheRasterisersScreenDerivativesOnAPlane) {
   const scene::Scene scene = floorScene();
   const scene::Camera& camera = scene.cameras.at("default");

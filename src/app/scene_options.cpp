@@ -53,6 +53,12 @@ scene::Scene SceneOptions::loadScene() const {
       throw Error("material '" + m.name + "': " + e.what());
     }
   }
+  for (const scene::Material& m : s.materials) {
+    if (m.alphaMode == scene::Material::AlphaMode::Blend) {
+      std::fprintf(stderr, "glint: warning: material '%s' has alphaMode BLEND; glint does not blend and draws it opaque\n",
+                   m.name.c_str());
+    }
+  }
   findCamera(s);
   return s;
 }

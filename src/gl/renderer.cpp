@@ -99,6 +99,7 @@ struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
+  bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -109,13 +110,23 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
                        {{"SPECULAR_MODEL", specular},
                         {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},
-                        {"LIGHT_COUNT", std::to_string(variant.lightCount)}});
+                        {"LIGHT_COUNT", std::to_string(variant.lightCount)},
+                        {"ALPHA_MASK", variant.alphaMask ? "1" : "0"}});
 }
+
+// The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
+// out. The plain one has no discard, so the rasteriser can test and write depth before shading.
+ShaderProgram depthPrepassProgram(bool alphaMask) {
+  return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "depth_prepass.frag"}},
+                       {{"ALPHA_MASK", alphaMask ? "1" : "0"}});
+}
+
+bool isMasked(const scene::Material& material) { return material.alphaMode == scene::Material::AlphaMode::Mask; }
 
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<ShaderProgram> background;        // likewise
-  std::unique_ptr<ShaderProgram> depthPrepass;      // likewise
+  std::array<std::unique_ptr<ShaderProgram>, 2> depthPrepass;  // likewise; [1]: alphaMode MASK
   GLuint emptyVertexArray = 0;                      // the background's triangle has no attributes
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
@@ -265,12 +276,6 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   // the forward shader only for the fragment that stays visible in each pixel. Without it every
   // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
   // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "Sixth round").
-  if (!g.depthPrepass) {
-    g.depthPrepass = std::make_unique<ShaderProgram>(std::vector<std::pair<GLenum, std::string>>{
-        {GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "depth_prepass.frag"}});
-  }
-  glUseProgram(g.depthPrepass->id());
-  glUniformMatrix4fv(g.depthPrepass->uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // glTF: back faces of single-sided materials are culled; double-sided ones (curtains) are drawn
   // from both sides.
@@ -282,6 +287,16 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     }
   };
   for (const GpuMesh& mesh : g.meshes) {
+    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    std::unique_ptr<ShaderProgram>& program = g.depthPrepass[isMasked(m) ? 1 : 0];
+    if (!program) program = std::make_unique<ShaderProgram>(depthPrepassProgram(isMasked(m)));
+    glUseProgram(program->id());
+    glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
+    if (isMasked(m)) {
+      glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
+      glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
+      glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+    }
     setCulling(mesh);
     glBindVertexArray(mesh.vertexArray);
     glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
@@ -298,16 +313,17 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
 
   // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass.
-  std::array<std::vector<const GpuMesh*>, 2> meshesByColour;
+  // Group g holds the meshes with coloured cells (g & 1) and alphaMode MASK (g & 2).
+  std::array<std::vector<const GpuMesh*>, 4> meshesByVariant;
   for (const GpuMesh& mesh : g.meshes) {
-    const scene::GlintLayer& glint = materials_[static_cast<std::size_t>(mesh.material)].glint;
-    const bool coloured = settings.brdf == BrdfModel::Glint && glint.enabled && glint.randomColours;
-    meshesByColour[coloured ? 1 : 0].push_back(&mesh);
+    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    const bool coloured = settings.brdf == BrdfModel::Glint && m.glint.enabled && m.glint.randomColours;
+    meshesByVariant[(coloured ? 1 : 0) + (isMasked(m) ? 2 : 0)].push_back(&mesh);
   }
-  for (const bool coloured : {false, true}) {
-    const std::vector<const GpuMesh*>& meshes = meshesByColour[coloured ? 1 : 0];
+  for (std::size_t group = 0; group < meshesByVariant.size(); ++group) {
+    const std::vector<const GpuMesh*>& meshes = meshesByVariant[group];
     if (meshes.empty()) continue;
-    const ForwardVariant variant{settings.brdf, coloured, lightCount};
+    const ForwardVariant variant{settings.brdf, (group & 1) != 0, lightCount, (group & 2) != 0};
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
@@ -332,6 +348,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glUniform1f(p.uniform("uRoughness"), m.roughness);
       glUniform1f(p.uniform("uNormalScale"), m.normalScale);
       glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+      if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
       glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
       glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
       glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);

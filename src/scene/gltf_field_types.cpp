@@ -64,6 +64,8 @@ constexpr std::array kFieldTypes = {
     FieldType{"materials[].emissiveTexture.index", JsonType::Index},
     FieldType{"materials[].emissiveFactor[]", JsonType::Number},
     FieldType{"materials[].doubleSided", JsonType::Boolean},
+    FieldType{"materials[].alphaMode", JsonType::String},
+    FieldType{"materials[].alphaCutoff", JsonType::Number},
     FieldType{"textures[].source", JsonType::Index},
     FieldType{"images[].uri", JsonType::String},
     FieldType{"images[].mimeType", JsonType::String},

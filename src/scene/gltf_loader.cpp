@@ -756,6 +756,17 @@ class GltfReader {
     }
     m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
     m.doubleSided = source.doubleSided;
+    if (source.alphaMode == "MASK") {
+      m.alphaMode = Material::AlphaMode::Mask;
+    } else if (source.alphaMode == "BLEND") {
+      m.alphaMode = Material::AlphaMode::Blend;
+    } else if (source.alphaMode != "OPAQUE") {
+      throw error("alphaMode must be OPAQUE, MASK or BLEND, got '", source.alphaMode, "'");
+    }
+    if (!(std::isfinite(source.alphaCutoff) && source.alphaCutoff >= 0.0)) {
+      throw error("alphaCutoff must be a finite number >= 0, got ", source.alphaCutoff);
+    }
+    m.alphaCutoff = static_cast<float>(source.alphaCutoff);
     // Extras are free-form: only an object with a "glint" member concerns glint. They are read from
     // the original JSON: tinygltf's own Value drops empty objects and truncates integers to 32 bits.
     if (!source.extras_json_string.empty()) {

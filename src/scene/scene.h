@@ -77,6 +77,12 @@ struct Material {
   // front faces); when true both sides are drawn, a back face shaded with its normal turned to the
   // camera. The path tracer sees both sides of every triangle either way.
   bool doubleSided = false;
+  // glTF's alphaMode: OPAQUE ignores alpha; MASK drops the surface where the base colour's alpha
+  // (factor times texture) is below alphaCutoff, in both renderers; BLEND is drawn opaque (glint
+  // has no alpha blending; the command line warns).
+  enum class AlphaMode { Opaque, Mask, Blend };
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
   GlintLayer glint;
 };
 

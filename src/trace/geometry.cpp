@@ -8,6 +8,7 @@
 #include <embree3/rtcore.h>
 
 #include "glint/error.h"
+#include "trace/texture.h"
 
 namespace glint::trace {
 
@@ -33,6 +34,40 @@ void check(RTCDevice device, const char* what) {
 
 }  // namespace
 
+// glTF alphaMode MASK: a hit counts where the base colour's alpha, factor times texture, is at
+// least the cutoff. The texture's alpha is filtered bilinearly at its finest level: a filter has
+// no ray footprint, where the rasteriser's pre-pass samples the mip level of its pixel.
+struct SceneGeometry::AlphaMask {
+  std::vector<glm::vec2> uvs;  // three per triangle (copied: the geometry may outlive the scene)
+  float factor = 1.0f;
+  float cutoff = 0.5f;
+  int width = 0;  // 0: no texture
+  int height = 0;
+  std::vector<float> alpha;  // rows from the top, as scene::Texture
+
+  bool keeps(unsigned triangle, float u, float v) const {
+    float a = factor;
+    if (width > 0) {
+      const glm::vec2* corner = &uvs[3 * static_cast<std::size_t>(triangle)];
+      const glm::vec2 uv = (1.0f - u - v) * corner[0] + u * corner[1] + v * corner[2];
+      a *= bilinearRepeat(alpha, width, height, uv);
+    }
+    return a >= cutoff;
+  }
+
+  // Embree's intersection and occlusion filter: clearing valid[i] makes the ray go on.
+  static void filter(const RTCFilterFunctionNArguments* args) {
+    const auto* mask = static_cast<const AlphaMask*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] == 0) continue;
+      if (!mask->keeps(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                       RTCHitN_v(args->hit, args->N, i))) {
+        args->valid[i] = 0;
+      }
+    }
+  }
+};
+
 SceneGeometry::SceneGeometry(const scene::Scene& scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error(std::string("Embree: cannot create a device: ") + errorName(rtcGetDeviceError(nullptr)));
@@ -56,6 +91,28 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       }
       std::copy(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3),
                 indices);
+      const scene::Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
+      if (material.alphaMode == scene::Material::AlphaMode::Mask) {
+        auto mask = std::make_unique<AlphaMask>();
+        mask->uvs.reserve(mesh.indices.size() / 3 * 3);
+        for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
+        mask->factor = material.baseColour.a;
+        mask->cutoff = material.alphaCutoff;
+        if (material.baseColourTexture >= 0) {
+          const scene::Texture& texture = scene.textures[static_cast<std::size_t>(material.baseColourTexture)];
+          if (texture.rgba.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4) {
+            throw Error("texture '" + texture.name + "': size and data do not agree");
+          }
+          mask->width = texture.width;
+          mask->height = texture.height;
+          mask->alpha.resize(static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height));
+          for (std::size_t i = 0; i < mask->alpha.size(); ++i) mask->alpha[i] = texture.rgba[4 * i + 3] / 255.0f;
+        }
+        rtcSetGeometryUserData(geometry, mask.get());
+        rtcSetGeometryIntersectFilterFunction(geometry, &AlphaMask::filter);
+        rtcSetGeometryOccludedFilterFunction(geometry, &AlphaMask::filter);
+        masks_.push_back(std::move(mask));
+      }
       rtcCommitGeometry(geometry);
       rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));
       rtcReleaseGeometry(geometry);

@@ -1,11 +1,14 @@
 // The scene's triangles in Embree 3 (one triangle geometry per mesh, geometry id = mesh index, so
-// a hit names its mesh and triangle), the surface at a hit interpolated from the mesh's vertices,
+// a hit names its mesh and triangle; meshes of glTF alphaMode MASK materials let rays through
+// where their base colour's alpha is below the cutoff), the surface at a hit interpolated from the mesh's vertices,
 // and the uv footprint of a ray differential there (pbrt-v3, section 10.1.1).
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -38,8 +41,10 @@ class SceneGeometry {
   bool occluded(const Ray& ray, float tMax) const;
 
  private:
+  struct AlphaMask;  // glTF alphaMode MASK: what an Embree filter needs to drop a hit
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
+  std::vector<std::unique_ptr<AlphaMask>> masks_;  // the filters' user data, one per masked mesh
 };
 
 // The surface at a hit: vertex attributes interpolated with the hit's barycentrics, as the

@@ -47,24 +47,7 @@ MipTexture::MipTexture(const scene::Texture& texture) {
 
 glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv) const {
   const Level& level = levels_[static_cast<std::size_t>(levelIndex)];
-  // Texel centres at (i + 0.5) / size; uv (0, 0) is the first stored row (glTF: the top).
-  const float x = uv.x * static_cast<float>(level.width) - 0.5f;
-  const float y = uv.y * static_cast<float>(level.height) - 0.5f;
-  if (!std::isfinite(x) || !std::isfinite(y)) return level.texels.front();
-  const float fx = std::floor(x);
-  const float fy = std::floor(y);
-  const float tx = x - fx;
-  const float ty = y - fy;
-  auto wrap = [](float i, int size) {
-    const float m = std::fmod(i, static_cast<float>(size));
-    return static_cast<int>(m < 0.0f ? m + static_cast<float>(size) : m) % size;
-  };
-  const int x0 = wrap(fx, level.width);
-  const int x1 = (x0 + 1) % level.width;
-  const int y0 = wrap(fy, level.height);
-  const int y1 = (y0 + 1) % level.height;
-  auto at = [&](int xx, int yy) { return level.texels[static_cast<std::size_t>(yy) * level.width + xx]; };
-  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0f - tx) * at(x0, y1) + tx * at(x1, y1));
+  return bilinearRepeat(level.texels, level.width, level.height, uv);
 }
 
 glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {

@@ -5,6 +5,7 @@
 // from its ray differentials where the rasteriser takes it from screen-space derivatives.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -12,6 +13,29 @@
 #include "scene/scene.h"
 
 namespace glint::trace {
+
+// GL_LINEAR on one level: bilinear filtering with repeat wrapping of width x height texels (rows
+// from the top: uv (0, 0) is the first stored row, as glTF's top), texel centres at (i + 0.5) / size.
+template <typename Texel>
+Texel bilinearRepeat(const std::vector<Texel>& texels, int width, int height, glm::vec2 uv) {
+  const float x = uv.x * static_cast<float>(width) - 0.5f;
+  const float y = uv.y * static_cast<float>(height) - 0.5f;
+  if (!std::isfinite(x) || !std::isfinite(y)) return texels.front();
+  const float fx = std::floor(x);
+  const float fy = std::floor(y);
+  const float tx = x - fx;
+  const float ty = y - fy;
+  auto wrap = [](float i, int size) {
+    const float m = std::fmod(i, static_cast<float>(size));
+    return static_cast<int>(m < 0.0f ? m + static_cast<float>(size) : m) % size;
+  };
+  const int x0 = wrap(fx, width);
+  const int x1 = (x0 + 1) % width;
+  const int y0 = wrap(fy, height);
+  const int y1 = (y0 + 1) % height;
+  auto at = [&](int xx, int yy) { return texels[static_cast<std::size_t>(yy) * static_cast<std::size_t>(width) + static_cast<std::size_t>(xx)]; };
+  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0f - tx) * at(x0, y1) + tx * at(x1, y1));
+}
 
 class MipTexture {
  public:
