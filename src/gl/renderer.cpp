@@ -123,6 +123,15 @@ ShaderProgram depthPrepassProgram(bool alphaMask) {
 
 bool isMasked(const scene::Material& material) { return material.alphaMode == scene::Material::AlphaMode::Mask; }
 
+// The program a material is drawn with. A material without a glint layer is Cook-Torrance under
+// every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
+// glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
+ForwardVariant forwardVariant(BrdfModel brdf, const scene::Material& material, int lightCount) {
+  const BrdfModel model = material.glint.enabled ? brdf : BrdfModel::CookTorrance;
+  const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
+  return ForwardVariant{model, coloured, lightCount, isMasked(material)};
+}
+
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<ShaderProgram> background;        // likewise
@@ -313,17 +322,12 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
 
   // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass.
-  // Group g holds the meshes with coloured cells (g & 1) and alphaMode MASK (g & 2).
-  std::array<std::vector<const GpuMesh*>, 4> meshesByVariant;
+  std::map<ForwardVariant, std::vector<const GpuMesh*>> meshesByVariant;
   for (const GpuMesh& mesh : g.meshes) {
-    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const bool coloured = settings.brdf == BrdfModel::Glint && m.glint.enabled && m.glint.randomColours;
-    meshesByVariant[(coloured ? 1 : 0) + (isMasked(m) ? 2 : 0)].push_back(&mesh);
+    meshesByVariant[forwardVariant(settings.brdf, materials_[static_cast<std::size_t>(mesh.material)], lightCount)]
+        .push_back(&mesh);
   }
-  for (std::size_t group = 0; group < meshesByVariant.size(); ++group) {
-    const std::vector<const GpuMesh*>& meshes = meshesByVariant[group];
-    if (meshes.empty()) continue;
-    const ForwardVariant variant{settings.brdf, (group & 1) != 0, lightCount, (group & 2) != 0};
+  for (const auto& [variant, meshes] : meshesByVariant) {
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
