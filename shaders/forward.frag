@@ -45,7 +45,16 @@ uniform float uNormalScale;
 uniform vec3 uEmissive;
 uniform float uAlphaCutoff;  // alphaMode MASK (ALPHA_MASK = 1): the alpha below which nothing is drawn
 
-uniform bool uGlintLayer;   // the material has a glint layer (its roughness is the layer's)
+// Whether the material has a glint layer (its roughness is then the layer's). Glint and Zirr &
+// Kaplanyan programs draw only such materials (src/gl/renderer.cpp, forwardVariant), so for them
+// it is a constant and the Cook-Torrance side of their branches is compiled out: llvmpipe would
+// run it for every pixel.
+#if SPECULAR_MODEL == SPECULAR_COOK_TORRANCE
+uniform bool uGlintLayer;
+#define GLINT_LAYER uGlintLayer
+#else
+#define GLINT_LAYER true
+#endif
 uniform vec2 uGlintAlpha;
 uniform float uGlintLogDensity;
 uniform float uGlintRelativeArea;
@@ -116,7 +125,7 @@ void main() {
 
   vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);
   vec3 diffuse = baseColour.rgb * (1.0f - metallic) / kPi;
-  vec2 specularAlpha = uGlintLayer ? params.alpha : vec2(roughness * roughness);
+  vec2 specularAlpha = GLINT_LAYER ? params.alpha : vec2(roughness * roughness);
 
   // Each light's direction in the shading frame, its squared distance (1 for a directional one)
   // and the fraction of its intensity its cone sends this way (1 but for spots).
@@ -147,7 +156,7 @@ void main() {
     anyGlintLit = anyGlintLit || glintLit[i];
   }
   GlintP22Set glintP22s;
-  if (uGlintLayer && anyGlintLit) {
+  if (GLINT_LAYER && anyGlintLit) {
     glintP22s = glintP22Set(dict, params, glintUv, duvdx, duvdy, glintSlopes);
   }
 #endif
@@ -162,7 +171,7 @@ void main() {
     vec3 fresnel = fresnelSchlick(f0, dot(wo, wh));
     vec3 specular;
 #if SPECULAR_MODEL == SPECULAR_GLINT
-    if (uGlintLayer) {
+    if (GLINT_LAYER) {
       vec4 p22 = glintLit[i] ? glintP22s.p22[i] : vec4(0.0f);
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
@@ -170,7 +179,7 @@ void main() {
       specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
     }
 #elif SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
-    if (uGlintLayer) {
+    if (GLINT_LAYER) {
       // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
       // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
       specular = fresnel * params.relativeArea *
