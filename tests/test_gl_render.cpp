@@ -240,7 +240,8 @@ struct Sheet {
 
 // `edit` changes the scene before it is drawn.
 ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
-                       const std::function<void(scene::Scene&)>& edit = nullptr) {
+                       const std::function<void(scene::Scene&)>& edit = nullptr,
+                       gl::BrdfModel brdf = gl::BrdfModel::Glint) {
   useGlContext();
   scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");  // for its lights and sky
   scene.meshes.clear();
@@ -260,7 +261,7 @@ ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
   gl::FrameSettings frame;
   frame.width = 64;
   frame.height = 64;
-  frame.brdf = gl::BrdfModel::Glint;
+  frame.brdf = brdf;
   frame.camera.position = glm::vec3(0.0f, 0.0f, cameraZ);
   frame.camera.target = glm::vec3(0.0f);
   ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
@@ -301,6 +302,15 @@ TEST(RenderGl, TheNearestSurfaceShowsAndAtEqualDepthTheFirstDrawn) {
   EXPECT_EQ(pixelsShowing(redFirst, 1), 0);
   EXPECT_EQ(pixelsShowing(greenFirst, 1), pixelsShowing(redFirst, 0));
   EXPECT_EQ(pixelsShowing(greenFirst, 0), 0);
+  // Also when the two are drawn with different programs (a glint material, then one without a
+  // glint layer, which every BRDF draws with the Cook-Torrance program): the first still wins.
+  for (const gl::BrdfModel brdf : gl::allBrdfModels()) {
+    SCOPED_TRACE(gl::toString(brdf));
+    const ImageRgbF mixed = renderSheets({{0.0f, red, false}, {0.0f, green, false}}, 3.0f,
+                                         [](scene::Scene& scene) { scene.materials[0].glint.enabled = true; }, brdf);
+    EXPECT_GT(pixelsShowing(mixed, 0), 1000);
+    EXPECT_EQ(pixelsShowing(mixed, 1), 0);
+  }
 }
 
 // glTF alphaMode MASK: the near (red) sheet's texture has alpha 0 on the half of the sheet below

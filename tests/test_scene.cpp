@@ -370,11 +370,11 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
       {[](json& d) { d["materials"] = {{{"emissiveFactor", {0, 0, true}}}}; },
        "materials[0].emissiveFactor[2] must be a number, got true"},
       {[](json& d) { d["bufferViews"][0]["byteOffset"] = "12"; },
-       "bufferViews[0].byteOffset must be an integer >= 0, got the string \"12\""},
+       "bufferViews[0].byteOffset must be an integer in [0, 2147483647], got the string \"12\""},
       {[](json& d) { d["accessors"][0]["normalized"] = 0; }, "accessors[0].normalized must be true or false, got 0"},
-      {[](json& d) { d["accessors"][0]["byteOffset"] = -4; }, "accessors[0].byteOffset must be an integer >= 0, got -4"},
+      {[](json& d) { d["accessors"][0]["byteOffset"] = -4; }, "accessors[0].byteOffset must be an integer in [0, 2147483647], got -4"},
       {[](json& d) { d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = nullptr; },
-       "meshes[0].primitives[0].attributes.NORMAL must be an integer >= 0, got null"},
+       "meshes[0].primitives[0].attributes.NORMAL must be an integer in [0, 2147483647], got null"},
       {[](json& d) { d["nodes"][1]["translation"][2] = "4"; },
        "nodes[1].translation[2] must be a number, got the string \"4\""},
       {[](json& d) { d["nodes"][2]["extensions"] = json::array(); }, "nodes[2].extensions must be an object, got an array"},
@@ -389,9 +389,23 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
     SCOPED_TRACE(problem);
     expectLoadError(writeLitTriangle("gltf_mistyped_" + std::to_string(which++), edit), problem);
   }
-  // Integral numbers written as 3.0 are integers (JSON Schema), as tinygltf reads them.
-  const Scene scene = loadGltf(writeLitTriangle("gltf_integral_float", [](json& d) { d["scene"] = 0.0; }));
-  EXPECT_EQ(triangleCount(scene), 1u);
+  // What tinygltf would misread rather than refuse: an index written as 36.0 (taken for absent) or
+  // beyond a 32-bit int (4294967297 read as 1).
+  expectLoadError(writeLitTriangle("gltf_float_index", [](json& d) { d["bufferViews"][0]["byteOffset"] = 36.0; }),
+                  "bufferViews[0].byteOffset must be an integer in [0, 2147483647], got 36.0");
+  expectLoadError(writeLitTriangle("gltf_huge_index", [](json& d) { d["nodes"][0]["mesh"] = 4294967296LL; }),
+                  "nodes[0].mesh must be an integer in [0, 2147483647], got 4294967296");
+  // A member name with a newline and a terminal escape stays on one line (expectLoadError checks).
+  expectLoadError(writeLitTriangle("gltf_control_key", [](json& d) {
+                    d["meshes"][0]["primitives"][0]["attributes"]["A\n\x1b[31m"] = "x";
+                  }),
+                  "attributes.A??[31m must be");
+  // Nesting that tinygltf's recursive parser cannot survive (its stack overflows on extras a
+  // million levels deep) is refused first.
+  const fs::path deep = test::temporaryFolder("gltf_deep") / "deep.gltf";
+  std::ofstream(deep) << R"({"asset": {"version": "2.0"}, "extras": )" << std::string(100000, '[')
+                      << std::string(100000, ']') << "}";
+  expectLoadError(deep, "nests arrays and objects more than 256 levels deep");
 }
 
 // The same check on the JSON chunk of a binary glTF.

@@ -133,11 +133,6 @@ TEST(Trace, CameraRaysHitWhatTheRasteriserDrawsAtThePixelCentre) {
   EXPECT_GT(hits, 100);
 }
 
-// On a plane, uv is a projective function of the window position, so the differences a 2 x 2 quad
-// takes between neighbouring pixel centres (what dFdx / dFdy return) are exact values, not
-// approximations of a derivative. They are computed here from gl::viewProjection alone (unproject,
-// intersect the plane, evaluate the uv map) and must equal the ray differentials' duv/dx, duv/dy.
-// Sign: duv/dy is towards the next image row (down); dFdy is towards window y (up), its negative.
 // glTF alphaMode MASK in the tracer: rays pass through the near sheet where its base colour's alpha
 // is below the cutoff, both to find the nearest hit and to test for shadows. The near sheet's
 // texture has alpha 0 for u < 0.5 (below y = 0: makeQuad's u runs along halfU = +y) and 1 above,
@@ -181,6 +176,11 @@ TEST(Trace, AlphaMaskLetsRaysThroughWhereAlphaIsBelowTheCutoff) {
   }
 }
 
+// On a plane, uv is a projective function of the window position, so the differences a 2 x 2 quad
+// takes between neighbouring pixel centres (what dFdx / dFdy return) are exact values, not
+// approximations of a derivative. They are computed here from gl::viewProjection alone (unproject,
+// intersect the plane, evaluate the uv map) and must equal the ray differentials' duv/dx, duv/dy.
+// Sign: duv/dy is towards the next image row (down); dFdy is towards window y (up), its negative.
 TEST(Trace, RayDifferentialsGiveTheRasterisersScreenDerivativesOnAPlane) {
   const scene::Scene scene = floorScene();
   const scene::Camera& camera = scene.cameras.at("default");

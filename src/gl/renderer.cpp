@@ -321,16 +321,10 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glStencilFunc(GL_EQUAL, 0, 0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
 
-  // One program per variant in use (ForwardVariant): the meshes of each, drawn as one pass.
-  std::map<ForwardVariant, std::vector<const GpuMesh*>> meshesByVariant;
-  for (const GpuMesh& mesh : g.meshes) {
-    meshesByVariant[forwardVariant(settings.brdf, materials_[static_cast<std::size_t>(mesh.material)], lightCount)]
-        .push_back(&mesh);
-  }
-  for (const auto& [variant, meshes] : meshesByVariant) {
-    auto program = g.forward.find(variant);
-    if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
-    const ShaderProgram& p = program->second;
+  // The meshes in the scene's order whatever the BRDF, so that a tie in depth goes to the same
+  // mesh in every frame; each with its material's program (ForwardVariant), switched when it
+  // changes, and the frame's uniforms set at each switch.
+  auto setFrameUniforms = [&](const ShaderProgram& p) {
     glUseProgram(p.id());
     g.dictionary->bind(p);
     glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
@@ -343,38 +337,46 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
     glBindTextureUnit(9, g.environment);
-
-    for (const GpuMesh* mesh : meshes) {
-      const scene::Material& m = materials_[static_cast<std::size_t>(mesh->material)];
-      const scene::GlintLayer& glint = m.glint;
-      glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
-      glUniform1f(p.uniform("uMetallic"), m.metallic);
-      glUniform1f(p.uniform("uRoughness"), m.roughness);
-      glUniform1f(p.uniform("uNormalScale"), m.normalScale);
-      glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
-      if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
-      glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
-      glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
-      glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
-      glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
-      glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
-      glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
-      glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
-      glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
-      glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
-      glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
-      glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
-      glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
-      glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
-      glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
-      glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
-      glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
-      glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
-      glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
-      setCulling(*mesh);
-      glBindVertexArray(mesh->vertexArray);
-      glDrawElements(GL_TRIANGLES, mesh->indexCount, GL_UNSIGNED_INT, nullptr);
+  };
+  const ShaderProgram* current = nullptr;
+  for (const GpuMesh& mesh : g.meshes) {
+    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    const ForwardVariant variant = forwardVariant(settings.brdf, m, lightCount);
+    auto program = g.forward.find(variant);
+    if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
+    const ShaderProgram& p = program->second;
+    if (&p != current) {
+      current = &p;
+      setFrameUniforms(p);
     }
+    const scene::GlintLayer& glint = m.glint;
+    glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
+    glUniform1f(p.uniform("uMetallic"), m.metallic);
+    glUniform1f(p.uniform("uRoughness"), m.roughness);
+    glUniform1f(p.uniform("uNormalScale"), m.normalScale);
+    glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+    if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
+    glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
+    glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
+    glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
+    glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
+    glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
+    glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
+    glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
+    glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
+    glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
+    glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
+    glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+    glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
+    glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
+    glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
+    glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
+    glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
+    glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
+    glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
+    setCulling(mesh);
+    glBindVertexArray(mesh.vertexArray);
+    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
   }
 
   glDisable(GL_STENCIL_TEST);

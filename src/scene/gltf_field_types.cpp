@@ -1,7 +1,10 @@
 #include "scene/gltf_field_types.h"
 
 #include <array>
-#include <cmath>
+#include <algorithm>
+#include <limits>
+#include <utility>
+#include <vector>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -23,8 +26,8 @@ struct FieldType {
   JsonType type;
 };
 
-// In the document's order, so the first mistyped property in the file is the one reported.
-// glTF 2.0 schema types; indices, counts, offsets and enumerations are integers >= 0.
+// glTF 2.0 schema types; indices, counts, offsets and enumerations are integers >= 0. The first
+// mistyped property in this table's order is the one reported.
 constexpr std::array kFieldTypes = {
     FieldType{"extensionsRequired[]", JsonType::String},
     FieldType{"extensions.KHR_lights_punctual.lights[].name", JsonType::String},
@@ -102,14 +105,13 @@ std::string described(const nlohmann::json& value) {
   return "an object";
 }
 
+// tinygltf 2.7 reads an integer property only when the JSON number is written as an integer (3.0
+// counts as absent), and into an int (4294967297 becomes 1): both are refused here.
+constexpr std::int64_t kLargestIndex = std::numeric_limits<std::int32_t>::max();
+
 bool isIndex(const nlohmann::json& value) {
-  if (value.is_number_unsigned()) return true;
-  if (value.is_number_integer()) return value.get<std::int64_t>() >= 0;
-  // 3.0 is the integer 3 in JSON Schema (draft 6 on); tinygltf reads it as 3 too.
-  if (value.is_number_float()) {
-    const double number = value.get<double>();
-    return number >= 0.0 && number == std::floor(number);
-  }
+  if (value.is_number_unsigned()) return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(kLargestIndex);
+  if (value.is_number_integer()) return value.get<std::int64_t>() >= 0 && value.get<std::int64_t>() <= kLargestIndex;
   return false;
 }
 
@@ -122,7 +124,9 @@ void expectType(const nlohmann::json& value, JsonType type, const std::string& l
       if (!value.is_number()) throw Error(location + " must be a number, got " + described(value));
       return;
     case JsonType::Index:
-      if (!isIndex(value)) throw Error(location + " must be an integer >= 0, got " + described(value));
+      if (!isIndex(value)) {
+        throw Error(location + " must be an integer in [0, " + std::to_string(kLargestIndex) + "], got " + described(value));
+      }
       return;
     case JsonType::String:
       if (!value.is_string()) throw Error(location + " must be a string, got " + described(value));
@@ -134,8 +138,14 @@ void expectObject(const nlohmann::json& value, const std::string& location) {
   if (!value.is_object()) throw Error(location + " must be an object, got " + described(value));
 }
 
+// A member name as the message shows it: control characters (a newline, a terminal escape) as '?',
+// so that the message stays one harmless line.
 std::string memberLocation(const std::string& parent, const std::string& name) {
-  return parent.empty() ? name : parent + "." + name;
+  std::string shown = name;
+  for (char& c : shown) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return parent.empty() ? shown : parent + "." + shown;
 }
 
 // Checks `path` (the rest of a FieldType's path) inside `object`, at `location`.
@@ -203,8 +213,27 @@ std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path) {
   return document;
 }
 
+// The deepest nesting of arrays and objects, walked without recursion: tinygltf parses extras and
+// extensions recursively, and a file nested a million levels deep overflows its stack.
+std::size_t nestingDepth(const nlohmann::json& document) {
+  std::size_t deepest = 0;
+  std::vector<std::pair<const nlohmann::json*, std::size_t>> pending{{&document, 1}};
+  while (!pending.empty()) {
+    const auto [value, depth] = pending.back();
+    pending.pop_back();
+    if (!value->is_structured()) continue;
+    deepest = std::max(deepest, depth);
+    for (const nlohmann::json& child : *value) pending.emplace_back(&child, depth + 1);
+  }
+  return deepest;
+}
+
 void checkGltfFieldTypes(const nlohmann::json& document) {
   if (!document.is_object()) throw Error("the JSON document must be an object, got " + described(document));
+  constexpr std::size_t kDeepest = 256;  // glTF itself nests about 8 levels; extras may add some
+  if (nestingDepth(document) > kDeepest) {
+    throw Error("the JSON nests arrays and objects more than " + std::to_string(kDeepest) + " levels deep");
+  }
   for (const FieldType& field : kFieldTypes) checkPath(document, field.path, field.type, "");
 }
 

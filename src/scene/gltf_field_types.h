@@ -15,9 +15,11 @@ namespace glint::scene {
 // JSON does not parse (tinygltf then reports the problem in its own words).
 std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path);
 
-// Throws glint::Error "PATH must be TYPE, got TYPE" (e.g. "materials[2].doubleSided must be true
-// or false, got a string") for the first property glint reads whose JSON type is not the one the
-// glTF 2.0 schema (and KHR_lights_punctual's) gives it. Absent properties are fine.
+// Throws glint::Error "PATH must be TYPE, got VALUE" (e.g. "materials[2].doubleSided must be true
+// or false, got the string \"yes\"") for the first property glint reads whose JSON type is not the
+// one the glTF 2.0 schema (and KHR_lights_punctual's) gives it, or that tinygltf would misread (an
+// integer written as 3.0, or beyond a 32-bit int). Absent properties are fine. Also refuses JSON
+// nested more than 256 levels deep, which tinygltf's recursive parsing of extras cannot survive.
 void checkGltfFieldTypes(const nlohmann::json& document);
 
 }  // namespace glint::scene

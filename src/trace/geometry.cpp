@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <string>
 
 #include <embree3/rtcore.h>
@@ -38,19 +40,25 @@ void check(RTCDevice device, const char* what) {
 // least the cutoff. The texture's alpha is filtered bilinearly at its finest level: a filter has
 // no ray footprint, where the rasteriser's pre-pass samples the mip level of its pixel.
 struct SceneGeometry::AlphaMask {
+  // A texture's alpha channel, shared by every mesh whose material uses it (a glTF node instance
+  // is a mesh of its own).
+  struct Alpha {
+    int width = 0;
+    int height = 0;
+    std::vector<float> texels;  // rows from the top, as scene::Texture
+  };
+
   std::vector<glm::vec2> uvs;  // three per triangle (copied: the geometry may outlive the scene)
   float factor = 1.0f;
   float cutoff = 0.5f;
-  int width = 0;  // 0: no texture
-  int height = 0;
-  std::vector<float> alpha;  // rows from the top, as scene::Texture
+  std::shared_ptr<const Alpha> texture;  // null: no texture
 
   bool keeps(unsigned triangle, float u, float v) const {
     float a = factor;
-    if (width > 0) {
+    if (texture) {
       const glm::vec2* corner = &uvs[3 * static_cast<std::size_t>(triangle)];
       const glm::vec2 uv = (1.0f - u - v) * corner[0] + u * corner[1] + v * corner[2];
-      a *= bilinearRepeat(alpha, width, height, uv);
+      a *= bilinearRepeat(texture->texels, texture->width, texture->height, uv);
     }
     return a >= cutoff;
   }
@@ -77,9 +85,36 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
     // Robust traversal: no rays slip between neighbouring triangles (no light leaks).
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    std::map<int, std::shared_ptr<const AlphaMask::Alpha>> alphas;  // by scene texture
+    auto alphaOf = [&](int index) {
+      std::shared_ptr<const AlphaMask::Alpha>& shared = alphas[index];
+      if (shared) return shared;
+      const scene::Texture& texture = scene.textures[static_cast<std::size_t>(index)];
+      if (texture.rgba.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4) {
+        throw Error("texture '" + texture.name + "': size and data do not agree");
+      }
+      auto alpha = std::make_shared<AlphaMask::Alpha>();
+      alpha->width = texture.width;
+      alpha->height = texture.height;
+      alpha->texels.resize(texture.rgba.size() / 4);
+      for (std::size_t i = 0; i < alpha->texels.size(); ++i) alpha->texels[i] = texture.rgba[4 * i + 3] / 255.0f;
+      shared = std::move(alpha);
+      return shared;
+    };
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
       const scene::Mesh& mesh = scene.meshes[m];
       if (mesh.indices.size() < 3) continue;
+      // The mask first: what it may throw then leaves no Embree geometry behind.
+      AlphaMask* mask = nullptr;
+      const scene::Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
+      if (material.alphaMode == scene::Material::AlphaMode::Mask) {
+        mask = masks_.emplace_back(std::make_unique<AlphaMask>()).get();
+        mask->uvs.reserve(mesh.indices.size() / 3 * 3);
+        for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
+        mask->factor = material.baseColour.a;
+        mask->cutoff = material.alphaCutoff;
+        if (material.baseColourTexture >= 0) mask->texture = alphaOf(material.baseColourTexture);
+      }
       RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
           geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
@@ -91,27 +126,10 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       }
       std::copy(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3),
                 indices);
-      const scene::Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
-      if (material.alphaMode == scene::Material::AlphaMode::Mask) {
-        auto mask = std::make_unique<AlphaMask>();
-        mask->uvs.reserve(mesh.indices.size() / 3 * 3);
-        for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
-        mask->factor = material.baseColour.a;
-        mask->cutoff = material.alphaCutoff;
-        if (material.baseColourTexture >= 0) {
-          const scene::Texture& texture = scene.textures[static_cast<std::size_t>(material.baseColourTexture)];
-          if (texture.rgba.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4) {
-            throw Error("texture '" + texture.name + "': size and data do not agree");
-          }
-          mask->width = texture.width;
-          mask->height = texture.height;
-          mask->alpha.resize(static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height));
-          for (std::size_t i = 0; i < mask->alpha.size(); ++i) mask->alpha[i] = texture.rgba[4 * i + 3] / 255.0f;
-        }
-        rtcSetGeometryUserData(geometry, mask.get());
+      if (mask) {
+        rtcSetGeometryUserData(geometry, mask);
         rtcSetGeometryIntersectFilterFunction(geometry, &AlphaMask::filter);
         rtcSetGeometryOccludedFilterFunction(geometry, &AlphaMask::filter);
-        masks_.push_back(std::move(mask));
       }
       rtcCommitGeometry(geometry);
       rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));
