@@ -90,9 +90,7 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       std::shared_ptr<const AlphaMask::Alpha>& shared = alphas[index];
       if (shared) return shared;
       const scene::Texture& texture = scene.textures[static_cast<std::size_t>(index)];
-      if (texture.rgba.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 4) {
-        throw Error("texture '" + texture.name + "': size and data do not agree");
-      }
+      requireTexelData(texture);
       auto alpha = std::make_shared<AlphaMask::Alpha>();
       alpha->width = texture.width;
       alpha->height = texture.height;

@@ -8,11 +8,15 @@
 
 namespace glint::trace {
 
-MipTexture::MipTexture(const scene::Texture& texture) {
+void requireTexelData(const scene::Texture& texture) {
   if (texture.width < 1 || texture.height < 1 ||
       texture.rgba.size() != static_cast<std::size_t>(texture.width) * texture.height * 4) {
     throw Error("texture '" + texture.name + "': size and data do not agree");
   }
+}
+
+MipTexture::MipTexture(const scene::Texture& texture) {
+  requireTexelData(texture);
   // 8-bit code values to linear floats, through a table (256 entries instead of one pow per texel).
   float decode[256];
   for (int i = 0; i < 256; ++i) {

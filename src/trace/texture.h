@@ -37,6 +37,9 @@ Texel bilinearRepeat(const std::vector<Texel>& texels, int width, int height, gl
   return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0f - tx) * at(x0, y1) + tx * at(x1, y1));
 }
 
+// Throws Error naming the texture when its RGBA8 data does not hold width x height texels.
+void requireTexelData(const scene::Texture& texture);
+
 class MipTexture {
  public:
   explicit MipTexture(const scene::Texture& texture);
