@@ -37,7 +37,7 @@ layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
 layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
 layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
 
-uniform vec3 uCameraPosition;
+uniform vec4 uCameraPoint;  // the camera's position (w = 1), or for an orthographic camera the direction towards it (w = 0)
 uniform vec4 uBaseColour;
 uniform float uMetallic;
 uniform float uRoughness;
@@ -95,7 +95,7 @@ void main() {
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
   // from behind (curtains) are shaded on the side facing the camera.
-  vec3 view = normalize(uCameraPosition - vPosition);
+  vec3 view = normalize(uCameraPoint.xyz - uCameraPoint.w * vPosition);
   vec3 n = normalize(vNormal);
   vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
   vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);

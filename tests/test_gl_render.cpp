@@ -372,7 +372,7 @@ TEST(RenderGl, BackgroundIsTheEnvironmentTheTracerSees) {
   frame.brdf = gl::BrdfModel::CookTorrance;
   frame.camera = scene.cameras.at("default");
   const ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
-  const trace::PinholeCamera camera(frame.camera, kSide, kSide);
+  const trace::ProjectiveCamera camera(frame.camera, kSide, kSide);
   const trace::EnvironmentLight environment(scene.environment);
   int sky = 0;
   double largest = 0.0;

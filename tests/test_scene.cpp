@@ -298,8 +298,8 @@ TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   EXPECT_TRUE(twoSided.materials[static_cast<std::size_t>(twoSided.meshes[0].material)].doubleSided);
   EXPECT_FALSE(twoSided.materials[static_cast<std::size_t>(twoSided.meshes[1].material)].doubleSided);
 
-  // The perspective camera under its own name and as "default"; the orthographic one left out;
-  // the bounding-box presets kept.
+  // The perspective camera under its own name and as "default"; the orthographic one as
+  // "camera1"; the bounding-box presets kept.
   ASSERT_EQ(scene.cameras.count("shot"), 1u);
   const Camera& shot = scene.cameras.at("shot");
   EXPECT_NEAR(glm::length(shot.position - glm::vec3(0, 0.5f, 4)), 0.0f, 1e-6f);
@@ -308,8 +308,20 @@ TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   const glm::vec3 view = glm::normalize(shot.target - shot.position);
   EXPECT_NEAR(glm::length(view - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
   EXPECT_EQ(scene.cameras.at("default").position, shot.position);
-  EXPECT_EQ(scene.cameras.count("camera1"), 0u);
+  EXPECT_EQ(shot.projection, Camera::Projection::Perspective);
+  ASSERT_EQ(scene.cameras.count("camera1"), 1u);
+  const Camera& parallel = scene.cameras.at("camera1");
+  EXPECT_EQ(parallel.projection, Camera::Projection::Orthographic);
+  EXPECT_FLOAT_EQ(parallel.orthographicHalfHeight, 1.0f);
+  EXPECT_NEAR(glm::length(parallel.position), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(glm::normalize(parallel.target - parallel.position) - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
   EXPECT_EQ(scene.cameras.count("front"), 1u);
+  // ymag is the half height, whatever xmag says (the frame sets the aspect).
+  const Scene tall = loadGltf(writeLitTriangle("gltf_ortho_camera", [](json& d) {
+    d["cameras"][1]["orthographic"]["ymag"] = 2.5;
+    d["cameras"][1]["orthographic"]["xmag"] = 0.5;
+  }));
+  EXPECT_FLOAT_EQ(tall.cameras.at("camera1").orthographicHalfHeight, 2.5f);
 
   // Without lights or cameras in the file: the default lighting and presets.
   const Scene bare = loadGltf(writeLitTriangle("gltf_no_lights", [](json& d) {
@@ -339,6 +351,10 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "light 1: intensity -3 is not a finite number >= 0");
   expectLoadError(writeLitTriangle("gltf_camera_fov", [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 4.0; }),
                   "camera 0 'shot': yfov 4 is not in (0, pi) radians");
+  expectLoadError(writeLitTriangle("gltf_camera_ymag", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = -1.0; }),
+                  "camera 1: ymag -1 is not in (0, 1e30)");
+  expectLoadError(writeLitTriangle("gltf_camera_ymag_zero", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = 0.0; }),
+                  "camera 1: ymag 0 is not in (0, 1e30)");
 }
 
 TEST(GltfLoader, ReadsAlphaModeAndCutoff) {
@@ -380,6 +396,8 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
       {[](json& d) { d["nodes"][2]["extensions"] = json::array(); }, "nodes[2].extensions must be an object, got an array"},
       {[](json& d) { d["cameras"][0]["perspective"]["yfov"] = "wide"; },
        "cameras[0].perspective.yfov must be a number, got the string \"wide\""},
+      {[](json& d) { d["cameras"][1]["orthographic"]["ymag"] = "2"; },
+       "cameras[1].orthographic.ymag must be a number, got the string \"2\""},
       {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = {1366}; },
        "extensions.KHR_lights_punctual.lights[1].intensity must be a number, got an array"},
       {[](json& d) { d["scenes"] = {{{"nodes", "all"}}}; }, "scenes[0].nodes must be an array, got the string \"all\""},

@@ -81,12 +81,24 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
   const float radius = std::max(0.5f * glm::length(boundsMax - boundsMin), 1e-3f);
   const float distance = glm::length(centre - camera.position);
   const float farPlane = distance + 2.0f * radius;
-  const float nearPlane = std::max(farPlane * 1e-4f, (distance - radius) * 0.5f);
-  glm::mat4 projection = glm::perspective(glm::radians(camera.verticalFovDegrees),
-                                          static_cast<float>(width) / static_cast<float>(height), nearPlane, farPlane);
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
   // A translation in normalised device coordinates: 2 / size per pixel.
-  projection[2][0] += 2.0f * jitter.x / static_cast<float>(width);
-  projection[2][1] += 2.0f * jitter.y / static_cast<float>(height);
+  const glm::vec2 jitterNdc = 2.0f * jitter / glm::vec2(width, height);
+  glm::mat4 projection;
+  if (camera.projection == scene::Camera::Projection::Orthographic) {
+    // Depth is linear here, so the near plane can be the camera's own: the path tracer's rays
+    // start there too. The translation goes in the column that w = 1 multiplies.
+    const float h = camera.orthographicHalfHeight;
+    projection = glm::ortho(-h * aspect, h * aspect, -h, h, 0.0f, farPlane);
+    projection[3][0] += jitterNdc.x;
+    projection[3][1] += jitterNdc.y;
+  } else {
+    const float nearPlane = std::max(farPlane * 1e-4f, (distance - radius) * 0.5f);
+    projection = glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, nearPlane, farPlane);
+    // Clip w is the view depth: the translation goes in the column that z multiplies.
+    projection[2][0] += jitterNdc.x;
+    projection[2][1] += jitterNdc.y;
+  }
   return projection * glm::lookAt(camera.position, camera.target, camera.up);
 }
 
@@ -324,11 +336,17 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   // The meshes in the scene's order whatever the BRDF, so that a tie in depth goes to the same
   // mesh in every frame; each with its material's program (ForwardVariant), switched when it
   // changes, and the frame's uniforms set at each switch.
+  // The point the shaders' view vectors point to, homogeneous: a perspective camera's position, or
+  // for an orthographic one the point at infinity up its view axis (every view vector the same).
+  const scene::Camera& camera = settings.camera;
+  const glm::vec4 cameraPoint = camera.projection == scene::Camera::Projection::Orthographic
+                                    ? glm::vec4(glm::normalize(camera.position - camera.target), 0.0f)
+                                    : glm::vec4(camera.position, 1.0f);
   auto setFrameUniforms = [&](const ShaderProgram& p) {
     glUseProgram(p.id());
     g.dictionary->bind(p);
     glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
-    glUniform3fv(p.uniform("uCameraPosition"), 1, &settings.camera.position.x);
+    glUniform4fv(p.uniform("uCameraPoint"), 1, &cameraPoint.x);
     glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
     glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
     glUniform3fv(p.uniform("uSpotAxis"), lightCount, &spotAxes[0].x);

@@ -50,6 +50,7 @@ constexpr std::array kFieldTypes = {
     FieldType{"cameras[].name", JsonType::String},
     FieldType{"cameras[].type", JsonType::String},
     FieldType{"cameras[].perspective.yfov", JsonType::Number},
+    FieldType{"cameras[].orthographic.ymag", JsonType::Number},
     FieldType{"meshes[].name", JsonType::String},
     FieldType{"meshes[].primitives[].attributes.*", JsonType::Index},
     FieldType{"meshes[].primitives[].indices", JsonType::Index},

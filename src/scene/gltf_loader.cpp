@@ -438,32 +438,39 @@ class GltfReader {
     onPath[slot] = false;
   }
 
-  // A glTF camera looks down its node's -z with +y up (glTF 2.0, "Cameras"). Orthographic
-  // cameras are left out (glint's cameras are perspective); docs/scenes.md says so.
+  // A glTF camera looks down its node's -z with +y up (glTF 2.0, "Cameras"). The frame's size sets
+  // the aspect ratio, as for a perspective camera's missing aspectRatio: an orthographic camera's
+  // ymag is its view's half height and its xmag is not used; docs/scenes.md says so.
   void addCamera(int index, const glm::dmat4& world) {
     if (static_cast<std::size_t>(index) >= model_.cameras.size()) {
       throw error("camera ", index, " does not exist (the file has ", model_.cameras.size(), ")");
     }
     const tinygltf::Camera& source = model_.cameras[static_cast<std::size_t>(index)];
     const std::string label = "camera " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
-    if (source.type != "perspective") return;
-    const double yfov = source.perspective.yfov;
-    if (!(yfov > 0.0 && yfov < 3.14159)) throw error(label, ": yfov ", yfov, " is not in (0, pi) radians");
+    Camera camera;
+    if (source.type == "perspective") {
+      const double yfov = source.perspective.yfov;
+      if (!(yfov > 0.0 && yfov < 3.14159)) throw error(label, ": yfov ", yfov, " is not in (0, pi) radians");
+      camera.verticalFovDegrees = static_cast<float>(glm::degrees(yfov));
+    } else {  // "orthographic": tinygltf refuses any other type
+      const double ymag = source.orthographic.ymag;
+      if (!(ymag > 0.0 && ymag < 1e30)) throw error(label, ": ymag ", ymag, " is not in (0, 1e30)");
+      camera.projection = Camera::Projection::Orthographic;
+      camera.orthographicHalfHeight = static_cast<float>(ymag);
+    }
     const glm::dvec3 position(world * glm::dvec4(0, 0, 0, 1));
     const glm::dvec3 forward(world * glm::dvec4(0, 0, -1, 0));
     const glm::dvec3 up(world * glm::dvec4(0, 1, 0, 0));
     if (!(glm::length(forward) > 0.0 && glm::length(up) > 0.0 && glm::length(glm::cross(forward, up)) > 0.0)) {
       throw error(label, ": its node's transform collapses the view direction");
     }
-    Camera camera;
     camera.position = glm::vec3(position);
     camera.up = glm::vec3(glm::normalize(up));
-    camera.verticalFovDegrees = static_cast<float>(glm::degrees(yfov));
     fileCameras_.push_back({source.name.empty() ? "camera" + std::to_string(index) : source.name, camera,
                             glm::normalize(forward)});
   }
 
-  // The file's perspective cameras after the bounding-box presets, under their own names (or
+  // The file's cameras after the bounding-box presets, under their own names (or
   // "cameraN"), a file camera winning over a preset of the same name; the first one in node order
   // is also "default" unless one is named so.
   void addCameras() {

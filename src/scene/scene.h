@@ -113,11 +113,18 @@ struct Environment {
   float intensity = 1.0f;
 };
 
+// A camera looks from position towards target. glTF's two projections: a perspective camera is a
+// pinhole at position that sees verticalFovDegrees; an orthographic one sees a view
+// 2 * orthographicHalfHeight high along the view direction, from the plane through position
+// perpendicular to it. Either way the image's size sets the aspect ratio.
 struct Camera {
+  enum class Projection { Perspective, Orthographic };
   glm::vec3 position{0, 0, 3};
   glm::vec3 target{0.0f};
   glm::vec3 up{0, 1, 0};
-  float verticalFovDegrees = 45.0f;
+  Projection projection = Projection::Perspective;
+  float verticalFovDegrees = 45.0f;      // perspective
+  float orthographicHalfHeight = 1.0f;   // orthographic, scene units (glTF's ymag)
 };
 
 struct Scene {

@@ -58,7 +58,7 @@ class PathTracer {
   // The radiance along a camera ray (its offset rays give the footprint of the first hit).
   glm::vec3 radiance(const RayDifferential& cameraRay, Pcg32& rng) const;
 
-  const PinholeCamera& camera() const { return camera_; }
+  const ProjectiveCamera& camera() const { return camera_; }
   const SceneGeometry& geometry() const { return geometry_; }
   const SceneMaterials& materials() const { return materials_; }
   std::uint64_t nonFiniteSamples() const { return nonFinite_.load(); }
@@ -69,7 +69,7 @@ class PathTracer {
 
   const scene::Scene& scene_;
   TraceSettings settings_;
-  PinholeCamera camera_;
+  ProjectiveCamera camera_;
   SceneGeometry geometry_;
   SceneMaterials materials_;
   EnvironmentLight environment_;
