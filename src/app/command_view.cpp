@@ -1,5 +1,7 @@
 // `glint view`: the renderer in a window, with Dear ImGui sliders for the glint parameters, the
-// BRDF, the light and the camera, and the frame time (docs/cli.md).
+// BRDF, the light and the camera preset, the mouse to orbit, pan and zoom, and the frame time
+// (docs/cli.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -18,6 +20,7 @@
 #include "gl/shader.h"
 #include "glint/error.h"
 #include "glint/image.h"
+#include "scene/camera_moves.h"
 
 namespace glint::app {
 
@@ -74,6 +77,22 @@ void writeScreenshot(const std::string& path, int width, int height) {
   writePng(path, image);
 }
 
+// Mouse moves of the next frame's camera (scene/camera_moves.h), unless the mouse is on the panel:
+// a left drag orbits the target (a drag over the window's height turns the camera half a turn), a
+// right or middle drag pans with the cursor, the wheel zooms by 10% a notch.
+void moveCameraWithTheMouse(scene::Camera& camera, int framebufferHeight) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse) return;
+  const glm::vec2 delta(io.MouseDelta.x, io.MouseDelta.y);  // window points; NaN-free when no mouse
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)) {
+    const float radiansPerPoint = 3.14159265f / std::max(io.DisplaySize.y, 1.0f);
+    camera = scene::orbitCamera(camera, -delta.x * radiansPerPoint, delta.y * radiansPerPoint);
+  } else if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f)) {
+    camera = scene::panCamera(camera, delta * io.DisplayFramebufferScale.y, framebufferHeight);
+  }
+  if (io.MouseWheel != 0.0f) camera = scene::zoomCamera(camera, std::pow(0.9f, io.MouseWheel));
+}
+
 void runView(const ViewOptions& options) {
   if (options.width < 64 || options.height < 64 || options.width > 8192 || options.height > 8192) {
     throw Error("--size must be between 64x64 and 8192x8192");
@@ -107,6 +126,10 @@ void runView(const ViewOptions& options) {
     if (name == options.scene.camera) controls.camera = static_cast<int>(cameraNames.size());
     cameraNames.push_back(name);
   }
+  // The camera the mouse moves, starting from the chosen preset and back to it when another is
+  // chosen or "reset camera" is pressed.
+  scene::Camera viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
+  int viewCameraPreset = controls.camera;
   const std::vector<scene::Light> originalLights = scene.lights;
   const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
   double frameMilliseconds = 0.0;
@@ -144,7 +167,7 @@ void runView(const ViewOptions& options) {
     frame.width = width;
     frame.height = height;
     frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(controls.brdf)];
-    frame.camera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
+    frame.camera = viewCamera;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -175,6 +198,14 @@ void runView(const ViewOptions& options) {
     std::vector<const char*> names;
     for (const std::string& n : cameraNames) names.push_back(n.c_str());
     ImGui::Combo("camera", &controls.camera, names.data(), static_cast<int>(names.size()));
+    const bool resetCamera = ImGui::Button("reset camera");
+    ImGui::SameLine();
+    ImGui::TextDisabled("drag: orbit, right-drag: pan, wheel: zoom");
+    if (resetCamera || controls.camera != viewCameraPreset) {
+      viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
+      viewCameraPreset = controls.camera;
+    }
+    moveCameraWithTheMouse(viewCamera, height);
     ImGui::Separator();
     ImGui::Text("%dx%d on %s", width, height, info.renderer.c_str());
     if (timer.usesGpuQueries()) {
