@@ -144,6 +144,24 @@ TEST(RenderCli, SaysWhenTheRasteriserDrawsOnlySomeOfTheLights) {
   EXPECT_EQ(result.err.find("warning"), std::string::npos) << result.err;
 }
 
+// A file that uses what glint does not render still renders, with one warning line per kind.
+TEST(RenderCli, WarnsAboutWhatTheFileUsesAndGlintDoesNotRead) {
+  const auto folder = brokenSuzanne("unread", [](const auto& f) {
+    replaceInFile(f / "Suzanne.gltf", "\"baseColorTexture\" : {", "\"baseColorTexture\" : { \"texCoord\" : 1,");
+    replaceInFile(f / "Suzanne.gltf", "\"asset\"", "\"extensionsUsed\" : [\"KHR_materials_clearcoat\"], \"asset\"");
+  });
+  const RunResult result = runGlint(folder, "render scene/Suzanne.gltf -o out.png --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("glint: warning: scene/Suzanne.gltf: extension KHR_materials_clearcoat is not read\n"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("glint: warning: scene/Suzanne.gltf: textures on a texCoord other than 0 are mapped with "
+                            "TEXCOORD_0 (material 0 'Suzanne' baseColorTexture)\n"),
+            std::string::npos)
+      << result.err;
+  expectPlausibleImage(folder / "out.png", 32, 32);
+}
+
 TEST(BenchCli, PrintsTheJsonTable) {
   const auto folder = temporaryFolder("bench");
   const RunResult result = runGlint(folder, "bench sphere grazing-rough --size 48x32 --frames 2 --warmup 0 --json");

@@ -256,6 +256,27 @@ static fs::path writeLitTriangle(const std::string& folderName, const std::funct
   return folder / "tri.gltf";
 }
 
+// What a file uses and glint does not render is listed, one line per kind, for the commands to
+// warn about (docs/scenes.md, "Not read"); the extensions glint reads are not listed.
+TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
+  EXPECT_TRUE(loadGltf(writeLitTriangle("gltf_all_read", [](json&) {})).unreadFeatures.empty());
+  const Scene scene = loadGltf(writeLitTriangle("gltf_unread", [](json& d) {
+    d["extensionsUsed"].push_back("KHR_texture_transform");
+    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;
+    json primitive = {{"attributes", {{"POSITION", 0}, {"COLOR_0", 0}}}};
+    primitive["targets"] = json::array({{{"POSITION", 0}}});
+    d["meshes"].push_back({{"name", "blob"}, {"primitives", json::array({primitive})}});
+    d["nodes"].push_back({{"mesh", 1}});
+    d["scenes"][0]["nodes"].push_back(5);
+  }));
+  const std::vector<std::string> expected = {
+      "extension KHR_texture_transform is not read",
+      "vertex colours (COLOR_0) are not read (mesh 0 and 1 more)",
+      "morph targets are not applied, the base shape is drawn (mesh 1 'blob')",
+  };
+  EXPECT_EQ(scene.unreadFeatures, expected);
+}
+
 TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   const Scene scene = loadGltf(writeLitTriangle("gltf_lights", [](json&) {}));
   expectWellFormed(scene);

@@ -53,6 +53,9 @@ scene::Scene SceneOptions::loadScene() const {
       throw Error("material '" + m.name + "': " + e.what());
     }
   }
+  for (const std::string& unread : s.unreadFeatures) {
+    std::fprintf(stderr, "glint: warning: %s: %s\n", scene.c_str(), unread.c_str());
+  }
   for (const scene::Material& m : s.materials) {
     if (m.alphaMode == scene::Material::AlphaMode::Blend) {
       std::fprintf(stderr, "glint: warning: material '%s' has alphaMode BLEND; glint does not blend and draws it opaque\n",

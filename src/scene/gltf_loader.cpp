@@ -341,6 +341,7 @@ class GltfReader {
     addDefaultLighting(scene_);
     if (!fileLights.empty()) scene_.lights = std::move(fileLights);
     scene_.exposure = 1.0f;
+    noteUnreadFeatures();
     return std::move(scene_);
   }
 
@@ -350,6 +351,60 @@ class GltfReader {
     // any other required extension changes what the data means.
     for (const std::string& extension : model_.extensionsRequired) {
       if (extension != "KHR_mesh_quantization") throw error("requires extension ", extension, ", which glint does not support");
+    }
+  }
+
+  // What the file uses and glint does not render, so that the commands warn instead of showing a
+  // different picture silently (docs/scenes.md, "Not read"): one line per kind, naming the first
+  // place and counting the others.
+  void noteUnreadFeatures() {
+    std::vector<std::pair<std::string, std::vector<std::string>>> kinds;  // in the order first met
+    auto note = [&](const std::string& what, const std::string& where) {
+      auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& kind) { return kind.first == what; });
+      if (it == kinds.end()) it = kinds.insert(kinds.end(), {what, {}});
+      it->second.push_back(where);
+    };
+    for (const std::string& extension : model_.extensionsUsed) {
+      if (extension != "KHR_lights_punctual" && extension != "KHR_mesh_quantization") {
+        note("extension " + extension + " is not read", "");
+      }
+    }
+    for (std::size_t i = 0; i < model_.meshes.size(); ++i) {
+      const tinygltf::Mesh& mesh = model_.meshes[i];
+      const std::string where = "mesh " + std::to_string(i) + (mesh.name.empty() ? "" : " '" + mesh.name + "'");
+      for (const tinygltf::Primitive& primitive : mesh.primitives) {
+        if (primitive.attributes.contains("COLOR_0")) note("vertex colours (COLOR_0) are not read", where);
+        if (!primitive.targets.empty()) note("morph targets are not applied, the base shape is drawn", where);
+      }
+    }
+    for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& material = model_.materials[i];
+      const std::string where = "material " + std::to_string(i) + (material.name.empty() ? "" : " '" + material.name + "'");
+      const std::pair<const char*, int> texCoords[] = {
+          {"baseColorTexture", material.pbrMetallicRoughness.baseColorTexture.texCoord},
+          {"metallicRoughnessTexture", material.pbrMetallicRoughness.metallicRoughnessTexture.texCoord},
+          {"normalTexture", material.normalTexture.texCoord},
+          {"occlusionTexture", material.occlusionTexture.texCoord},
+          {"emissiveTexture", material.emissiveTexture.texCoord}};
+      for (const auto& [texture, texCoord] : texCoords) {
+        if (texCoord != 0) note("textures on a texCoord other than 0 are mapped with TEXCOORD_0", where + " " + texture);
+      }
+      if (material.occlusionTexture.index >= 0 && material.occlusionTexture.strength != 1.0) {
+        note("occlusionTexture.strength is taken as 1", where);
+      }
+    }
+    if (!model_.skins.empty()) note("skins are not applied, the meshes are drawn unskinned", std::to_string(model_.skins.size()) + " skins");
+    if (!model_.animations.empty()) {
+      note("animations are not played, the nodes' own transforms are drawn", std::to_string(model_.animations.size()) + " animations");
+    }
+    for (const auto& [what, places] : kinds) {
+      std::string line = what;
+      if (!places.front().empty()) {
+        line += " (" + places.front();
+        if (places.size() > 1) line += " and " + std::to_string(places.size() - 1) + " more";
+        line += ")";
+      }
+      scene_.unreadFeatures.push_back(oneLine(line));
     }
   }
 

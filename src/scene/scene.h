@@ -136,6 +136,9 @@ struct Scene {
   Environment environment;
   std::map<std::string, Camera> cameras;  // always holds "default"
   float exposure = 1.0f;
+  // What the scene's file uses that glint does not render (vertex colours, a second uv set, an
+  // extension it does not read, ...), one line each, for the commands to warn about.
+  std::vector<std::string> unreadFeatures;
 
   // Bounds of all vertices.
   glm::vec3 boundsMin() const;
