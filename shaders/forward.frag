@@ -69,6 +69,7 @@ uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point or spot at xyz;
 uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
 uniform vec3 uSpotAxis[GLINT_SLOPE_COUNT];  // the direction a spot shines along (kernel/lights.h)
 uniform vec2 uSpotCone[GLINT_SLOPE_COUNT];  // spotConeScaleOffset; (0, 1) for lights without a cone
+uniform float uLightInverseRange[GLINT_SLOPE_COUNT];  // 1 / range (rangeWindow); 0 for lights without a range
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
 
@@ -128,16 +129,17 @@ void main() {
   vec2 specularAlpha = GLINT_LAYER ? params.alpha : vec2(roughness * roughness);
 
   // Each light's direction in the shading frame, its squared distance (1 for a directional one)
-  // and the fraction of its intensity its cone sends this way (1 but for spots).
+  // and the fraction of its intensity that its cone sends this way and its range lets arrive (1
+  // for a directional light).
   vec3 lightDirection[GLINT_SLOPE_COUNT];
   float lightDistance2[GLINT_SLOPE_COUNT];
-  float lightCone[GLINT_SLOPE_COUNT];
+  float lightFalloff[GLINT_SLOPE_COUNT];
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 toLight = uLightPosition[i].xyz - vPosition * uLightPosition[i].w;
     lightDistance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
     vec3 l = normalize(toLight);
     lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
-    lightCone[i] = spotAttenuation(uSpotAxis[i], l, uSpotCone[i]);
+    lightFalloff[i] = spotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * rangeWindow(lightDistance2[i], uLightInverseRange[i]);
   }
 
 #if SPECULAR_MODEL == SPECULAR_GLINT
@@ -190,7 +192,7 @@ void main() {
 #else
     specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
 #endif
-    radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightCone[i]) / lightDistance2[i];
+    radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
   }
   vec3 reflected = reflect(-view, n);
   vec3 ambient = diffuse * irradiance(n) +

@@ -229,6 +229,73 @@ TEST(RenderGl, SpotLightsLightTheirConeOnly) {
               outside);
 }
 
+// A point light's range (KHR_lights_punctual) scales its light by the extension's window: seen
+// straight down at the grazing plane from above the light, a pixel's floor point, its distance d
+// to the light and so the window clamp(1 - (d / range)^4, 0, 1)^2 follow from the camera alone, and
+// the light's part of the pixel (lit minus unlit) must be the window times the part the same light
+// gives without a range. Pixels within 2% of the range are left out (the window's slope there).
+TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
+  useGlContext();
+  scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
+  constexpr float kCameraHeight = 3.0f;
+  constexpr double kLightHeight = 1.5;
+  constexpr double kRange = 1.9;  // reaches the floor out to 1.17 m from below the light; the view, 1.76 m
+  scene::Camera down;
+  down.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
+  down.target = glm::vec3(0.0f);
+  down.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  down.verticalFovDegrees = 45.0f;
+  scene::Light point;
+  point.type = scene::Light::Type::Point;
+  point.position = glm::vec3(0.0f, float(kLightHeight), 0.0f);
+  point.intensity = glm::vec3(2.0f);
+  scene::Light ranged = point;
+  ranged.range = float(kRange);
+
+  gl::Renderer renderer(scene, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = 128;
+  frame.height = 128;
+  frame.brdf = gl::BrdfModel::Glint;
+  frame.camera = down;
+  auto litBy = [&](std::vector<scene::Light> lights) {
+    renderer.lights() = std::move(lights);
+    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return image;
+  };
+  const ImageRgbF dark = litBy({});
+  const ImageRgbF byPoint = litBy({point});
+  const ImageRgbF byRanged = litBy({ranged});
+  const double halfHeight = kCameraHeight * std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+  int reached = 0;
+  int beyond = 0;
+  double worst = 0.0;
+  for (int y = 0; y < frame.height; ++y) {
+    for (int x = 0; x < frame.width; ++x) {
+      const double nx = 2.0 * (x + 0.5) / frame.width - 1.0;
+      const double ny = 2.0 * (y + 0.5) / frame.height - 1.0;
+      const double d = std::hypot(halfHeight * std::hypot(nx, ny), kLightHeight);
+      if (std::abs(d - kRange) < 0.02 * kRange) continue;
+      const double window = std::pow(std::clamp(1.0 - std::pow(d / kRange, 4.0), 0.0, 1.0), 2.0);
+      const std::size_t p = static_cast<std::size_t>(y) * frame.width + x;
+      for (int c = 0; c < 3; ++c) {
+        const double none = dark.pixels[p][c];
+        const double full = byPoint.pixels[p][c] - none;
+        const double got = byRanged.pixels[p][c] - none;
+        ASSERT_GT(full, 1e-4) << "the point light lights pixel " << x << "," << y;
+        worst = std::max(worst, std::abs(got - window * full) / full);
+        EXPECT_NEAR(got, window * full, 1e-4 * full + 1e-7) << x << "," << y << ": d " << d;
+      }
+      (d < kRange ? reached : beyond) += 1;
+    }
+  }
+  EXPECT_GT(reached, 5000);
+  EXPECT_GT(beyond, 3000);
+  std::printf("light range: %d pixels within it, %d beyond, worst relative error %.2e (bound 1e-4)\n", reached, beyond,
+              worst);
+}
+
 // A scene of emissive quads facing +z, seen by a camera on the z axis, for the visibility tests:
 // each quad's emission is far above anything the lights or the environment give, so a pixel shows
 // which quad (if any) was shaded there.

@@ -306,6 +306,18 @@ TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   EXPECT_FLOAT_EQ(cone.innerConeAngle, 0.2f);
   EXPECT_FLOAT_EQ(cone.outerConeAngle, 0.5f);
   EXPECT_NEAR(glm::length(cone.intensity - glm::vec3(1.0f, 0.5f, 0.25f)), 0.0f, 1e-6f);
+  EXPECT_EQ(cone.range, 0.0f);  // none in the file
+  EXPECT_EQ(cone.inverseRange(), 0.0f);
+
+  // A range on the point light is read; on the directional one it is meaningless and dropped.
+  const Scene ranged = loadGltf(writeLitTriangle("gltf_light_range", [](json& d) {
+    d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 4.0;
+    d["extensions"]["KHR_lights_punctual"]["lights"][1]["range"] = 7.0;
+  }));
+  ASSERT_EQ(ranged.lights.size(), 2u);
+  EXPECT_FLOAT_EQ(ranged.lights[0].range, 4.0f);
+  EXPECT_FLOAT_EQ(ranged.lights[0].inverseRange(), 0.25f);
+  EXPECT_EQ(ranged.lights[1].inverseRange(), 0.0f);
 
   // glTF's doubleSided, false unless the material says so.
   const Scene twoSided = loadGltf(writeLitTriangle("gltf_double_sided", [](json& d) {
@@ -370,6 +382,10 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                     d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = -3.0;
                   }),
                   "light 1: intensity -3 is not a finite number >= 0");
+  expectLoadError(writeLitTriangle("gltf_light_range", [](json& d) {
+                    d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = -2.0;
+                  }),
+                  "light 0 'bulb': range -2 is not a finite number > 0");
   expectLoadError(writeLitTriangle("gltf_camera_fov", [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 4.0; }),
                   "camera 0 'shot': yfov 4 is not in (0, pi) radians");
   expectLoadError(writeLitTriangle("gltf_camera_ymag", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = -1.0; }),
@@ -421,6 +437,8 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
        "cameras[1].orthographic.ymag must be a number, got the string \"2\""},
       {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = {1366}; },
        "extensions.KHR_lights_punctual.lights[1].intensity must be a number, got an array"},
+      {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = "10m"; },
+       "extensions.KHR_lights_punctual.lights[0].range must be a number, got the string \"10m\""},
       {[](json& d) { d["scenes"] = {{{"nodes", "all"}}}; }, "scenes[0].nodes must be an array, got the string \"all\""},
   };
   int which = 0;

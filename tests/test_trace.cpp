@@ -465,8 +465,10 @@ struct CrossCheck {
 };
 
 // `spot`: the light becomes a spot aimed at the scene's centre whose cones (0.05 and 0.12 radians)
-// leave part of the view unlit.
-CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool orthographic = false) {
+// leave part of the view unlit. `ranged`: the light's range is its distance to the scene's centre,
+// so its light fades across the scene and the far side gets none.
+CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool orthographic = false,
+                               bool ranged = false) {
   scene::Scene scene = scene::makeBuiltinScene(name);
   // One point light (the scene's first), black environment: direct light only, in both.
   std::vector<scene::Light> lights;
@@ -480,6 +482,7 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     light.innerConeAngle = 0.05f;
     light.outerConeAngle = 0.12f;
   }
+  if (ranged) lights.at(0).range = glm::length(0.5f * (scene.boundsMin() + scene.boundsMax()) - lights.at(0).position);
   scene.lights = lights;
   scene.environment = scene::Environment{};
   const int size = 128;
@@ -506,8 +509,8 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     settings.camera = frame.camera;
     const ImageRgbF traced = trace::PathTracer(scene, defaultDictionary(), settings).render();
     const ImageError error = compareImages(traced, raster);
-    std::printf("[ cross    ] %s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
-                orthographic ? " (orthographic)" : "", gl::toString(model),
+    std::printf("[ cross    ] %s%s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
+                orthographic ? " (orthographic)" : "", ranged ? " (range)" : "", gl::toString(model),
                 error.relmse, error.rmse, error.meanReference);
     (model == gl::BrdfModel::Glint ? result.glint : result.cookTorrance) = error.relmse;
   }
@@ -538,10 +541,12 @@ TEST(TraceGl, DirectLightMatchesTheRealTimeRenderer) {
     double cookTorrance;
     bool spot = false;
     bool orthographic = false;
+    bool ranged = false;
   };
   for (const Bound& bound : {Bound{"sphere", 5e-5, 5e-5}, Bound{"parquet", 1e-3, 1e-4}, Bound{"sphere", 5e-5, 5e-5, true},
-                             Bound{"sphere", 5e-5, 5e-5, false, true}, Bound{"parquet", 1e-3, 1e-4, false, true}}) {
-    const CrossCheck relMse = crossRendererRelMse(bound.scene, bound.spot, bound.orthographic);
+                             Bound{"sphere", 5e-5, 5e-5, false, true}, Bound{"parquet", 1e-3, 1e-4, false, true},
+                             Bound{"sphere", 5e-5, 5e-5, false, false, true}}) {
+    const CrossCheck relMse = crossRendererRelMse(bound.scene, bound.spot, bound.orthographic, bound.ranged);
     std::printf("%s: path tracer vs real-time renderer, direct light, relMSE glint %.2e, Cook-Torrance %.2e\n",
                 bound.scene, relMse.glint, relMse.cookTorrance);
     EXPECT_LT(relMse.glint, bound.glint) << bound.scene;

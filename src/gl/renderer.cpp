@@ -280,6 +280,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glm::vec3 lightIntensities[kMaxLights];
   glm::vec3 spotAxes[kMaxLights];
   glm::vec2 spotCones[kMaxLights];
+  float inverseRanges[kMaxLights];
   const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size()));
   for (int i = 0; i < lightCount; ++i) {
     const scene::Light& light = lights_[static_cast<std::size_t>(i)];
@@ -288,6 +289,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     lightIntensities[i] = light.intensity;
     spotAxes[i] = light.spotAxis();
     spotCones[i] = light.coneScaleOffset();
+    inverseRanges[i] = light.inverseRange();
   }
   auto texture = [&](int index, GLuint fallback) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
@@ -351,6 +353,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
     glUniform3fv(p.uniform("uSpotAxis"), lightCount, &spotAxes[0].x);
     glUniform2fv(p.uniform("uSpotCone"), lightCount, &spotCones[0].x);
+    glUniform1fv(p.uniform("uLightInverseRange"), lightCount, inverseRanges);
     glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);

@@ -34,6 +34,7 @@ constexpr std::array kFieldTypes = {
     FieldType{"extensions.KHR_lights_punctual.lights[].type", JsonType::String},
     FieldType{"extensions.KHR_lights_punctual.lights[].color[]", JsonType::Number},
     FieldType{"extensions.KHR_lights_punctual.lights[].intensity", JsonType::Number},
+    FieldType{"extensions.KHR_lights_punctual.lights[].range", JsonType::Number},
     FieldType{"extensions.KHR_lights_punctual.lights[].spot.innerConeAngle", JsonType::Number},
     FieldType{"extensions.KHR_lights_punctual.lights[].spot.outerConeAngle", JsonType::Number},
     FieldType{"scene", JsonType::Index},

@@ -544,8 +544,9 @@ class GltfReader {
 
   // KHR_lights_punctual: point, spot and directional lights. Its photometric units become
   // radiometric ones at 683 lm/W (the luminous efficacy at 555 nm, as glTF exporters convert
-  // watts): a point or spot light's candela to W/sr, a directional light's lux to W/m^2. `range`
-  // (a cut-off hint) is not used.
+  // watts): a point or spot light's candela to W/sr, a directional light's lux to W/m^2. A point or
+  // spot light's `range` ends its light smoothly at that distance (kernel/lights.h); tinygltf reads
+  // an absent range as 0, so 0 means none, as absent.
   void addLight(const tinygltf::Value& extension, const glm::dmat4& world) {
     if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber()) {
       throw error("KHR_lights_punctual has no light index");
@@ -582,6 +583,10 @@ class GltfReader {
       if (!(glm::length(direction) > 0.0)) throw error(label, ": its node's transform collapses its direction");
       light.direction = glm::vec3(glm::normalize(direction));
     }
+    if (!(std::isfinite(source.range) && source.range >= 0.0)) {
+      throw error(label, ": range ", source.range, " is not a finite number > 0");
+    }
+    if (light.type != Light::Type::Directional) light.range = static_cast<float>(source.range);
     if (light.type == Light::Type::Spot) {
       const double inner = source.spot.innerConeAngle;
       const double outer = source.spot.outerConeAngle;

@@ -122,6 +122,8 @@ glm::vec2 Light::coneScaleOffset() const {
   return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
+float Light::inverseRange() const { return positional() && range > 0.0f ? 1.0f / range : 0.0f; }
+
 glm::vec3 Light::spotAxis() const { return type == Type::Spot ? glm::normalize(direction) : glm::vec3(0, -1, 0); }
 
 void addDefaultLighting(Scene& scene) {

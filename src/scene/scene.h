@@ -94,6 +94,7 @@ struct Light {
   glm::vec3 intensity{1.0f};       // point, spot: W/sr (radiant intensity, on the axis); directional: W/m^2
   float innerConeAngle = 0.0f;     // spots, radians from the axis: full intensity within the inner
   float outerConeAngle = 0.7853982f;  // cone, none beyond the outer (kernel/lights.h)
+  float range = 0.0f;              // point and spot lights: dark from this distance on (kernel/lights.h); 0: no range
 
   bool positional() const { return type != Type::Directional; }
   // kernel::spotConeScaleOffset of a spot's cones; (0, 1), no falloff, for the other lights.
@@ -101,6 +102,9 @@ struct Light {
   // A spot's unit axis, as kernel::spotAttenuation takes it; any unit vector for the other lights,
   // whose cone (0, 1) ignores it.
   glm::vec3 spotAxis() const;
+  // 1 / range, as kernel::rangeWindow takes it; 0 for a light without a range and for directional
+  // lights.
+  float inverseRange() const;
 };
 
 // Ambient light: an equirectangular radiance map (linear RGB, rows from the top, +y up); a

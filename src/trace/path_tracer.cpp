@@ -65,8 +65,8 @@ PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, 
 glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& shaded) const {
   glm::vec3 sum(0.0f);
   for (const scene::Light& light : scene_.lights) {
-    // As forward.frag: point and spot lights give intensity / distance^2 (a spot's times its cone),
-    // directional lights irradiance.
+    // As forward.frag: point and spot lights give intensity / distance^2 (a spot's times its cone,
+    // a light with a range times its window), directional lights irradiance.
     glm::vec3 toLight;
     float distance = std::numeric_limits<float>::infinity();
     float falloff = 1.0f;
@@ -76,7 +76,8 @@ glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& 
       if (!(distance2 > 0.0f)) continue;
       distance = std::sqrt(distance2);
       toLight /= distance;
-      falloff = kernel::spotAttenuation(light.spotAxis(), toLight, light.coneScaleOffset()) / distance2;
+      falloff = kernel::spotAttenuation(light.spotAxis(), toLight, light.coneScaleOffset()) *
+                kernel::rangeWindow(distance2, light.inverseRange()) / distance2;
       if (!(falloff > 0.0f)) continue;
     } else {
       toLight = -glm::normalize(light.direction);

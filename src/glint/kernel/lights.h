@@ -1,6 +1,7 @@
-// The angular falloff of punctual lights, shared by the rasteriser (forward.frag) and the path
-// tracer: a spot light (KHR_lights_punctual) is a point light whose intensity falls off between
-// an inner and an outer cone around its axis. See prelude.h for the rules of kernel code.
+// The falloff of punctual lights, shared by the rasteriser (forward.frag) and the path tracer: a
+// spot light (KHR_lights_punctual) is a point light whose intensity falls off between an inner and
+// an outer cone around its axis, and a point or spot light may have a range beyond which it is
+// dark. See prelude.h for the rules of kernel code.
 #ifndef GLINT_KERNEL_LIGHTS_H
 #define GLINT_KERNEL_LIGHTS_H
 
@@ -23,6 +24,16 @@ GLINT_FN vec2 spotConeScaleOffset(float innerConeAngle, float outerConeAngle) {
 GLINT_FN float spotAttenuation(vec3 axis, vec3 towardsLight, vec2 coneScaleOffset) {
   float ramp = clamp(dot(axis, -towardsLight) * coneScaleOffset.x + coneScaleOffset.y, 0.0f, 1.0f);
   return ramp * ramp;
+}
+
+// KHR_lights_punctual's `range` for point and spot lights: the extension's recommended smooth
+// window on top of the inverse-square law, clamp(1 - (d / range)^4, 0, 1)^2, which reaches 0 at the
+// range and leaves the light unchanged near it. `inverseRange` is 1 / range, 0 for a light without
+// one (the window is then 1); `distance2` is d^2.
+GLINT_FN float rangeWindow(float distance2, float inverseRange) {
+  float ratio2 = distance2 * inverseRange * inverseRange;
+  float window = clamp(1.0f - ratio2 * ratio2, 0.0f, 1.0f);
+  return window * window;
 }
 
 GLINT_KERNEL_END
