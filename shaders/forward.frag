@@ -43,6 +43,7 @@ uniform float uMetallic;
 uniform float uRoughness;
 uniform float uNormalScale;
 uniform vec3 uEmissive;
+uniform float uOcclusionStrength;  // glTF occlusionTexture.strength
 uniform float uAlphaCutoff;  // alphaMode MASK (ALPHA_MASK = 1): the alpha below which nothing is drawn
 
 // Whether the material has a glint layer (its roughness is then the layer's). Glint and Zirr &
@@ -92,7 +93,7 @@ void main() {
   float metallic = uMetallic * metallicRoughness.b;
   float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);
   vec3 emissive = uEmissive * texture(uEmissiveTexture, vUv).rgb;
-  float occlusion = texture(uOcclusionTexture, vUv).r;
+  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, vUv).r - 1.0f);
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
   // from behind (curtains) are shaded on the side facing the camera.

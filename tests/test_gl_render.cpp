@@ -296,6 +296,48 @@ TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
               worst);
 }
 
+// glTF's occlusion strength: the ambient light (environment only, no lights, no emission) of a
+// plane whose occlusion texture holds o everywhere is scaled by 1 + strength (o - 1), so against
+// strength 0 (no occlusion) every plane pixel keeps exactly that fraction; the sky is untouched.
+TEST(RenderGl, OcclusionStrengthScalesTheAmbientLightAsGltfSays) {
+  useGlContext();
+  constexpr std::uint8_t kTexel = 64;
+  const double occlusion = kTexel / 255.0;
+  auto render = [&](float strength) {
+    scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
+    scene.lights.clear();
+    scene.textures.push_back({"occlusion", 1, 1, {kTexel, kTexel, kTexel, 255}, false});
+    scene.materials[0].occlusionTexture = static_cast<int>(scene.textures.size()) - 1;
+    scene.materials[0].occlusionStrength = strength;
+    gl::Renderer renderer(scene, defaultDictionary());
+    gl::FrameSettings frame;
+    frame.width = 64;
+    frame.height = 64;
+    frame.brdf = gl::BrdfModel::CookTorrance;
+    frame.camera = scene.cameras.at("default");
+    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return image;
+  };
+  const ImageRgbF open = render(0.0f);
+  for (const float strength : {0.5f, 1.0f}) {
+    const ImageRgbF occluded = render(strength);
+    const double fraction = 1.0 + strength * (occlusion - 1.0);
+    int plane = 0;
+    int sky = 0;
+    for (std::size_t p = 0; p < open.pixels.size(); ++p) {
+      const bool isSky = occluded.pixels[p] == open.pixels[p];
+      (isSky ? sky : plane) += 1;
+      if (isSky) continue;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(occluded.pixels[p][c], fraction * open.pixels[p][c], 1e-5 * open.pixels[p][c]) << p << " " << strength;
+      }
+    }
+    EXPECT_GT(plane, 1000) << strength;
+    EXPECT_GT(sky, 500) << strength;
+  }
+}
+
 // A scene of emissive quads facing +z, seen by a camera on the z axis, for the visibility tests:
 // each quad's emission is far above anything the lights or the environment give, so a pixel shows
 // which quad (if any) was shaded there.

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "glint/error.h"
+#include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/geometry.h"
 #include "scene/gltf_loader.h"
@@ -394,6 +395,48 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "camera 1: ymag 0 is not in (0, 1e30)");
 }
 
+// occlusionTexture.strength and KHR_materials_emissive_strength, which scales emissiveFactor past
+// glTF's [0, 1]; the extension is read, so it is neither warned about nor refused when required.
+TEST(GltfLoader, ReadsOcclusionAndEmissiveStrengths) {
+  const Scene scene = loadGltf(writeLitTriangle("gltf_strengths", [](json& d) {
+    d["extensionsUsed"].push_back("KHR_materials_emissive_strength");
+    d["extensionsRequired"] = {"KHR_materials_emissive_strength"};
+    d["materials"] = {{{"emissiveFactor", {1.0, 0.5, 0.0}},
+                       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 40.0}}}}}},
+                      {{"emissiveFactor", {0.25, 0.5, 1.0}}}};
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+  }));
+  ASSERT_GE(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.materials[0].emissive, glm::vec3(40.0f, 20.0f, 0.0f));
+  EXPECT_EQ(scene.materials[1].emissive, glm::vec3(0.25f, 0.5f, 1.0f));
+  EXPECT_EQ(scene.materials[0].occlusionStrength, 1.0f);  // glTF's default
+  EXPECT_TRUE(scene.unreadFeatures.empty());
+
+  // The strength of an occlusion texture (an image in the file's folder).
+  const fs::path file = writeLitTriangle("gltf_occlusion_strength", [](json& d) {
+    d["images"] = {{{"uri", "grey.png"}}};
+    d["textures"] = {{{"source", 0}}};
+    d["materials"] = {{{"occlusionTexture", {{"index", 0}, {"strength", 0.25}}}}};
+  });
+  ImageRgbF grey;
+  grey.width = 1;
+  grey.height = 1;
+  grey.pixels = {glm::vec3(0.5f)};
+  writeImage(file.parent_path() / "grey.png", grey);
+  const Scene occluded = loadGltf(file);
+  EXPECT_EQ(occluded.materials[0].occlusionTexture, 0);
+  EXPECT_EQ(occluded.materials[0].occlusionStrength, 0.25f);
+
+  expectLoadError(writeLitTriangle("gltf_occlusion_strength_range", [](json& d) {
+                    d["materials"] = {{{"occlusionTexture", {{"index", 0}, {"strength", 1.5}}}}};
+                  }),
+                  "occlusionTexture.strength must be in [0, 1], got 1.5");
+  expectLoadError(writeLitTriangle("gltf_emissive_strength", [](json& d) {
+                    d["materials"] = {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1.0}}}}}}};
+                  }),
+                  "KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0, got -1");
+}
+
 TEST(GltfLoader, ReadsAlphaModeAndCutoff) {
   const Scene scene = loadGltf(writeLitTriangle("gltf_alpha_mode", [](json& d) {
     d["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}}, {{"alphaMode", "BLEND"}}, json::object()};
@@ -437,6 +480,8 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
        "cameras[1].orthographic.ymag must be a number, got the string \"2\""},
       {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = {1366}; },
        "extensions.KHR_lights_punctual.lights[1].intensity must be a number, got an array"},
+      {[](json& d) { d["materials"] = {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", "2"}}}}}}}; },
+       "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength must be a number, got the string \"2\""},
       {[](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = "10m"; },
        "extensions.KHR_lights_punctual.lights[0].range must be a number, got the string \"10m\""},
       {[](json& d) { d["scenes"] = {{{"nodes", "all"}}}; }, "scenes[0].nodes must be an array, got the string \"all\""},

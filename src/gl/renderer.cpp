@@ -376,6 +376,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uRoughness"), m.roughness);
     glUniform1f(p.uniform("uNormalScale"), m.normalScale);
     glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+    glUniform1f(p.uniform("uOcclusionStrength"), m.occlusionStrength);
     if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
     glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
     glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);

@@ -66,6 +66,8 @@ constexpr std::array kFieldTypes = {
     FieldType{"materials[].normalTexture.index", JsonType::Index},
     FieldType{"materials[].normalTexture.scale", JsonType::Number},
     FieldType{"materials[].occlusionTexture.index", JsonType::Index},
+    FieldType{"materials[].occlusionTexture.strength", JsonType::Number},
+    FieldType{"materials[].extensions.KHR_materials_emissive_strength.emissiveStrength", JsonType::Number},
     FieldType{"materials[].emissiveTexture.index", JsonType::Index},
     FieldType{"materials[].emissiveFactor[]", JsonType::Number},
     FieldType{"materials[].doubleSided", JsonType::Boolean},

@@ -347,10 +347,10 @@ class GltfReader {
 
  private:
   void checkExtensions() const {
-    // Quantised attributes are plain normalised or integer accessors, which readAccessor handles;
-    // any other required extension changes what the data means.
+    // Quantised attributes are plain normalised or integer accessors, which readAccessor handles,
+    // and an emissive strength is read; any other required extension changes what the data means.
     for (const std::string& extension : model_.extensionsRequired) {
-      if (extension != "KHR_mesh_quantization") throw error("requires extension ", extension, ", which glint does not support");
+      if (extension != "KHR_mesh_quantization" && extension != "KHR_materials_emissive_strength") throw error("requires extension ", extension, ", which glint does not support");
     }
   }
 
@@ -365,7 +365,8 @@ class GltfReader {
       it->second.push_back(where);
     };
     for (const std::string& extension : model_.extensionsUsed) {
-      if (extension != "KHR_lights_punctual" && extension != "KHR_mesh_quantization") {
+      if (extension != "KHR_lights_punctual" && extension != "KHR_mesh_quantization" &&
+          extension != "KHR_materials_emissive_strength") {
         note("extension " + extension + " is not read", "");
       }
     }
@@ -388,9 +389,6 @@ class GltfReader {
           {"emissiveTexture", material.emissiveTexture.texCoord}};
       for (const auto& [texture, texCoord] : texCoords) {
         if (texCoord != 0) note("textures on a texCoord other than 0 are mapped with TEXCOORD_0", where + " " + texture);
-      }
-      if (material.occlusionTexture.index >= 0 && material.occlusionTexture.strength != 1.0) {
-        note("occlusionTexture.strength is taken as 1", where);
       }
     }
     if (!model_.skins.empty()) note("skins are not applied, the meshes are drawn unskinned", std::to_string(model_.skins.size()) + " skins");
@@ -815,11 +813,22 @@ class GltfReader {
     m.normalTexture = optionalTexture(source.normalTexture.index, false, "normalTexture");
     m.normalScale = static_cast<float>(source.normalTexture.scale);
     if (!std::isfinite(m.normalScale)) throw error("normalTexture.scale is not finite");
+    m.occlusionStrength = unitFactor(source.occlusionTexture.strength, "occlusionTexture.strength");
     m.occlusionTexture = optionalTexture(source.occlusionTexture.index, false, "occlusionTexture");
     if (source.emissiveFactor.size() == 3) {
       for (int c = 0; c < 3; ++c) m.emissive[c] = unitFactor(source.emissiveFactor[static_cast<std::size_t>(c)], "emissiveFactor");
     } else if (!source.emissiveFactor.empty()) {
       throw error("emissiveFactor has ", source.emissiveFactor.size(), " numbers, expected 3");
+    }
+    // KHR_materials_emissive_strength: glTF keeps emissiveFactor in [0, 1]; this scales it past 1.
+    const auto emissiveStrength = source.extensions.find("KHR_materials_emissive_strength");
+    if (emissiveStrength != source.extensions.end() && emissiveStrength->second.IsObject() &&
+        emissiveStrength->second.Has("emissiveStrength")) {
+      const double strength = emissiveStrength->second.Get("emissiveStrength").GetNumberAsDouble();
+      if (!(std::isfinite(strength) && strength >= 0.0)) {
+        throw error("KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0, got ", strength);
+      }
+      m.emissive *= static_cast<float>(strength);
     }
     m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
     m.doubleSided = source.doubleSided;

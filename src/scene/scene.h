@@ -70,9 +70,10 @@ struct Material {
   int metallicRoughnessTexture = -1;  // G = roughness, B = metallic (glTF convention)
   int normalTexture = -1;
   float normalScale = 1.0f;
-  glm::vec3 emissive{0.0f};
+  glm::vec3 emissive{0.0f};  // emissiveFactor, times KHR_materials_emissive_strength's strength
   int emissiveTexture = -1;
   int occlusionTexture = -1;
+  float occlusionStrength = 1.0f;  // glTF occlusionTexture.strength: occlusion = 1 + strength (texel - 1)
   // glTF's doubleSided: when false the rasteriser culls back faces (counter-clockwise triangles are
   // front faces); when true both sides are drawn, a back face shaded with its normal turned to the
   // camera. The path tracer sees both sides of every triangle either way.
