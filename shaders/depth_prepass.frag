@@ -1,17 +1,18 @@
 // The depth pre-pass (src/gl/renderer.cpp): meshes are first drawn with this shader and colour
 // writes off, so that the shading pass, under an equal-depth test, runs the forward shader once per
 // covered pixel instead of once per fragment drawn there. With ALPHA_MASK (glTF alphaMode MASK),
-// the fragments whose base colour alpha is below the cutoff leave no depth, so what lies behind
+// the fragments whose base colour alpha (factor, texture and vertex colour) is below the cutoff leave no depth, so what lies behind
 // them is shaded instead; the other meshes keep a shader without discard.
 #if ALPHA_MASK
 in vec2 vUv;
+in vec4 vColour;
 
 layout(binding = 1) uniform sampler2D uBaseColourTexture;
 uniform vec4 uBaseColour;
 uniform float uAlphaCutoff;
 
 void main() {
-  if (uBaseColour.a * texture(uBaseColourTexture, vUv).a < uAlphaCutoff) {
+  if (uBaseColour.a * texture(uBaseColourTexture, vUv).a * vColour.a < uAlphaCutoff) {
     discard;
   }
 }

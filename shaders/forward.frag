@@ -23,6 +23,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec4 vTangent;
 in vec2 vUv;
+in vec4 vColour;  // glTF COLOR_0
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -88,7 +89,7 @@ void main() {
   vec2 duvdx = dFdx(glintUv);
   vec2 duvdy = dFdy(glintUv);
 
-  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, vUv);
+  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, vUv) * vColour;
   vec4 metallicRoughness = texture(uMetallicRoughnessTexture, vUv);
   float metallic = uMetallic * metallicRoughness.b;
   float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);

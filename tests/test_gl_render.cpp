@@ -464,6 +464,54 @@ TEST(RenderGl, AlphaMaskCutsOutWhereAlphaIsBelowTheCutoff) {
     EXPECT_EQ(pixelsShowing(cut, 0), 0) << textured;
     EXPECT_GT(pixelsShowing(cut, 1), 1000) << textured;
   }
+  // The vertex colour's alpha (COLOR_0) takes part too: 0.4 at every vertex cuts the sheet.
+  const ImageRgbF byVertices = renderSheets({{0.5f, red, false}, {0.0f, green, false}}, 3.0f, [&](scene::Scene& scene) {
+    scene.materials[0].alphaMode = scene::Material::AlphaMode::Mask;
+    for (scene::Vertex& v : scene.meshes[0].vertices) v.colour.a = 0.4f;
+  });
+  EXPECT_EQ(pixelsShowing(byVertices, 0), 0);
+  EXPECT_GT(pixelsShowing(byVertices, 1), 1000);
+}
+
+// glTF COLOR_0 multiplies the base colour: the sphere with the same colour at every vertex, and a
+// white base colour, renders as the sphere with that base colour and white vertices, for every
+// BRDF (the colour enters the diffuse term and, on metals, Fresnel's F0).
+TEST(RenderGl, VertexColourMultipliesTheBaseColour) {
+  useGlContext();
+  const glm::vec4 colour(0.2f, 0.6f, 0.9f, 1.0f);
+  auto render = [&](glm::vec4 vertexColour, glm::vec4 factor, gl::BrdfModel brdf) {
+    scene::Scene scene = scene::makeBuiltinScene("sphere");
+    for (scene::Material& m : scene.materials) m.baseColour *= factor;
+    for (scene::Mesh& mesh : scene.meshes) {
+      for (scene::Vertex& v : mesh.vertices) v.colour = vertexColour;
+    }
+    gl::Renderer renderer(scene, defaultDictionary());
+    gl::FrameSettings frame;
+    frame.width = 64;
+    frame.height = 64;
+    frame.brdf = brdf;
+    frame.camera = scene.cameras.at("default");
+    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return image;
+  };
+  for (const gl::BrdfModel brdf : gl::allBrdfModels()) {
+    const glm::vec4 white(1.0f);
+    const ImageRgbF byVertices = render(colour, white, brdf);
+    const ImageRgbF byFactor = render(white, colour, brdf);
+    const ImageRgbF uncoloured = render(white, white, brdf);
+    double largest = 0.0;
+    double colourEffect = 0.0;  // how far the colour moves a pixel: the check must be able to fail
+    for (std::size_t p = 0; p < byFactor.pixels.size(); ++p) {
+      for (int c = 0; c < 3; ++c) {
+        const double reference = std::max(1e-6, double(byFactor.pixels[p][c]));
+        largest = std::max(largest, std::abs(byVertices.pixels[p][c] - byFactor.pixels[p][c]) / reference);
+        colourEffect = std::max(colourEffect, std::abs(uncoloured.pixels[p][c] - byFactor.pixels[p][c]) / reference);
+      }
+    }
+    EXPECT_LT(largest, 1e-5) << gl::toString(brdf);
+    EXPECT_GT(colourEffect, 0.1) << gl::toString(brdf);
+  }
 }
 
 // Where no mesh is drawn the rasteriser shows the environment, as the path tracer's camera rays

@@ -263,17 +263,15 @@ TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
   EXPECT_TRUE(loadGltf(writeLitTriangle("gltf_all_read", [](json&) {})).unreadFeatures.empty());
   const Scene scene = loadGltf(writeLitTriangle("gltf_unread", [](json& d) {
     d["extensionsUsed"].push_back("KHR_texture_transform");
-    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;
-    json primitive = {{"attributes", {{"POSITION", 0}, {"COLOR_0", 0}}}};
+    json primitive = {{"attributes", {{"POSITION", 0}}}};
     primitive["targets"] = json::array({{{"POSITION", 0}}});
-    d["meshes"].push_back({{"name", "blob"}, {"primitives", json::array({primitive})}});
+    d["meshes"].push_back({{"name", "blob"}, {"primitives", json::array({primitive, primitive})}});
     d["nodes"].push_back({{"mesh", 1}});
     d["scenes"][0]["nodes"].push_back(5);
   }));
   const std::vector<std::string> expected = {
       "extension KHR_texture_transform is not read",
-      "vertex colours (COLOR_0) are not read (mesh 0 and 1 more)",
-      "morph targets are not applied, the base shape is drawn (mesh 1 'blob')",
+      "morph targets are not applied, the base shape is drawn (mesh 1 'blob' and 1 more)",
   };
   EXPECT_EQ(scene.unreadFeatures, expected);
 }
@@ -393,6 +391,46 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "camera 1: ymag -1 is not in (0, 1e30)");
   expectLoadError(writeLitTriangle("gltf_camera_ymag_zero", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = 0.0; }),
                   "camera 1: ymag 0 is not in (0, 1e30)");
+}
+
+// COLOR_0, as RGB floats or as RGBA normalised unsigned bytes (glTF allows both, and shorts), in
+// linear [0, 1]; a vertex without it is white.
+TEST(GltfLoader, ReadsVertexColours) {
+  auto withColours = [](const std::string& folder, int accessor) {
+    const fs::path file = writeLitTriangle(folder, [&](json& d) {
+      d["buffers"].push_back({{"uri", "colours.bin"}, {"byteLength", 48}});
+      d["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 36}});
+      d["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 36}, {"byteLength", 12}});
+      d["accessors"].push_back({{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+      d["accessors"].push_back(
+          {{"bufferView", 2}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}});
+      d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = accessor;
+    });
+    const float rgb[9] = {1.0f, 0.5f, 0.25f, 0.0f, 1.0f, 0.0f, 0.2f, 0.4f, 0.6f};
+    const std::uint8_t rgba[12] = {255, 0, 51, 128, 0, 255, 0, 255, 10, 20, 30, 0};
+    std::ofstream bin(file.parent_path() / "colours.bin", std::ios::binary);
+    bin.write(reinterpret_cast<const char*>(rgb), sizeof rgb);
+    bin.write(reinterpret_cast<const char*>(rgba), sizeof rgba);
+    bin.close();
+    return file;
+  };
+  const Scene floats = loadGltf(withColours("gltf_colour_floats", 1));
+  ASSERT_EQ(floats.meshes.at(0).vertices.size(), 3u);
+  EXPECT_EQ(floats.meshes[0].vertices[0].colour, glm::vec4(1.0f, 0.5f, 0.25f, 1.0f));
+  EXPECT_EQ(floats.meshes[0].vertices[2].colour, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
+  EXPECT_TRUE(floats.unreadFeatures.empty());
+  const Scene bytes = loadGltf(withColours("gltf_colour_bytes", 2));
+  const glm::vec4 first = bytes.meshes.at(0).vertices.at(0).colour;
+  EXPECT_NEAR(glm::length(first - glm::vec4(1.0f, 0.0f, 0.2f, 128.0f / 255.0f)), 0.0f, 1e-6f);
+  EXPECT_EQ(bytes.meshes[0].vertices[2].colour.a, 0.0f);
+  // Without COLOR_0: white.
+  EXPECT_EQ(loadGltf(writeLitTriangle("gltf_colour_none", [](json&) {})).meshes.at(0).vertices.at(1).colour,
+            glm::vec4(1.0f));
+  // Positions are no colours: -1 is outside [0, 1].
+  expectLoadError(writeLitTriangle("gltf_colour_range", [](json& d) {
+                    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;
+                  }),
+                  "COLOR_0: element 0 has -1, outside [0, 1]");
 }
 
 // occlusionTexture.strength and KHR_materials_emissive_strength, which scales emissiveFactor past

@@ -190,6 +190,13 @@ TEST(Trace, AlphaMaskLetsRaysThroughWhereAlphaIsBelowTheCutoff) {
     EXPECT_EQ(meshHit(cut, above), 1) << textured;
     EXPECT_FALSE(cut.occluded(above, 3.2f)) << textured;
   }
+  // The vertex colour's alpha (COLOR_0) takes part too, interpolated: 0 at the sheet's lower
+  // corners (y = -1) and 1 at its upper ones gives alpha 0.25 at y = -0.5 and 0.75 at y = 0.5.
+  scene::Scene graded = sheets(scene::Material::AlphaMode::Mask, 1.0f, false);
+  for (scene::Vertex& v : graded.meshes[0].vertices) v.colour.a = v.position.y > 0.0f ? 1.0f : 0.0f;
+  const trace::SceneGeometry byVertices(graded);
+  EXPECT_EQ(meshHit(byVertices, below), 1);
+  EXPECT_EQ(meshHit(byVertices, above), 0);
 }
 
 // On a plane, uv is a projective function of the window position, so the differences a 2 x 2 quad
@@ -466,9 +473,10 @@ struct CrossCheck {
 
 // `spot`: the light becomes a spot aimed at the scene's centre whose cones (0.05 and 0.12 radians)
 // leave part of the view unlit. `ranged`: the light's range is its distance to the scene's centre,
-// so its light fades across the scene and the far side gets none.
+// so its light fades across the scene and the far side gets none. `coloured`: every vertex gets a
+// colour (COLOR_0) that varies with its position, which both renderers interpolate.
 CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool orthographic = false,
-                               bool ranged = false) {
+                               bool ranged = false, bool coloured = false) {
   scene::Scene scene = scene::makeBuiltinScene(name);
   // One point light (the scene's first), black environment: direct light only, in both.
   std::vector<scene::Light> lights;
@@ -483,6 +491,13 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     light.outerConeAngle = 0.12f;
   }
   if (ranged) lights.at(0).range = glm::length(0.5f * (scene.boundsMin() + scene.boundsMax()) - lights.at(0).position);
+  if (coloured) {
+    for (scene::Mesh& mesh : scene.meshes) {
+      for (scene::Vertex& v : mesh.vertices) {
+        v.colour = glm::vec4(0.5f + 0.5f * glm::sin(4.0f * v.position), 1.0f);
+      }
+    }
+  }
   scene.lights = lights;
   scene.environment = scene::Environment{};
   const int size = 128;
@@ -509,8 +524,9 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     settings.camera = frame.camera;
     const ImageRgbF traced = trace::PathTracer(scene, defaultDictionary(), settings).render();
     const ImageError error = compareImages(traced, raster);
-    std::printf("[ cross    ] %s%s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
-                orthographic ? " (orthographic)" : "", ranged ? " (range)" : "", gl::toString(model),
+    std::printf("[ cross    ] %s%s%s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
+                orthographic ? " (orthographic)" : "", ranged ? " (range)" : "", coloured ? " (vertex colours)" : "",
+                gl::toString(model),
                 error.relmse, error.rmse, error.meanReference);
     (model == gl::BrdfModel::Glint ? result.glint : result.cookTorrance) = error.relmse;
   }
@@ -542,11 +558,13 @@ TEST(TraceGl, DirectLightMatchesTheRealTimeRenderer) {
     bool spot = false;
     bool orthographic = false;
     bool ranged = false;
+    bool coloured = false;
   };
   for (const Bound& bound : {Bound{"sphere", 5e-5, 5e-5}, Bound{"parquet", 1e-3, 1e-4}, Bound{"sphere", 5e-5, 5e-5, true},
                              Bound{"sphere", 5e-5, 5e-5, false, true}, Bound{"parquet", 1e-3, 1e-4, false, true},
-                             Bound{"sphere", 5e-5, 5e-5, false, false, true}}) {
-    const CrossCheck relMse = crossRendererRelMse(bound.scene, bound.spot, bound.orthographic, bound.ranged);
+                             Bound{"sphere", 5e-5, 5e-5, false, false, true}, Bound{"sphere", 5e-5, 5e-5, false, false, false, true}}) {
+    const CrossCheck relMse =
+        crossRendererRelMse(bound.scene, bound.spot, bound.orthographic, bound.ranged, bound.coloured);
     std::printf("%s: path tracer vs real-time renderer, direct light, relMSE glint %.2e, Cook-Torrance %.2e\n",
                 bound.scene, relMse.glint, relMse.cookTorrance);
     EXPECT_LT(relMse.glint, bound.glint) << bound.scene;

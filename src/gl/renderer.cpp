@@ -247,7 +247,8 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
     } attributes[] = {{0, 3, offsetof(scene::Vertex, position)},
                       {1, 3, offsetof(scene::Vertex, normal)},
                       {2, 4, offsetof(scene::Vertex, tangent)},
-                      {3, 2, offsetof(scene::Vertex, uv)}};
+                      {3, 2, offsetof(scene::Vertex, uv)},
+                      {4, 4, offsetof(scene::Vertex, colour)}};
     for (const auto& a : attributes) {
       glEnableVertexArrayAttrib(m.vertexArray, a.location);
       glVertexArrayAttribFormat(m.vertexArray, a.location, a.size, GL_FLOAT, GL_FALSE, a.offset);

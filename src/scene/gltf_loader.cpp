@@ -374,7 +374,6 @@ class GltfReader {
       const tinygltf::Mesh& mesh = model_.meshes[i];
       const std::string where = "mesh " + std::to_string(i) + (mesh.name.empty() ? "" : " '" + mesh.name + "'");
       for (const tinygltf::Primitive& primitive : mesh.primitives) {
-        if (primitive.attributes.contains("COLOR_0")) note("vertex colours (COLOR_0) are not read", where);
         if (!primitive.targets.empty()) note("morph targets are not applied, the base shape is drawn", where);
       }
     }
@@ -658,6 +657,23 @@ class GltfReader {
     });
   }
 
+  // COLOR_0: RGB or RGBA (glTF allows both), float or normalised unsigned bytes or shorts, in
+  // [0, 1]; empty when the primitive has none.
+  AccessorValues vertexColours(const tinygltf::Primitive& primitive, std::size_t count) const {
+    const auto found = primitive.attributes.find("COLOR_0");
+    if (found == primitive.attributes.end()) return {};
+    const bool rgb = found->second >= 0 && static_cast<std::size_t>(found->second) < model_.accessors.size() &&
+                     model_.accessors[static_cast<std::size_t>(found->second)].type == TINYGLTF_TYPE_VEC3;
+    AccessorValues colours = attribute(primitive, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, count);
+    for (std::size_t i = 0; i < colours.values.size(); ++i) {
+      if (!(colours.values[i] >= 0.0 && colours.values[i] <= 1.0)) {
+        throw error("COLOR_0: element ", i / static_cast<std::size_t>(colours.components), " has ", colours.values[i],
+                    ", outside [0, 1]");
+      }
+    }
+    return colours;
+  }
+
   void addPrimitive(const tinygltf::Mesh& sourceMesh, int meshIndex, std::size_t primitiveIndex, const glm::dmat4& world) {
     const tinygltf::Primitive& primitive = sourceMesh.primitives[primitiveIndex];
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
@@ -670,6 +686,7 @@ class GltfReader {
     const std::vector<double> normals = attribute(primitive, "NORMAL", TINYGLTF_TYPE_VEC3, count).values;
     const std::vector<double> uvs = attribute(primitive, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, count).values;
     const std::vector<double> tangents = attribute(primitive, "TANGENT", TINYGLTF_TYPE_VEC4, count).values;
+    const AccessorValues colours = vertexColours(primitive, count);
 
     const glm::dmat3 linear(world);
     const double determinant = glm::determinant(linear);
@@ -700,6 +717,10 @@ class GltfReader {
         throw error("POSITION ", i, " is not finite after the node transforms");
       }
       v.uv = uvs.empty() ? glm::vec2(0.0f) : glm::vec2(glm::make_vec2(&uvs[2 * i]));
+      if (!colours.values.empty()) {
+        const double* rgba = &colours.values[static_cast<std::size_t>(colours.components) * i];
+        v.colour = glm::vec4(glm::vec3(glm::make_vec3(rgba)), colours.components == 4 ? static_cast<float>(rgba[3]) : 1.0f);
+      }
       if (!normals.empty()) {
         const glm::dvec3 n = normalMatrix * glm::make_vec3(&normals[3 * i]);
         const double length = glm::length(n);

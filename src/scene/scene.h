@@ -21,6 +21,7 @@ struct Vertex {
   glm::vec3 normal;    // unit length
   glm::vec4 tangent;   // xyz unit tangent along +u, w = handedness (+1 or -1); generated when missing
   glm::vec2 uv;
+  glm::vec4 colour{1.0f};  // glTF COLOR_0, linear RGBA: multiplies the base colour and its alpha; white when missing
 };
 
 struct Mesh {

@@ -36,8 +36,8 @@ void check(RTCDevice device, const char* what) {
 
 }  // namespace
 
-// glTF alphaMode MASK: a hit counts where the base colour's alpha, factor times texture, is at
-// least the cutoff. The texture's alpha is filtered bilinearly at its finest level: a filter has
+// glTF alphaMode MASK: a hit counts where the base colour's alpha, factor times texture times
+// vertex colour (COLOR_0), is at least the cutoff. The texture's alpha is filtered bilinearly at its finest level: a filter has
 // no ray footprint, where the rasteriser's pre-pass samples the mip level of its pixel.
 struct SceneGeometry::AlphaMask {
   // A texture's alpha channel, shared by every mesh whose material uses it (a glTF node instance
@@ -48,13 +48,15 @@ struct SceneGeometry::AlphaMask {
     std::vector<float> texels;  // rows from the top, as scene::Texture
   };
 
-  std::vector<glm::vec2> uvs;  // three per triangle (copied: the geometry may outlive the scene)
+  std::vector<glm::vec2> uvs;     // three per triangle (copied: the geometry may outlive the scene)
+  std::vector<float> vertexAlpha;  // three per triangle, COLOR_0's alpha
   float factor = 1.0f;
   float cutoff = 0.5f;
   std::shared_ptr<const Alpha> texture;  // null: no texture
 
   bool keeps(unsigned triangle, float u, float v) const {
-    float a = factor;
+    const float* cornerAlpha = &vertexAlpha[3 * static_cast<std::size_t>(triangle)];
+    float a = factor * ((1.0f - u - v) * cornerAlpha[0] + u * cornerAlpha[1] + v * cornerAlpha[2]);
     if (texture) {
       const glm::vec2* corner = &uvs[3 * static_cast<std::size_t>(triangle)];
       const glm::vec2 uv = (1.0f - u - v) * corner[0] + u * corner[1] + v * corner[2];
@@ -108,7 +110,11 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       if (material.alphaMode == scene::Material::AlphaMode::Mask) {
         mask = masks_.emplace_back(std::make_unique<AlphaMask>()).get();
         mask->uvs.reserve(mesh.indices.size() / 3 * 3);
-        for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
+        mask->vertexAlpha.reserve(mesh.indices.size() / 3 * 3);
+        for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) {
+          mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
+          mask->vertexAlpha.push_back(mesh.vertices[mesh.indices[i]].colour.a);
+        }
         mask->factor = material.baseColour.a;
         mask->cutoff = material.alphaCutoff;
         if (material.baseColourTexture >= 0) mask->texture = alphaOf(material.baseColourTexture);
@@ -205,6 +211,7 @@ SurfacePoint surfacePoint(const scene::Scene& scene, const Hit& hit) {
   p.normal = normalLength > 0.0f ? p.normal / normalLength : p.geometricNormal;
   p.tangent = wa * a.tangent + wb * b.tangent + wc * c.tangent;
   p.uv = wa * a.uv + wb * b.uv + wc * c.uv;
+  p.colour = wa * a.colour + wb * b.colour + wc * c.colour;
 
   // The triangle's dp/du and dp/dv (pbrt-v3, Triangle::Intersect) from two edges and their uvs.
   const glm::vec2 duv02 = a.uv - c.uv;

@@ -55,6 +55,7 @@ struct SurfacePoint {
   glm::vec3 normal{0.0f, 0.0f, 1.0f};           // interpolated, unit
   glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};    // interpolated (xyz not normalised), w its sign
   glm::vec2 uv{0.0f};                           // mesh uv
+  glm::vec4 colour{1.0f};                       // interpolated vertex colour (glTF COLOR_0)
   glm::vec3 dpdu{0.0f};                         // the triangle's position derivatives in uv
   glm::vec3 dpdv{0.0f};
   bool uvDegenerate = true;                     // the triangle's uvs span no area

@@ -102,7 +102,8 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const glm::vec2 uv = point.uv;
 
   // glTF metal-roughness inputs, as forward.frag reads them.
-  const glm::vec3 baseColour = glm::vec3(m.baseColour) * texture(m.baseColourTexture, uv, footprint);
+  const glm::vec3 baseColour =
+      glm::vec3(m.baseColour) * texture(m.baseColourTexture, uv, footprint) * glm::vec3(point.colour);
   const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, uv, footprint);
   const float metallic = m.metallic * metallicRoughness.b;
   const float roughness = std::clamp(m.roughness * metallicRoughness.g, 0.03f, 1.0f);
