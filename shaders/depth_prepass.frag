@@ -9,10 +9,11 @@ in vec4 vColour;
 
 layout(binding = 1) uniform sampler2D uBaseColourTexture;
 uniform vec4 uBaseColour;
+uniform mat3x2 uBaseColourUv;  // KHR_texture_transform, as in forward.frag
 uniform float uAlphaCutoff;
 
 void main() {
-  if (uBaseColour.a * texture(uBaseColourTexture, vUv).a * vColour.a < uAlphaCutoff) {
+  if (uBaseColour.a * texture(uBaseColourTexture, uBaseColourUv * vec3(vUv, 1.0f)).a * vColour.a < uAlphaCutoff) {
     discard;
   }
 }

@@ -45,6 +45,12 @@ uniform float uRoughness;
 uniform float uNormalScale;
 uniform vec3 uEmissive;
 uniform float uOcclusionStrength;  // glTF occlusionTexture.strength
+// Each texture's glTF KHR_texture_transform: uv' = M * vec3(uv, 1) (scene::UvTransform::matrix).
+uniform mat3x2 uBaseColourUv;
+uniform mat3x2 uMetallicRoughnessUv;
+uniform mat3x2 uNormalUv;
+uniform mat3x2 uEmissiveUv;
+uniform mat3x2 uOcclusionUv;
 uniform float uAlphaCutoff;  // alphaMode MASK (ALPHA_MASK = 1): the alpha below which nothing is drawn
 
 // Whether the material has a glint layer (its roughness is then the layer's). Glint and Zirr &
@@ -89,12 +95,13 @@ void main() {
   vec2 duvdx = dFdx(glintUv);
   vec2 duvdy = dFdy(glintUv);
 
-  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, vUv) * vColour;
-  vec4 metallicRoughness = texture(uMetallicRoughnessTexture, vUv);
+  vec3 uv = vec3(vUv, 1.0f);
+  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, uBaseColourUv * uv) * vColour;
+  vec4 metallicRoughness = texture(uMetallicRoughnessTexture, uMetallicRoughnessUv * uv);
   float metallic = uMetallic * metallicRoughness.b;
   float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);
-  vec3 emissive = uEmissive * texture(uEmissiveTexture, vUv).rgb;
-  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, vUv).r - 1.0f);
+  vec3 emissive = uEmissive * texture(uEmissiveTexture, uEmissiveUv * uv).rgb;
+  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, uOcclusionUv * uv).r - 1.0f);
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
   // from behind (curtains) are shaded on the side facing the camera.
@@ -102,7 +109,7 @@ void main() {
   vec3 n = normalize(vNormal);
   vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
   vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
-  vec3 mapped = texture(uNormalTexture, vUv).xyz * 2.0f - 1.0f;
+  vec3 mapped = texture(uNormalTexture, uNormalUv * uv).xyz * 2.0f - 1.0f;
   mapped.xy *= uNormalScale;
   n = normalize(mat3(t, b, n) * mapped);
   if (dot(n, view) < 0.0f) {

@@ -473,6 +473,39 @@ TEST(RenderGl, AlphaMaskCutsOutWhereAlphaIsBelowTheCutoff) {
   EXPECT_GT(pixelsShowing(byVertices, 1), 1000);
 }
 
+// KHR_texture_transform in the rasteriser: an emissive sheet whose texture is red for u < 0.5 and
+// green above (u runs along +y on the sheet, makeQuad's halfU) glows red in its lower half; with
+// the texture's uv offset by (0.5, 0), the same sheet glows red in its upper half.
+TEST(RenderGl, TextureTransformMovesTheTexture) {
+  const glm::vec3 white(100.0f);
+  auto render = [&](scene::UvTransform transform) {
+    return renderSheets({{0.0f, white, false}}, 3.0f, [&](scene::Scene& scene) {
+      // 4 texels across u: red, red, green, green (sRGB 255 and 0: linear 1 and 0).
+      scene.textures.push_back({"halves", 4, 1, {255, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 0, 255, 0, 255}, true});
+      scene.materials[0].emissiveTexture = static_cast<int>(scene.textures.size()) - 1;
+      scene.materials[0].emissiveUv = transform;
+    });
+  };
+  auto redRows = [](const ImageRgbF& image, bool upper) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        const glm::vec3& p = image.pixels[static_cast<std::size_t>(y * image.width + x)];
+        if (p.r > 50.0f && p.g < 5.0f && (y < image.height / 2) == upper) ++count;  // rows from the top
+      }
+    }
+    return count;
+  };
+  const ImageRgbF plain = render({});
+  EXPECT_GT(redRows(plain, false), 300);
+  EXPECT_EQ(redRows(plain, true), 0);
+  scene::UvTransform shifted;
+  shifted.offset = glm::vec2(0.5f, 0.0f);
+  const ImageRgbF moved = render(shifted);
+  EXPECT_GT(redRows(moved, true), 300);
+  EXPECT_EQ(redRows(moved, false), 0);
+}
+
 // glTF COLOR_0 multiplies the base colour: the sphere with the same colour at every vertex, and a
 // white base colour, renders as the sphere with that base colour and white vertices, for every
 // BRDF (the colour enters the diffuse term and, on metals, Fresnel's F0).

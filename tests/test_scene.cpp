@@ -262,7 +262,7 @@ static fs::path writeLitTriangle(const std::string& folderName, const std::funct
 TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
   EXPECT_TRUE(loadGltf(writeLitTriangle("gltf_all_read", [](json&) {})).unreadFeatures.empty());
   const Scene scene = loadGltf(writeLitTriangle("gltf_unread", [](json& d) {
-    d["extensionsUsed"].push_back("KHR_texture_transform");
+    d["extensionsUsed"].push_back("KHR_materials_clearcoat");
     json primitive = {{"attributes", {{"POSITION", 0}}}};
     primitive["targets"] = json::array({{{"POSITION", 0}}});
     d["meshes"].push_back({{"name", "blob"}, {"primitives", json::array({primitive, primitive})}});
@@ -270,7 +270,7 @@ TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
     d["scenes"][0]["nodes"].push_back(5);
   }));
   const std::vector<std::string> expected = {
-      "extension KHR_texture_transform is not read",
+      "extension KHR_materials_clearcoat is not read",
       "morph targets are not applied, the base shape is drawn (mesh 1 'blob' and 1 more)",
   };
   EXPECT_EQ(scene.unreadFeatures, expected);
@@ -391,6 +391,55 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                   "camera 1: ymag -1 is not in (0, 1e30)");
   expectLoadError(writeLitTriangle("gltf_camera_ymag_zero", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = 0.0; }),
                   "camera 1: ymag 0 is not in (0, 1e30)");
+}
+
+// KHR_texture_transform: the extension's own example (offset (0, 1), rotation pi/2, scale 0.5)
+// "utilizes only the lower left quadrant of the source image, rotated clockwise 90 degrees": the uv
+// square's corners go to the corners of u in [0, 0.5], v in [0.5, 1] (v runs down the image).
+TEST(GltfLoader, ReadsTextureTransformsAsTheExtensionsExample) {
+  const fs::path file = writeLitTriangle("gltf_texture_transform", [](json& d) {
+    d["extensionsUsed"].push_back("KHR_texture_transform");
+    d["extensionsRequired"] = {"KHR_texture_transform"};
+    d["images"] = {{{"uri", "grey.png"}}};
+    d["textures"] = {{{"source", 0}}};
+    const json example = {{"KHR_texture_transform", {{"offset", {0, 1}}, {"rotation", 1.57079632679}, {"scale", {0.5, 0.5}}}}};
+    d["materials"] = {{{"emissiveTexture", {{"index", 0}, {"extensions", example}}},
+                       {"normalTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}}}}};
+  });
+  ImageRgbF grey;
+  grey.width = 1;
+  grey.height = 1;
+  grey.pixels = {glm::vec3(0.5f)};
+  writeImage(file.parent_path() / "grey.png", grey);
+  const Scene scene = loadGltf(file);
+  const UvTransform& example = scene.materials.at(0).emissiveUv;
+  EXPECT_EQ(example.offset, glm::vec2(0.0f, 1.0f));
+  EXPECT_EQ(example.scale, glm::vec2(0.5f));
+  const std::pair<glm::vec2, glm::vec2> corners[] = {
+      {{0, 0}, {0, 1}}, {{1, 0}, {0, 0.5f}}, {{0, 1}, {0.5f, 1}}, {{1, 1}, {0.5f, 0.5f}}};
+  for (const auto& [uv, expected] : corners) {
+    EXPECT_NEAR(glm::length(example.apply(uv) - expected), 0.0f, 1e-6f) << uv.x << "," << uv.y;
+    const glm::mat3x2 m = example.matrix();  // what the shaders get: M * vec3(uv, 1)
+    EXPECT_NEAR(glm::length(m * glm::vec3(uv, 1.0f) - expected), 0.0f, 1e-6f) << uv.x << "," << uv.y;
+  }
+  // The others are the identity; the normal map's transform asks for a second uv set.
+  EXPECT_EQ(scene.materials[0].baseColourUv.apply(glm::vec2(0.3f, 0.7f)), glm::vec2(0.3f, 0.7f));
+  const std::vector<std::string> unread = {
+      "textures on a texCoord other than 0 are mapped with TEXCOORD_0 (material 0 normalTexture)"};
+  EXPECT_EQ(scene.unreadFeatures, unread);
+
+  expectLoadError(writeLitTriangle("gltf_texture_transform_offset", [](json& d) {
+                    d["materials"] = {{{"emissiveTexture",
+                                        {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0, 1, 2}}}}}}}}}};
+                  }),
+                  "emissiveTexture.KHR_texture_transform.offset has 3 numbers, expected 2");
+  expectLoadError(writeLitTriangle("gltf_texture_transform_type", [](json& d) {
+                    d["materials"] = {{{"pbrMetallicRoughness",
+                                        {{"baseColorTexture",
+                                          {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"rotation", "90"}}}}}}}}}}};
+                  }),
+                  "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation must be "
+                  "a number, got the string \"90\"");
 }
 
 // COLOR_0, as RGB floats or as RGBA normalised unsigned bytes (glTF allows both, and shorts), in

@@ -474,9 +474,11 @@ struct CrossCheck {
 // `spot`: the light becomes a spot aimed at the scene's centre whose cones (0.05 and 0.12 radians)
 // leave part of the view unlit. `ranged`: the light's range is its distance to the scene's centre,
 // so its light fades across the scene and the far side gets none. `coloured`: every vertex gets a
-// colour (COLOR_0) that varies with its position, which both renderers interpolate.
+// colour (COLOR_0) that varies with its position, which both renderers interpolate. `transformed`:
+// every material's textures get a KHR_texture_transform (offset, rotation and a scale that is not
+// uniform), which moves the uv and stretches the footprint of each lookup.
 CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool orthographic = false,
-                               bool ranged = false, bool coloured = false) {
+                               bool ranged = false, bool coloured = false, bool transformed = false) {
   scene::Scene scene = scene::makeBuiltinScene(name);
   // One point light (the scene's first), black environment: direct light only, in both.
   std::vector<scene::Light> lights;
@@ -491,6 +493,15 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     light.outerConeAngle = 0.12f;
   }
   if (ranged) lights.at(0).range = glm::length(0.5f * (scene.boundsMin() + scene.boundsMax()) - lights.at(0).position);
+  if (transformed) {
+    scene::UvTransform transform;
+    transform.offset = glm::vec2(0.3f, -0.1f);
+    transform.rotation = 0.4f;
+    transform.scale = glm::vec2(1.5f, 0.8f);
+    for (scene::Material& m : scene.materials) {
+      m.baseColourUv = m.metallicRoughnessUv = m.normalUv = m.emissiveUv = m.occlusionUv = transform;
+    }
+  }
   if (coloured) {
     for (scene::Mesh& mesh : scene.meshes) {
       for (scene::Vertex& v : mesh.vertices) {
@@ -524,9 +535,9 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     settings.camera = frame.camera;
     const ImageRgbF traced = trace::PathTracer(scene, defaultDictionary(), settings).render();
     const ImageError error = compareImages(traced, raster);
-    std::printf("[ cross    ] %s%s%s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
+    std::printf("[ cross    ] %s%s%s%s%s%s %s: relMSE %.3g, RMSE %.3g, mean %.3g\n", name.c_str(), spot ? " (spot)" : "",
                 orthographic ? " (orthographic)" : "", ranged ? " (range)" : "", coloured ? " (vertex colours)" : "",
-                gl::toString(model),
+                transformed ? " (texture transform)" : "", gl::toString(model),
                 error.relmse, error.rmse, error.meanReference);
     (model == gl::BrdfModel::Glint ? result.glint : result.cookTorrance) = error.relmse;
   }
@@ -559,12 +570,14 @@ TEST(TraceGl, DirectLightMatchesTheRealTimeRenderer) {
     bool orthographic = false;
     bool ranged = false;
     bool coloured = false;
+    bool transformed = false;
   };
   for (const Bound& bound : {Bound{"sphere", 5e-5, 5e-5}, Bound{"parquet", 1e-3, 1e-4}, Bound{"sphere", 5e-5, 5e-5, true},
                              Bound{"sphere", 5e-5, 5e-5, false, true}, Bound{"parquet", 1e-3, 1e-4, false, true},
-                             Bound{"sphere", 5e-5, 5e-5, false, false, true}, Bound{"sphere", 5e-5, 5e-5, false, false, false, true}}) {
-    const CrossCheck relMse =
-        crossRendererRelMse(bound.scene, bound.spot, bound.orthographic, bound.ranged, bound.coloured);
+                             Bound{"sphere", 5e-5, 5e-5, false, false, true}, Bound{"sphere", 5e-5, 5e-5, false, false, false, true},
+                             Bound{"parquet", 1e-3, 1e-4, false, false, false, false, true}}) {
+    const CrossCheck relMse = crossRendererRelMse(bound.scene, bound.spot, bound.orthographic, bound.ranged,
+                                                  bound.coloured, bound.transformed);
     std::printf("%s: path tracer vs real-time renderer, direct light, relMSE glint %.2e, Cook-Torrance %.2e\n",
                 bound.scene, relMse.glint, relMse.cookTorrance);
     EXPECT_LT(relMse.glint, bound.glint) << bound.scene;

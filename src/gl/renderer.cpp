@@ -19,6 +19,12 @@ namespace glint::gl {
 
 namespace {
 
+// A texture's KHR_texture_transform as the shaders take it: uv' = M * vec3(uv, 1).
+void setUvTransform(const ShaderProgram& program, const char* name, const scene::UvTransform& transform) {
+  const glm::mat3x2 matrix = transform.matrix();
+  glUniformMatrix3x2fv(program.uniform(name), 1, GL_FALSE, &matrix[0][0]);
+}
+
 struct GpuMesh {
   GLuint vertexArray = 0;
   GLuint vertexBuffer = 0;
@@ -318,6 +324,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
     if (isMasked(m)) {
       glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
+      setUvTransform(*program, "uBaseColourUv", m.baseColourUv);
       glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
       glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
     }
@@ -378,6 +385,11 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uNormalScale"), m.normalScale);
     glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
     glUniform1f(p.uniform("uOcclusionStrength"), m.occlusionStrength);
+    setUvTransform(p, "uBaseColourUv", m.baseColourUv);
+    setUvTransform(p, "uMetallicRoughnessUv", m.metallicRoughnessUv);
+    setUvTransform(p, "uNormalUv", m.normalUv);
+    setUvTransform(p, "uEmissiveUv", m.emissiveUv);
+    setUvTransform(p, "uOcclusionUv", m.occlusionUv);
     if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
     glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
     glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);

@@ -348,9 +348,11 @@ class GltfReader {
  private:
   void checkExtensions() const {
     // Quantised attributes are plain normalised or integer accessors, which readAccessor handles,
-    // and an emissive strength is read; any other required extension changes what the data means.
+    // and emissive strengths and texture transforms are read; any other required extension changes
+    // what the data means.
     for (const std::string& extension : model_.extensionsRequired) {
-      if (extension != "KHR_mesh_quantization" && extension != "KHR_materials_emissive_strength") throw error("requires extension ", extension, ", which glint does not support");
+      if (extension != "KHR_mesh_quantization" && extension != "KHR_materials_emissive_strength" &&
+          extension != "KHR_texture_transform") throw error("requires extension ", extension, ", which glint does not support");
     }
   }
 
@@ -366,7 +368,7 @@ class GltfReader {
     };
     for (const std::string& extension : model_.extensionsUsed) {
       if (extension != "KHR_lights_punctual" && extension != "KHR_mesh_quantization" &&
-          extension != "KHR_materials_emissive_strength") {
+          extension != "KHR_materials_emissive_strength" && extension != "KHR_texture_transform") {
         note("extension " + extension + " is not read", "");
       }
     }
@@ -380,12 +382,20 @@ class GltfReader {
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
       const tinygltf::Material& material = model_.materials[i];
       const std::string where = "material " + std::to_string(i) + (material.name.empty() ? "" : " '" + material.name + "'");
+      // KHR_texture_transform's texCoord, where given, overrides the texture's own.
+      auto texCoordOf = [](int texCoord, const tinygltf::ExtensionMap& extensions) {
+        const auto transform = extensions.find("KHR_texture_transform");
+        if (transform == extensions.end() || !transform->second.Has("texCoord")) return texCoord;
+        return transform->second.Get("texCoord").GetNumberAsInt();
+      };
+      const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
       const std::pair<const char*, int> texCoords[] = {
-          {"baseColorTexture", material.pbrMetallicRoughness.baseColorTexture.texCoord},
-          {"metallicRoughnessTexture", material.pbrMetallicRoughness.metallicRoughnessTexture.texCoord},
-          {"normalTexture", material.normalTexture.texCoord},
-          {"occlusionTexture", material.occlusionTexture.texCoord},
-          {"emissiveTexture", material.emissiveTexture.texCoord}};
+          {"baseColorTexture", texCoordOf(pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions)},
+          {"metallicRoughnessTexture",
+           texCoordOf(pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions)},
+          {"normalTexture", texCoordOf(material.normalTexture.texCoord, material.normalTexture.extensions)},
+          {"occlusionTexture", texCoordOf(material.occlusionTexture.texCoord, material.occlusionTexture.extensions)},
+          {"emissiveTexture", texCoordOf(material.emissiveTexture.texCoord, material.emissiveTexture.extensions)}};
       for (const auto& [texture, texCoord] : texCoords) {
         if (texCoord != 0) note("textures on a texCoord other than 0 are mapped with TEXCOORD_0", where + " " + texture);
       }
@@ -813,6 +823,33 @@ class GltfReader {
     return withContext(std::string(what) + ": ", [&] { return texture(index, srgb); });
   }
 
+  // A texture's KHR_texture_transform (its members' types are checked with the file's JSON,
+  // gltf_field_types.cpp); the identity without one.
+  static UvTransform uvTransform(const tinygltf::ExtensionMap& extensions, const char* texture) {
+    UvTransform transform;
+    const auto found = extensions.find("KHR_texture_transform");
+    if (found == extensions.end() || !found->second.IsObject()) return transform;
+    const tinygltf::Value& value = found->second;
+    auto pair = [&](const char* member, glm::vec2& out) {
+      if (!value.Has(member)) return;
+      const tinygltf::Value& array = value.Get(member);
+      if (array.ArrayLen() != 2) {
+        throw error(texture, ".KHR_texture_transform.", member, " has ", array.ArrayLen(), " numbers, expected 2");
+      }
+      for (int k = 0; k < 2; ++k) out[k] = static_cast<float>(array.Get(k).GetNumberAsDouble());
+    };
+    pair("offset", transform.offset);
+    pair("scale", transform.scale);
+    if (value.Has("rotation")) transform.rotation = static_cast<float>(value.Get("rotation").GetNumberAsDouble());
+    const glm::mat3x2 matrix = transform.matrix();
+    for (int column = 0; column < 3; ++column) {
+      for (int row = 0; row < 2; ++row) {
+        if (!std::isfinite(matrix[column][row])) throw error(texture, ".KHR_texture_transform is not finite");
+      }
+    }
+    return transform;
+  }
+
   static float unitFactor(double value, const char* field) {
     if (!(value >= 0.0 && value <= 1.0)) throw error(field, " must be in [0, 1], got ", value);
     return static_cast<float>(value);
@@ -832,6 +869,11 @@ class GltfReader {
     m.baseColourTexture = optionalTexture(pbr.baseColorTexture.index, true, "baseColorTexture");
     m.metallicRoughnessTexture = optionalTexture(pbr.metallicRoughnessTexture.index, false, "metallicRoughnessTexture");
     m.normalTexture = optionalTexture(source.normalTexture.index, false, "normalTexture");
+    m.baseColourUv = uvTransform(pbr.baseColorTexture.extensions, "baseColorTexture");
+    m.metallicRoughnessUv = uvTransform(pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
+    m.normalUv = uvTransform(source.normalTexture.extensions, "normalTexture");
+    m.occlusionUv = uvTransform(source.occlusionTexture.extensions, "occlusionTexture");
+    m.emissiveUv = uvTransform(source.emissiveTexture.extensions, "emissiveTexture");
     m.normalScale = static_cast<float>(source.normalTexture.scale);
     if (!std::isfinite(m.normalScale)) throw error("normalTexture.scale is not finite");
     m.occlusionStrength = unitFactor(source.occlusionTexture.strength, "occlusionTexture.strength");

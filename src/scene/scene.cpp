@@ -118,6 +118,13 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
   };
 }
 
+glm::mat2 UvTransform::linear() const {
+  const float c = std::cos(rotation);
+  const float s = std::sin(rotation);
+  // Columns: where (1, 0) and (0, 1) go.
+  return glm::mat2(c * scale.x, -s * scale.x, s * scale.y, c * scale.y);
+}
+
 glm::vec2 Light::coneScaleOffset() const {
   return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }

@@ -62,10 +62,26 @@ struct GlintLayer {
 };
 
 // glTF 2.0 metal-roughness material.
+// glTF KHR_texture_transform on one texture of a material: uv' = offset + R (scale * uv), where R
+// turns uv by `rotation` radians as the extension's example and its known implementations do
+// (u' = u cos + v sin, v' = v cos - u sin: counter-clockwise in glTF's uv, whose v runs down the
+// image). The identity when the file has none.
+struct UvTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+
+  glm::mat2 linear() const;  // R * diag(scale): what uv derivatives are multiplied by
+  glm::vec2 apply(glm::vec2 uv) const { return linear() * uv + offset; }
+  glm::mat3x2 matrix() const { return glm::mat3x2(linear()[0], linear()[1], offset); }  // for GLSL: M * vec3(uv, 1)
+};
+
 struct Material {
   std::string name;
   glm::vec4 baseColour{1.0f};
   int baseColourTexture = -1;
+  // Each texture's KHR_texture_transform.
+  UvTransform baseColourUv, metallicRoughnessUv, normalUv, occlusionUv, emissiveUv;
   float metallic = 0.0f;
   float roughness = 0.5f;             // perceptual; alpha = roughness^2 for the non-glint specular
   int metallicRoughnessTexture = -1;  // G = roughness, B = metallic (glTF convention)

@@ -112,7 +112,9 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
         mask->uvs.reserve(mesh.indices.size() / 3 * 3);
         mask->vertexAlpha.reserve(mesh.indices.size() / 3 * 3);
         for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) {
-          mask->uvs.push_back(mesh.vertices[mesh.indices[i]].uv);
+          // The base colour texture's KHR_texture_transform is affine, so it can be applied to the
+          // corners before they are interpolated.
+          mask->uvs.push_back(material.baseColourUv.apply(mesh.vertices[mesh.indices[i]].uv));
           mask->vertexAlpha.push_back(mesh.vertices[mesh.indices[i]].colour.a);
         }
         mask->factor = material.baseColour.a;

@@ -95,6 +95,12 @@ glm::vec3 SceneMaterials::texture(int index, glm::vec2 uv, const UvDerivatives& 
   return textures_[static_cast<std::size_t>(index)].sample(uv, footprint.duvdx, footprint.duvdy);
 }
 
+glm::vec3 SceneMaterials::texture(int index, const scene::UvTransform& transform, glm::vec2 uv,
+                                  const UvDerivatives& footprint) const {
+  const glm::mat2 linear = transform.linear();
+  return texture(index, transform.apply(uv), UvDerivatives{linear * footprint.duvdx, linear * footprint.duvdy});
+}
+
 ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
                                   glm::vec3 towardsViewer) const {
   const scene::Material& m = scene_.materials[static_cast<std::size_t>(point.material)];
@@ -103,11 +109,11 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
 
   // glTF metal-roughness inputs, as forward.frag reads them.
   const glm::vec3 baseColour =
-      glm::vec3(m.baseColour) * texture(m.baseColourTexture, uv, footprint) * glm::vec3(point.colour);
-  const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, uv, footprint);
+      glm::vec3(m.baseColour) * texture(m.baseColourTexture, m.baseColourUv, uv, footprint) * glm::vec3(point.colour);
+  const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, m.metallicRoughnessUv, uv, footprint);
   const float metallic = m.metallic * metallicRoughness.b;
   const float roughness = std::clamp(m.roughness * metallicRoughness.g, 0.03f, 1.0f);
-  const Spectrum emitted = m.emissive * texture(m.emissiveTexture, uv, footprint);
+  const Spectrum emitted = m.emissive * texture(m.emissiveTexture, m.emissiveUv, uv, footprint);
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it, the normal
   // turned towards the viewer for sheets seen from behind.
@@ -123,7 +129,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const float handedness = point.tangent.w < 0.0f ? -1.0f : 1.0f;
   glm::vec3 b = glm::cross(n, t) * handedness;
   if (m.normalTexture >= 0) {
-    glm::vec3 mapped = texture(m.normalTexture, uv, footprint) * 2.0f - 1.0f;
+    glm::vec3 mapped = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
     mapped.x *= m.normalScale;
     mapped.y *= m.normalScale;
     const glm::vec3 perturbed = t * mapped.x + b * mapped.y + n * mapped.z;

@@ -102,6 +102,8 @@ class SceneMaterials {
 
  private:
   glm::vec3 texture(int index, glm::vec2 uv, const UvDerivatives& footprint) const;
+  // The same through a glTF KHR_texture_transform: the uv and its footprint are transformed.
+  glm::vec3 texture(int index, const scene::UvTransform& transform, glm::vec2 uv, const UvDerivatives& footprint) const;
 
   const scene::Scene& scene_;
   const Dictionary& dictionary_;
