@@ -231,7 +231,7 @@ TEST(RenderGl, SpotLightsLightTheirConeOnly) {
 
 // A point light's range (KHR_lights_punctual) scales its light by the extension's window: seen
 // straight down at the grazing plane from above the light, a pixel's floor point, its distance d
-// to the light and so the window clamp(1 - (d / range)^4, 0, 1)^2 follow from the camera alone, and
+// to the light and so the window clamp(1 - (d / range)^4, 0, 1) follow from the camera alone, and
 // the light's part of the pixel (lit minus unlit) must be the window times the part the same light
 // gives without a range. Pixels within 2% of the range are left out (the window's slope there).
 TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
@@ -277,7 +277,7 @@ TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
       const double ny = 2.0 * (y + 0.5) / frame.height - 1.0;
       const double d = std::hypot(halfHeight * std::hypot(nx, ny), kLightHeight);
       if (std::abs(d - kRange) < 0.02 * kRange) continue;
-      const double window = std::pow(std::clamp(1.0 - std::pow(d / kRange, 4.0), 0.0, 1.0), 2.0);
+      const double window = std::clamp(1.0 - std::pow(d / kRange, 4.0), 0.0, 1.0);
       const std::size_t p = static_cast<std::size_t>(y) * frame.width + x;
       for (int c = 0; c < 3; ++c) {
         const double none = dark.pixels[p][c];

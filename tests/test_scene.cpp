@@ -14,6 +14,7 @@
 
 #include "glint/error.h"
 #include "glint/image_io.h"
+#include "glint/kernel/lights.h"
 #include "scene/builtin_scenes.h"
 #include "scene/geometry.h"
 #include "scene/gltf_loader.h"
@@ -316,7 +317,13 @@ TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
   ASSERT_EQ(ranged.lights.size(), 2u);
   EXPECT_FLOAT_EQ(ranged.lights[0].range, 4.0f);
   EXPECT_FLOAT_EQ(ranged.lights[0].inverseRange(), 0.25f);
-  EXPECT_EQ(ranged.lights[1].inverseRange(), 0.0f);
+  EXPECT_EQ(ranged.lights[1].range, 0.0f);
+  // A range too small for a float is not taken for none: the light reaches nothing.
+  const Scene tiny = loadGltf(writeLitTriangle("gltf_light_range_tiny", [](json& d) {
+    d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 1e-50;
+  }));
+  EXPECT_GT(tiny.lights[0].range, 0.0f);
+  EXPECT_EQ(kernel::rangeWindow(1e-6f, tiny.lights[0].inverseRange()), 0.0f);
 
   // glTF's doubleSided, false unless the material says so.
   const Scene twoSided = loadGltf(writeLitTriangle("gltf_double_sided", [](json& d) {
@@ -480,6 +487,17 @@ TEST(GltfLoader, ReadsVertexColours) {
                     d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;
                   }),
                   "COLOR_0: element 0 has -1, outside [0, 1]");
+  // Bytes that are not normalised (255 meaning 255) and two-component colours are not glTF's.
+  const fs::path raw = writeLitTriangle("gltf_colour_raw", [](json& d) {
+    d["accessors"].push_back({{"bufferView", 0}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
+    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 1;
+  });
+  expectLoadError(raw, "COLOR_0: accessor 1 must hold floats, or unsigned bytes or shorts with normalized true");
+  expectLoadError(writeLitTriangle("gltf_colour_vec2", [](json& d) {
+                    d["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+                    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 1;
+                  }),
+                  "COLOR_0: accessor 1: type VEC2, expected VEC3 or VEC4");
 }
 
 // occlusionTexture.strength and KHR_materials_emissive_strength, which scales emissiveFactor past
@@ -518,10 +536,12 @@ TEST(GltfLoader, ReadsOcclusionAndEmissiveStrengths) {
                     d["materials"] = {{{"occlusionTexture", {{"index", 0}, {"strength", 1.5}}}}};
                   }),
                   "occlusionTexture.strength must be in [0, 1], got 1.5");
-  expectLoadError(writeLitTriangle("gltf_emissive_strength", [](json& d) {
-                    d["materials"] = {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1.0}}}}}}};
-                  }),
-                  "KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0, got -1");
+  for (const double strength : {-1.0, 1e39}) {  // 1e39 is finite, but not as a float
+    expectLoadError(writeLitTriangle("gltf_emissive_strength", [&](json& d) {
+                      d["materials"] = {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}}}}};
+                    }),
+                    "KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0");
+  }
 }
 
 TEST(GltfLoader, ReadsAlphaModeAndCutoff) {

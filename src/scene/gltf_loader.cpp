@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iomanip>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -40,6 +42,14 @@ std::string oneLine(const std::string& text) {
   }
   while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
   return line;
+}
+
+// A number read from the file, with enough digits that a value just outside a range does not print
+// as its bound (1.0000001, not 1).
+std::string exactly(double value) {
+  std::ostringstream text;
+  text << std::setprecision(9) << value;
+  return text.str();
 }
 
 template <typename... Parts>
@@ -593,7 +603,11 @@ class GltfReader {
     if (!(std::isfinite(source.range) && source.range >= 0.0)) {
       throw error(label, ": range ", source.range, " is not a finite number > 0");
     }
-    if (light.type != Light::Type::Directional) light.range = static_cast<float>(source.range);
+    // A positive range below float's smallest normal (it would round to 0, "no range") is taken as
+    // that: the light then reaches nothing.
+    if (light.type != Light::Type::Directional && source.range > 0.0) {
+      light.range = std::max(static_cast<float>(source.range), std::numeric_limits<float>::min());
+    }
     if (light.type == Light::Type::Spot) {
       const double inner = source.spot.innerConeAngle;
       const double outer = source.spot.outerConeAngle;
@@ -667,17 +681,29 @@ class GltfReader {
     });
   }
 
-  // COLOR_0: RGB or RGBA (glTF allows both), float or normalised unsigned bytes or shorts, in
+  // COLOR_0 as glTF allows it: RGB or RGBA, float or normalised unsigned bytes or shorts, in
   // [0, 1]; empty when the primitive has none.
   AccessorValues vertexColours(const tinygltf::Primitive& primitive, std::size_t count) const {
     const auto found = primitive.attributes.find("COLOR_0");
     if (found == primitive.attributes.end()) return {};
-    const bool rgb = found->second >= 0 && static_cast<std::size_t>(found->second) < model_.accessors.size() &&
-                     model_.accessors[static_cast<std::size_t>(found->second)].type == TINYGLTF_TYPE_VEC3;
+    const int index = found->second;
+    bool rgb = false;  // a missing accessor: readAccessor below names it
+    if (index >= 0 && static_cast<std::size_t>(index) < model_.accessors.size()) {
+      const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+      if (accessor.type != TINYGLTF_TYPE_VEC3 && accessor.type != TINYGLTF_TYPE_VEC4) {
+        throw error("COLOR_0: accessor ", index, ": type ", typeName(accessor.type), ", expected VEC3 or VEC4");
+      }
+      const bool normalisedInteger = accessor.normalized && (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                             accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+      if (!(accessor.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized) && !normalisedInteger) {
+        throw error("COLOR_0: accessor ", index, " must hold floats, or unsigned bytes or shorts with normalized true");
+      }
+      rgb = accessor.type == TINYGLTF_TYPE_VEC3;
+    }
     AccessorValues colours = attribute(primitive, "COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, count);
     for (std::size_t i = 0; i < colours.values.size(); ++i) {
       if (!(colours.values[i] >= 0.0 && colours.values[i] <= 1.0)) {
-        throw error("COLOR_0: element ", i / static_cast<std::size_t>(colours.components), " has ", colours.values[i],
+        throw error("COLOR_0: element ", i / static_cast<std::size_t>(colours.components), " has ", exactly(colours.values[i]),
                     ", outside [0, 1]");
       }
     }
@@ -851,7 +877,7 @@ class GltfReader {
   }
 
   static float unitFactor(double value, const char* field) {
-    if (!(value >= 0.0 && value <= 1.0)) throw error(field, " must be in [0, 1], got ", value);
+    if (!(value >= 0.0 && value <= 1.0)) throw error(field, " must be in [0, 1], got ", exactly(value));
     return static_cast<float>(value);
   }
 
@@ -888,10 +914,15 @@ class GltfReader {
     if (emissiveStrength != source.extensions.end() && emissiveStrength->second.IsObject() &&
         emissiveStrength->second.Has("emissiveStrength")) {
       const double strength = emissiveStrength->second.Get("emissiveStrength").GetNumberAsDouble();
-      if (!(std::isfinite(strength) && strength >= 0.0)) {
-        throw error("KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0, got ", strength);
+      // Finite as a float too: the renderers multiply in float, and 0 * inf would be NaN.
+      if (!(std::isfinite(static_cast<float>(strength)) && strength >= 0.0)) {
+        throw error("KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0 (at most 3.4e38), got ",
+                    strength);
       }
       m.emissive *= static_cast<float>(strength);
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(m.emissive[c])) throw error("emissiveFactor times emissiveStrength is not finite");
+      }
     }
     m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
     m.doubleSided = source.doubleSided;

@@ -26,14 +26,13 @@ GLINT_FN float spotAttenuation(vec3 axis, vec3 towardsLight, vec2 coneScaleOffse
   return ramp * ramp;
 }
 
-// KHR_lights_punctual's `range` for point and spot lights: the extension's recommended smooth
-// window on top of the inverse-square law, clamp(1 - (d / range)^4, 0, 1)^2, which reaches 0 at the
-// range and leaves the light unchanged near it. `inverseRange` is 1 / range, 0 for a light without
+// KHR_lights_punctual's `range` for point and spot lights: the extension's recommended window on
+// top of the inverse-square law, max(min(1 - (d / range)^4, 1), 0), which reaches 0 at the range and
+// leaves the light nearly unchanged close to it. `inverseRange` is 1 / range, 0 for a light without
 // one (the window is then 1); `distance2` is d^2.
 GLINT_FN float rangeWindow(float distance2, float inverseRange) {
   float ratio2 = distance2 * inverseRange * inverseRange;
-  float window = clamp(1.0f - ratio2 * ratio2, 0.0f, 1.0f);
-  return window * window;
+  return clamp(1.0f - ratio2 * ratio2, 0.0f, 1.0f);
 }
 
 GLINT_KERNEL_END
