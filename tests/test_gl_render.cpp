@@ -151,6 +151,45 @@ TEST(RenderGl, LightsAddUp) {
   std::printf("lights add up: largest difference %.2e of the pixel's magnitude (bound 1e-4)\n", largest);
 }
 
+// The grazing plane seen straight down from 3 m through a 45-degree field of view, 128 x 128,
+// glint BRDF, for the tests of a single light's falloff: each frame is rendered under the lights
+// given, and a pixel's floor point lies at its horizontal distance (floorDistance) from the point
+// below the camera, whatever the image's orientation.
+class TopDownPlane {
+ public:
+  static constexpr float kCameraHeight = 3.0f;
+  static constexpr int kSide = 128;
+
+  TopDownPlane() : scene_(scene::makeBuiltinScene("grazing-smooth")), renderer_(scene_, defaultDictionary()) {
+    frame_.width = kSide;
+    frame_.height = kSide;
+    frame_.brdf = gl::BrdfModel::Glint;
+    frame_.camera.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
+    frame_.camera.target = glm::vec3(0.0f);
+    frame_.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    frame_.camera.verticalFovDegrees = 45.0f;
+  }
+
+  ImageRgbF litBy(std::vector<scene::Light> lights) {
+    renderer_.lights() = std::move(lights);
+    ImageRgbF image = gl::renderSupersampled(renderer_, frame_, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    return image;
+  }
+
+  static double floorDistance(int x, int y) {
+    const double halfHeight = kCameraHeight * std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+    const double nx = 2.0 * (x + 0.5) / kSide - 1.0;
+    const double ny = 2.0 * (y + 0.5) / kSide - 1.0;
+    return halfHeight * std::hypot(nx, ny);
+  }
+
+ private:
+  scene::Scene scene_;
+  gl::Renderer renderer_;
+  gl::FrameSettings frame_;
+};
+
 // A spot light (KHR_lights_punctual's cone) lights the grazing plane like a point light of the
 // same intensity within its inner cone, not at all beyond its outer one, and in between something
 // between the two. Seen straight down from above the spot, a pixel's floor point and so its angle
@@ -158,16 +197,9 @@ TEST(RenderGl, LightsAddUp) {
 // the image's orientation does not matter). Pixels within 0.03 radians of a cone are left out.
 TEST(RenderGl, SpotLightsLightTheirConeOnly) {
   useGlContext();
-  scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
-  constexpr float kCameraHeight = 3.0f;
   constexpr float kSpotHeight = 1.5f;
   constexpr float kInner = 0.25f;
   constexpr float kOuter = 0.5f;
-  scene::Camera down;
-  down.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
-  down.target = glm::vec3(0.0f);
-  down.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  down.verticalFovDegrees = 45.0f;
   scene::Light point;
   point.type = scene::Light::Type::Point;
   point.position = glm::vec3(0.0f, kSpotHeight, 0.0f);
@@ -178,31 +210,17 @@ TEST(RenderGl, SpotLightsLightTheirConeOnly) {
   spot.innerConeAngle = kInner;
   spot.outerConeAngle = kOuter;
 
-  gl::Renderer renderer(scene, defaultDictionary());
-  gl::FrameSettings frame;
-  frame.width = 128;
-  frame.height = 128;
-  frame.brdf = gl::BrdfModel::Glint;
-  frame.camera = down;
-  auto litBy = [&](std::vector<scene::Light> lights) {
-    renderer.lights() = std::move(lights);
-    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
-    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    return image;
-  };
-  const ImageRgbF dark = litBy({});
-  const ImageRgbF byPoint = litBy({point});
-  const ImageRgbF bySpot = litBy({spot});
-  const double halfHeight = kCameraHeight * std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+  TopDownPlane view;
+  const ImageRgbF dark = view.litBy({});
+  const ImageRgbF byPoint = view.litBy({point});
+  const ImageRgbF bySpot = view.litBy({spot});
   int inside = 0;
   int outside = 0;
   int between = 0;
-  for (int y = 0; y < frame.height; ++y) {
-    for (int x = 0; x < frame.width; ++x) {
-      const double nx = 2.0 * (x + 0.5) / frame.width - 1.0;
-      const double ny = 2.0 * (y + 0.5) / frame.height - 1.0;
-      const double angle = std::atan(halfHeight * std::hypot(nx, ny) / kSpotHeight);
-      const std::size_t p = static_cast<std::size_t>(y) * frame.width + x;
+  for (int y = 0; y < TopDownPlane::kSide; ++y) {
+    for (int x = 0; x < TopDownPlane::kSide; ++x) {
+      const double angle = std::atan(TopDownPlane::floorDistance(x, y) / kSpotHeight);
+      const std::size_t p = static_cast<std::size_t>(y) * TopDownPlane::kSide + x;
       for (int c = 0; c < 3; ++c) {
         const double s = bySpot.pixels[p][c];
         const double full = byPoint.pixels[p][c];
@@ -236,15 +254,8 @@ TEST(RenderGl, SpotLightsLightTheirConeOnly) {
 // gives without a range. Pixels within 2% of the range are left out (the window's slope there).
 TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
   useGlContext();
-  scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");
-  constexpr float kCameraHeight = 3.0f;
   constexpr double kLightHeight = 1.5;
   constexpr double kRange = 1.9;  // reaches the floor out to 1.17 m from below the light; the view, 1.76 m
-  scene::Camera down;
-  down.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
-  down.target = glm::vec3(0.0f);
-  down.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  down.verticalFovDegrees = 45.0f;
   scene::Light point;
   point.type = scene::Light::Type::Point;
   point.position = glm::vec3(0.0f, float(kLightHeight), 0.0f);
@@ -252,33 +263,19 @@ TEST(RenderGl, LightRangeEndsThePointLightAsTheGltfExtensionSays) {
   scene::Light ranged = point;
   ranged.range = float(kRange);
 
-  gl::Renderer renderer(scene, defaultDictionary());
-  gl::FrameSettings frame;
-  frame.width = 128;
-  frame.height = 128;
-  frame.brdf = gl::BrdfModel::Glint;
-  frame.camera = down;
-  auto litBy = [&](std::vector<scene::Light> lights) {
-    renderer.lights() = std::move(lights);
-    ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
-    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    return image;
-  };
-  const ImageRgbF dark = litBy({});
-  const ImageRgbF byPoint = litBy({point});
-  const ImageRgbF byRanged = litBy({ranged});
-  const double halfHeight = kCameraHeight * std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+  TopDownPlane view;
+  const ImageRgbF dark = view.litBy({});
+  const ImageRgbF byPoint = view.litBy({point});
+  const ImageRgbF byRanged = view.litBy({ranged});
   int reached = 0;
   int beyond = 0;
   double worst = 0.0;
-  for (int y = 0; y < frame.height; ++y) {
-    for (int x = 0; x < frame.width; ++x) {
-      const double nx = 2.0 * (x + 0.5) / frame.width - 1.0;
-      const double ny = 2.0 * (y + 0.5) / frame.height - 1.0;
-      const double d = std::hypot(halfHeight * std::hypot(nx, ny), kLightHeight);
+  for (int y = 0; y < TopDownPlane::kSide; ++y) {
+    for (int x = 0; x < TopDownPlane::kSide; ++x) {
+      const double d = std::hypot(TopDownPlane::floorDistance(x, y), kLightHeight);
       if (std::abs(d - kRange) < 0.02 * kRange) continue;
       const double window = std::clamp(1.0 - std::pow(d / kRange, 4.0), 0.0, 1.0);
-      const std::size_t p = static_cast<std::size_t>(y) * frame.width + x;
+      const std::size_t p = static_cast<std::size_t>(y) * TopDownPlane::kSide + x;
       for (int c = 0; c < 3; ++c) {
         const double none = dark.pixels[p][c];
         const double full = byPoint.pixels[p][c] - none;

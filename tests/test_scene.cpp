@@ -413,11 +413,7 @@ TEST(GltfLoader, ReadsTextureTransformsAsTheExtensionsExample) {
     d["materials"] = {{{"emissiveTexture", {{"index", 0}, {"extensions", example}}},
                        {"normalTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}}}}};
   });
-  ImageRgbF grey;
-  grey.width = 1;
-  grey.height = 1;
-  grey.pixels = {glm::vec3(0.5f)};
-  writeImage(file.parent_path() / "grey.png", grey);
+  writeImage(file.parent_path() / "grey.png", ImageRgbF::filled(1, 1, glm::vec3(0.5f)));
   const Scene scene = loadGltf(file);
   const UvTransform& example = scene.materials.at(0).emissiveUv;
   EXPECT_EQ(example.offset, glm::vec2(0.0f, 1.0f));
@@ -523,11 +519,7 @@ TEST(GltfLoader, ReadsOcclusionAndEmissiveStrengths) {
     d["textures"] = {{{"source", 0}}};
     d["materials"] = {{{"occlusionTexture", {{"index", 0}, {"strength", 0.25}}}}};
   });
-  ImageRgbF grey;
-  grey.width = 1;
-  grey.height = 1;
-  grey.pixels = {glm::vec3(0.5f)};
-  writeImage(file.parent_path() / "grey.png", grey);
+  writeImage(file.parent_path() / "grey.png", ImageRgbF::filled(1, 1, glm::vec3(0.5f)));
   const Scene occluded = loadGltf(file);
   EXPECT_EQ(occluded.materials[0].occlusionTexture, 0);
   EXPECT_EQ(occluded.materials[0].occlusionStrength, 0.25f);
