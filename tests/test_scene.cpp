@@ -524,6 +524,11 @@ TEST(GltfLoader, ReadsOcclusionAndEmissiveStrengths) {
   EXPECT_EQ(occluded.materials[0].occlusionTexture, 0);
   EXPECT_EQ(occluded.materials[0].occlusionStrength, 0.25f);
 
+  // A value just past the bound prints as itself, not as the bound.
+  expectLoadError(writeLitTriangle("gltf_metallic_just_above", [](json& d) {
+                    d["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 1.0000000001}}}}};
+                  }),
+                  "metallicFactor must be in [0, 1], got 1.0000000001");
   expectLoadError(writeLitTriangle("gltf_occlusion_strength_range", [](json& d) {
                     d["materials"] = {{{"occlusionTexture", {{"index", 0}, {"strength", 1.5}}}}};
                   }),

@@ -199,6 +199,41 @@ TEST(Trace, AlphaMaskLetsRaysThroughWhereAlphaIsBelowTheCutoff) {
   EXPECT_EQ(meshHit(byVertices, above), 0);
 }
 
+// KHR_texture_transform in the tracer moves the footprint with the uv: a 4 x 4 black-and-white
+// checker seen through a scale of 16, with a footprint of a quarter texel, must be looked up as the
+// untransformed texture at the same transformed uv with a footprint 16 times larger (the whole
+// texture: its coarsest, grey mip level), not as the black texel alone.
+TEST(Trace, TextureTransformScalesTheFootprint) {
+  scene::Scene scene;
+  scene.materials.resize(1);
+  scene.materials[0].metallic = 0.0f;
+  std::vector<std::uint8_t> checker;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const std::uint8_t v = (i + j) % 2 == 0 ? 0 : 255;
+      checker.insert(checker.end(), {v, v, v, 255});
+    }
+  }
+  scene.textures.push_back({"checker", 4, 4, checker, false});
+  scene.materials[0].baseColourTexture = 0;
+  auto albedo = [&](const scene::UvTransform& transform, glm::vec2 uv, float footprint) {
+    scene.materials[0].baseColourUv = transform;
+    const trace::SceneMaterials materials(scene, defaultDictionary(), trace::SpecularModel::CookTorrance);
+    trace::SurfacePoint point;
+    point.uv = uv;
+    const trace::UvDerivatives derivatives{glm::vec2(footprint, 0.0f), glm::vec2(0.0f, footprint)};
+    return materials.shade(point, derivatives, glm::vec3(0.0f, 0.0f, 1.0f)).material.diffuse().r * 3.14159265f;
+  };
+  const glm::vec2 blackTexel(0.125f);  // texel (0, 0)'s centre
+  EXPECT_LT(albedo({}, blackTexel, 1.0f / 16.0f), 1e-6f);
+  const float whole = albedo({}, blackTexel, 1.0f);
+  EXPECT_GT(whole, 0.2f);
+  scene::UvTransform sixteen;
+  sixteen.scale = glm::vec2(16.0f);
+  sixteen.offset = blackTexel;
+  EXPECT_EQ(albedo(sixteen, glm::vec2(0.0f), 1.0f / 16.0f), whole);
+}
+
 // On a plane, uv is a projective function of the window position, so the differences a 2 x 2 quad
 // takes between neighbouring pixel centres (what dFdx / dFdy return) are exact values, not
 // approximations of a derivative. They are computed here from gl::viewProjection alone (unproject,

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iomanip>
+#include <charconv>
 #include <limits>
 #include <map>
 #include <optional>
@@ -44,12 +44,12 @@ std::string oneLine(const std::string& text) {
   return line;
 }
 
-// A number read from the file, with enough digits that a value just outside a range does not print
-// as its bound (1.0000001, not 1).
+// A number read from the file in its shortest form that reads back as the same double, so that a
+// value just outside a range does not print as its bound (1.0000000001, not 1).
 std::string exactly(double value) {
-  std::ostringstream text;
-  text << std::setprecision(9) << value;
-  return text.str();
+  std::array<char, 32> text{};
+  const auto written = std::to_chars(text.data(), text.data() + text.size(), value);
+  return std::string(text.data(), written.ptr);
 }
 
 template <typename... Parts>
@@ -919,10 +919,7 @@ class GltfReader {
         throw error("KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0 (at most 3.4e38), got ",
                     strength);
       }
-      m.emissive *= static_cast<float>(strength);
-      for (int c = 0; c < 3; ++c) {
-        if (!std::isfinite(m.emissive[c])) throw error("emissiveFactor times emissiveStrength is not finite");
-      }
+      m.emissive *= static_cast<float>(strength);  // finite: the factor is at most 1
     }
     m.emissiveTexture = optionalTexture(source.emissiveTexture.index, true, "emissiveTexture");
     m.doubleSided = source.doubleSided;

@@ -61,7 +61,6 @@ struct GlintLayer {
   int relativeAreaTexture = -1;    // R channel multiplies relativeArea
 };
 
-// glTF 2.0 metal-roughness material.
 // glTF KHR_texture_transform on one texture of a material: uv' = offset + R (scale * uv), where R
 // turns uv by `rotation` radians as the extension's example and its known implementations do
 // (u' = u cos + v sin, v' = v cos - u sin: counter-clockwise in glTF's uv, whose v runs down the
@@ -76,6 +75,7 @@ struct UvTransform {
   glm::mat3x2 matrix() const { return glm::mat3x2(linear()[0], linear()[1], offset); }  // for GLSL: M * vec3(uv, 1)
 };
 
+// glTF 2.0 metal-roughness material.
 struct Material {
   std::string name;
   glm::vec4 baseColour{1.0f};
