@@ -436,6 +436,11 @@ TEST(GltfLoader, ReadsTextureTransformsAsTheExtensionsExample) {
                                         {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0, 1, 2}}}}}}}}}};
                   }),
                   "emissiveTexture.KHR_texture_transform.offset has 3 numbers, expected 2");
+  expectLoadError(writeLitTriangle("gltf_texture_transform_huge", [](json& d) {
+                    d["materials"] = {{{"emissiveTexture",
+                                        {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {3e38, 1}}}}}}}}}};
+                  }),
+                  "emissiveTexture.KHR_texture_transform must be finite, with offset and scale within 1e6");
   expectLoadError(writeLitTriangle("gltf_texture_transform_type", [](json& d) {
                     d["materials"] = {{{"pbrMetallicRoughness",
                                         {{"baseColorTexture",

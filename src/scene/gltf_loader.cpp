@@ -867,10 +867,15 @@ class GltfReader {
     pair("offset", transform.offset);
     pair("scale", transform.scale);
     if (value.Has("rotation")) transform.rotation = static_cast<float>(value.Get("rotation").GetNumberAsDouble());
+    // Bounded, so that the transformed uv of any sane uv stays finite in float (scale 1e38 would
+    // take uv 1 to infinity, which the renderers would sample differently).
+    constexpr float kLargest = 1e6f;
     const glm::mat3x2 matrix = transform.matrix();
     for (int column = 0; column < 3; ++column) {
       for (int row = 0; row < 2; ++row) {
-        if (!std::isfinite(matrix[column][row])) throw error(texture, ".KHR_texture_transform is not finite");
+        if (!(std::abs(matrix[column][row]) <= kLargest)) {
+          throw error(texture, ".KHR_texture_transform must be finite, with offset and scale within 1e6");
+        }
       }
     }
     return transform;
