@@ -4,9 +4,10 @@
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
 // glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), and so do
-// glTF alphaMode MASK materials (ALPHA_MASK = 1). The light count is compiled in too (LIGHT_COUNT,
-// at most 8): glint programs evaluate every light's P-SDF over one walk of the footprint's cells
-// (glintP22Set, GLINT_SLOPE_COUNT slopes).
+// glTF alphaMode MASK materials (ALPHA_MASK = 1), materials with KHR_texture_transform
+// (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
+// compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
+// walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -95,13 +96,22 @@ void main() {
   vec2 duvdx = dFdx(glintUv);
   vec2 duvdy = dFdy(glintUv);
 
-  vec3 uv = vec3(vUv, 1.0f);
-  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, uBaseColourUv * uv) * vColour;
-  vec4 metallicRoughness = texture(uMetallicRoughnessTexture, uMetallicRoughnessUv * uv);
+  // Without transforms the lookups take the interpolated uv itself, which llvmpipe differentiates
+  // for the mip level more cheaply than a computed one.
+#if TEXTURE_TRANSFORMS
+#define TEXTURE_UV(transform) ((transform) * vec3(vUv, 1.0f))
+#else
+#define TEXTURE_UV(transform) vUv
+#endif
+  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, TEXTURE_UV(uBaseColourUv));
+#if VERTEX_COLOURS
+  baseColour *= vColour;
+#endif
+  vec4 metallicRoughness = texture(uMetallicRoughnessTexture, TEXTURE_UV(uMetallicRoughnessUv));
   float metallic = uMetallic * metallicRoughness.b;
   float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);
-  vec3 emissive = uEmissive * texture(uEmissiveTexture, uEmissiveUv * uv).rgb;
-  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, uOcclusionUv * uv).r - 1.0f);
+  vec3 emissive = uEmissive * texture(uEmissiveTexture, TEXTURE_UV(uEmissiveUv)).rgb;
+  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, TEXTURE_UV(uOcclusionUv)).r - 1.0f);
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
   // from behind (curtains) are shaded on the side facing the camera.
@@ -109,7 +119,7 @@ void main() {
   vec3 n = normalize(vNormal);
   vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
   vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
-  vec3 mapped = texture(uNormalTexture, uNormalUv * uv).xyz * 2.0f - 1.0f;
+  vec3 mapped = texture(uNormalTexture, TEXTURE_UV(uNormalUv)).xyz * 2.0f - 1.0f;
   mapped.xy *= uNormalScale;
   n = normalize(mat3(t, b, n) * mapped);
   if (dot(n, view) < 0.0f) {

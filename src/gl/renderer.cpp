@@ -31,6 +31,7 @@ struct GpuMesh {
   GLuint indexBuffer = 0;
   GLsizei indexCount = 0;
   int material = 0;
+  bool vertexColours = false;  // some vertex's COLOR_0 is not white
 };
 
 GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, GLenum type, const void* pixels,
@@ -112,12 +113,16 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 // with or without coloured glints (GLINT_COLOURED_CELLS), for the scene's number of lights
 // (LIGHT_COUNT). The colour is a compile-time switch, not a uniform: llvmpipe runs both sides of
 // every branch for all pixels, so a uniform flag made every glint material pay for the colour's
-// hash and hue (15% of the glint shader's instructions).
+// hash and hue (15% of the glint shader's instructions). So are the glTF features most meshes do
+// not use: texture transforms cost 14% of a Cook-Torrance frame's instructions and vertex colours
+// 2% where every pixel paid for them (docs/benchmarks.md, "Eighth round").
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
+  bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
+  bool vertexColours;      // VERTEX_COLOURS: the mesh has COLOR_0 other than white
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -129,7 +134,9 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                        {{"SPECULAR_MODEL", specular},
                         {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
-                        {"ALPHA_MASK", variant.alphaMask ? "1" : "0"}});
+                        {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
+                        {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
+                        {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -144,10 +151,13 @@ bool isMasked(const scene::Material& material) { return material.alphaMode == sc
 // The program a material is drawn with. A material without a glint layer is Cook-Torrance under
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
-ForwardVariant forwardVariant(BrdfModel brdf, const scene::Material& material, int lightCount) {
+ForwardVariant forwardVariant(BrdfModel brdf, const scene::Material& material, const GpuMesh& mesh, int lightCount) {
   const BrdfModel model = material.glint.enabled ? brdf : BrdfModel::CookTorrance;
   const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
-  return ForwardVariant{model, coloured, lightCount, isMasked(material)};
+  const bool transforms = !(material.baseColourUv.identity() && material.metallicRoughnessUv.identity() &&
+                            material.normalUv.identity() && material.occlusionUv.identity() &&
+                            material.emissiveUv.identity());
+  return ForwardVariant{model, coloured, lightCount, isMasked(material), transforms, mesh.vertexColours};
 }
 
 struct Renderer::Gpu {
@@ -237,6 +247,8 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
     GpuMesh m;
     m.material = mesh.material;
     m.indexCount = static_cast<GLsizei>(mesh.indices.size());
+    m.vertexColours = std::any_of(mesh.vertices.begin(), mesh.vertices.end(),
+                                  [](const scene::Vertex& v) { return v.colour != glm::vec4(1.0f); });
     glCreateBuffers(1, &m.vertexBuffer);
     glNamedBufferStorage(m.vertexBuffer, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(scene::Vertex)),
                          mesh.vertices.data(), 0);
@@ -370,7 +382,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings.brdf, m, lightCount);
+    const ForwardVariant variant = forwardVariant(settings.brdf, m, mesh, lightCount);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
