@@ -1,8 +1,9 @@
 // The depth pre-pass (src/gl/renderer.cpp): meshes are first drawn with this shader and colour
 // writes off, so that the shading pass, under an equal-depth test, runs the forward shader once per
 // covered pixel instead of once per fragment drawn there. With ALPHA_MASK (glTF alphaMode MASK),
-// the fragments whose base colour alpha (factor, texture and vertex colour) is below the cutoff leave no depth, so what lies behind
-// them is shaded instead; the other meshes keep a shader without discard.
+// the fragments whose base colour alpha (factor, texture and vertex colour) is below the cutoff
+// leave no depth, so what lies behind them is shaded instead; the other meshes keep a shader
+// without discard.
 #if ALPHA_MASK
 in vec2 vUv;
 in vec4 vColour;

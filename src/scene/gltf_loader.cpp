@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <charconv>
 #include <limits>
 #include <map>
 #include <optional>

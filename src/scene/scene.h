@@ -73,7 +73,10 @@ struct UvTransform {
   glm::mat2 linear() const;  // R * diag(scale): what uv derivatives are multiplied by
   glm::vec2 apply(glm::vec2 uv) const { return linear() * uv + offset; }
   bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
-  glm::mat3x2 matrix() const { return glm::mat3x2(linear()[0], linear()[1], offset); }  // for GLSL: M * vec3(uv, 1)
+  glm::mat3x2 matrix() const {  // for GLSL: M * vec3(uv, 1)
+    const glm::mat2 l = linear();
+    return glm::mat3x2(l[0], l[1], offset);
+  }
 };
 
 // glTF 2.0 metal-roughness material.

@@ -37,8 +37,9 @@ void check(RTCDevice device, const char* what) {
 }  // namespace
 
 // glTF alphaMode MASK: a hit counts where the base colour's alpha, factor times texture times
-// vertex colour (COLOR_0), is at least the cutoff. The texture's alpha is filtered bilinearly at its finest level: a filter has
-// no ray footprint, where the rasteriser's pre-pass samples the mip level of its pixel.
+// vertex colour (COLOR_0), is at least the cutoff. The texture's alpha is filtered bilinearly at
+// its finest level: a filter has no ray footprint, where the rasteriser's pre-pass samples the mip
+// level of its pixel.
 struct SceneGeometry::AlphaMask {
   // A texture's alpha channel, shared by every mesh whose material uses it (a glTF node instance
   // is a mesh of its own).

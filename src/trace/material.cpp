@@ -97,8 +97,11 @@ glm::vec3 SceneMaterials::texture(int index, glm::vec2 uv, const UvDerivatives& 
 
 glm::vec3 SceneMaterials::texture(int index, const scene::UvTransform& transform, glm::vec2 uv,
                                   const UvDerivatives& footprint) const {
+  // Every lookup of every hit comes through here: a material without a texture, or without a
+  // transform, skips the sine and cosine.
+  if (index < 0 || transform.identity()) return texture(index, uv, footprint);
   const glm::mat2 linear = transform.linear();
-  return texture(index, transform.apply(uv), UvDerivatives{linear * footprint.duvdx, linear * footprint.duvdy});
+  return texture(index, linear * uv + transform.offset, UvDerivatives{linear * footprint.duvdx, linear * footprint.duvdy});
 }
 
 ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
