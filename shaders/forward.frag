@@ -3,7 +3,8 @@
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
-// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), and so do
+// glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), glint
+// programs that anti-alias their glints (GLINT_FILTERED = 1, glint_antialiasing.h) theirs, and so do
 // glTF alphaMode MASK materials (ALPHA_MASK = 1), materials with KHR_texture_transform
 // (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
 // compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
@@ -65,6 +66,8 @@ uniform bool uGlintLayer;
 #define GLINT_LAYER true
 #endif
 uniform vec2 uGlintAlpha;
+uniform float uGlintRho;
+uniform float uGlintFilterScale;  // the anti-aliasing kernel's size: 1 matches the pixel's box
 uniform float uGlintLogDensity;
 uniform float uGlintRelativeArea;
 uniform float uGlintDensityRandomisation;
@@ -131,6 +134,7 @@ void main() {
 
   GlintParameters params;
   params.alpha = clamp(uGlintAlpha * texture(uGlintRoughnessTexture, vUv).r, 0.01f, 2.0f);
+  params.rho = uGlintRho;
   params.logDensity = uGlintHasLogDensityTexture
                           ? mix(uGlintLogDensityRange.x, uGlintLogDensityRange.y, texture(uGlintLogDensityTexture, vUv).r)
                           : uGlintLogDensity;
@@ -174,6 +178,16 @@ void main() {
     // An unlit light's result is discarded; a finite slope keeps its texel reads in range (a light
     // below the horizon can have an infinite one).
     glintSlopes.slope[i] = glintLit[i] ? slope : vec2(0.0f);
+    glintSlopes.derivatives[i] = vec4(0.0f);
+#if GLINT_FILTERED
+    // The anti-aliasing filter's input: the slope's screen derivatives, taken here, in uniform
+    // control flow (every pixel of a quad runs this loop of constant length, before any branch
+    // on its result). Where a neighbour's slope is not finite (its light below the horizon) the
+    // pixel is left unfiltered.
+    vec4 derivatives = vec4(dFdx(slope), dFdy(slope)) * uGlintFilterScale;
+    bool finiteDerivatives = !any(isnan(derivatives)) && !any(isinf(derivatives));
+    glintSlopes.derivatives[i] = glintLit[i] && finiteDerivatives ? derivatives : vec4(0.0f);
+#endif
     anyGlintLit = anyGlintLit || glintLit[i];
   }
   GlintP22Set glintP22s;
@@ -197,7 +211,7 @@ void main() {
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
       specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
     } else {
-      specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+      specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }
 #elif SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
     if (GLINT_LAYER) {
@@ -206,10 +220,10 @@ void main() {
       specular = fresnel * params.relativeArea *
                  zirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
     } else {
-      specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+      specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }
 #else
-    specular = fresnel * cookTorranceReflectance(specularAlpha, wo, wi);
+    specular = fresnel * cookTorranceReflectance(specularAlpha, GLINT_LAYER ? params.rho : 0.0f, wo, wi);
 #endif
     radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
   }

@@ -1,6 +1,7 @@
 // Evaluates the shared kernel for a buffer of inputs: the GPU half of the CPU-versus-GLSL test
 // (tests/test_gl_kernel.cpp). Same functions, same argument order as glint::GlintBsdf. With SLOPE_SET
-// defined it evaluates the renderer's several-slopes walk instead.
+// defined it evaluates the renderer's several-slopes walk instead; with GLINT_FILTERED 1 the P-SDF
+// is the anti-aliased one (glintFilteredP22) at the case's slope derivatives.
 #include "glint_brdf.h"
 
 layout(local_size_x = 64) in;
@@ -10,7 +11,8 @@ struct KernelInput {
   vec4 duvdyAndAlpha;        // duvdy.xy, alpha.xy
   vec4 woAndLogDensity;      // wo.xyz, log density
   vec4 wiAndRelativeArea;    // wi.xyz, relative area
-  vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), unused
+  vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
+  vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
 };
 
 layout(std430, binding = 0) readonly buffer Inputs { KernelInput inputs[]; };
@@ -39,6 +41,7 @@ void readCase(uint i, out GlintParameters params, out vec2 uv, out vec2 duvdx, o
   params.densityRandomisation = data.randomisationEtc.x;
   params.maxAnisotropy = data.randomisationEtc.y;
   params.patternSeed = uint(data.randomisationEtc.z);
+  params.rho = data.randomisationEtc.w;
   params.colouredCells = false;
   uv = data.uvAndDuvdx.xy;
   duvdx = data.uvAndDuvdx.zw;
@@ -68,6 +71,7 @@ void main() {
     vec3 wh = normalize(wo + inputs[(i + uint(k)) % uCount].wiAndRelativeArea.xyz);
     above[k] = wh.z > 0.0f;
     slopes.slope[k] = above[k] ? slopeFromNormal(wh) : vec2(0.0f);
+    slopes.derivatives[k] = vec4(0.0f);
   }
   GlintP22Set together = glintP22Set(dict, params, uv, duvdx, duvdy, slopes);
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
@@ -77,9 +81,17 @@ void main() {
   }
 #else
   vec3 wh = normalize(wo + wi);
+#if GLINT_FILTERED
+  float p22 = wh.z > 0.0f ? glintFilteredP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh),
+                                             inputs[i].slopeDerivatives)
+                          : 0.0f;
+  float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
+  float f = wo.z > 0.0f && wi.z > 0.0f ? microfacetReflectance(wo, wi, wh, d) : 0.0f;
+#else
   float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;
   float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
-  outputs[i] = vec4(glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi), d, p22,
-                    cookTorranceReflectance(params.alpha, wo, wi));
+  float f = glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi);
+#endif
+  outputs[i] = vec4(f, d, p22, cookTorranceReflectance(params.alpha, params.rho, wo, wi));
 #endif
 }

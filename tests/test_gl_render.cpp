@@ -24,13 +24,17 @@ using namespace glint::test;
 
 constexpr int kSize = 256;
 
-ImageRgbF render(const scene::Scene& scene, gl::BrdfModel brdf, int spp = 1) {
+// The 2020 model unless told otherwise: the properties below (and the golden images) are the
+// model's; the anti-aliasing's own tests say which mode they render.
+ImageRgbF render(const scene::Scene& scene, gl::BrdfModel brdf, int spp = 1,
+                 gl::AntiAliasing antiAliasing = gl::AntiAliasing::None) {
   useGlContext();
   gl::Renderer renderer(scene, defaultDictionary());
   gl::FrameSettings frame;
   frame.width = kSize;
   frame.height = kSize;
   frame.brdf = brdf;
+  frame.antiAliasing = antiAliasing;
   frame.camera = scene.cameras.at("default");
   ImageRgbF image = gl::renderSupersampled(renderer, frame, spp);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << scene.name;

@@ -78,7 +78,7 @@ TEST(GlintBrdf, ConvergesToCookTorrancePointwiseAtVeryHighDensity) {
     const glm::vec3 wo = directionAt(uniform(rng, 0.0f, 1.5f), uniform(rng, 0.0f, 6.28f));
     const glm::vec3 wi = directionAt(uniform(rng, 0.0f, 1.5f), uniform(rng, 0.0f, 6.28f));
     const float glint = GlintBsdf(defaultDictionary(), parameters, footprint).f(wo, wi).x;
-    const float reference = CookTorranceBsdf(parameters.alpha).f(wo, wi).x;
+    const float reference = CookTorranceBsdf(parameters.alpha, parameters.rho).f(wo, wi).x;
     ASSERT_NEAR(glint, reference, 1e-4f * reference) << "case " << i;
   }
 }
@@ -316,7 +316,7 @@ TEST(GlintBrdf, RendererSkipsOnlyNegligibleSlopes) {
         glm::vec2(std::cos(angle), std::sin(angle)) * radius * (parameters.alpha / glm::vec2(dict.alpha));
     ASSERT_TRUE(kernel::glintSlopeIsNegligible(dict, parameters, slope)) << "case " << i;
     const double p22 = kernel::glintP22(dict, parameters, surface.uv, surface.duvdx, surface.duvdy, slope);
-    const double peak = kernel::beckmannP22(glm::vec2(0.0f), parameters.alpha);
+    const double peak = kernel::beckmannP22(glm::vec2(0.0f), parameters.alpha, parameters.rho);
     worst = std::max(worst, p22 / peak);
     nonZero += p22 > 0.0 ? 1 : 0;
   }

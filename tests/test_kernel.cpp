@@ -179,7 +179,7 @@ TEST(Hash, NeighbouringCellsDrawDifferentNumbers) {
 TEST(Beckmann, SlopeDistributionIntegratesToOne) {
   for (glm::vec2 alpha : {glm::vec2(0.1f), glm::vec2(0.5f), glm::vec2(0.05f, 0.8f)}) {
     const double integral = integrateOverSlopes(
-        [&](glm::vec2 slope) { return kernel::beckmannP22(slope, alpha); }, 6.0f * alpha, 400);
+        [&](glm::vec2 slope) { return kernel::beckmannP22(slope, alpha, 0.0f); }, 6.0f * alpha, 400);
     EXPECT_NEAR(integral, 1.0, 1e-5);
   }
 }
@@ -196,7 +196,7 @@ TEST(Beckmann, NdfIsProjectedAreaNormalised) {
     for (int j = 0; j < kPhi; ++j) {
       const double phi = (j + 0.5) / kPhi * 2 * M_PI;
       const glm::vec3 m = directionAt(static_cast<float>(theta), static_cast<float>(phi));
-      const double d = kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha), m.z);
+      const double d = kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha, 0.0f), m.z);
       integral += d * m.z * std::sin(theta) * (M_PI / 2 / kTheta) * (2 * M_PI / kPhi);
     }
   }

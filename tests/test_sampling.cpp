@@ -347,6 +347,7 @@ struct SamplingCase {
   float thetaDegrees = 45.0f;  // of wo from the normal; above 90 the viewer is inside (dielectric)
   float relativeArea = 1.0f;
   float eta = 1.5f;
+  float rho = 0.0f;  // slope correlation
 };
 
 // Footprint of a pixel: 1.5:1, rotated, area pi |det| = 1.5e-6 uv^2, so a log density of 15, 21,
@@ -366,6 +367,7 @@ GlintParameters caseParameters(const SamplingCase& c) {
   parameters.alpha = glm::vec2(c.alpha);
   parameters.logDensity = c.logDensity;
   parameters.relativeArea = c.relativeArea;
+  parameters.rho = c.rho;
   return parameters;
 }
 
@@ -408,6 +410,31 @@ std::vector<SamplingCase> chiSquareCases() {
     SamplingCase c;
     c.name = "Mixture_relativeArea0p5";
     c.relativeArea = 0.5f;
+    cases.push_back(c);
+  }
+  // Slope correlation (Chermain et al. 2021): the cells' upper-triangular map, the correlated
+  // Beckmann of the smooth cells and of the Gaussian sampler.
+  struct Correlated {
+    const char* name;
+    SamplingCase::Kind kind;
+    GlintSampler sampler;
+    float logDensity, theta, rho;
+  };
+  for (const Correlated& r : {
+           Correlated{"Mixture_rho0p6", SamplingCase::Kind::Glint, GlintSampler::Mixture, 21.0f, 45.0f, 0.6f},
+           Correlated{"Mixture_rhoMinus0p9_sparse", SamplingCase::Kind::Glint, GlintSampler::Mixture, 15.0f, 30.0f, -0.9f},
+           Correlated{"Mixture_rho0p7_dense", SamplingCase::Kind::Glint, GlintSampler::Mixture, 32.0f, 60.0f, 0.7f},
+           Correlated{"Gaussian_rho0p5", SamplingCase::Kind::Glint, GlintSampler::Gaussian, 21.0f, 45.0f, 0.5f},
+           Correlated{"CookTorrance_rhoMinus0p7", SamplingCase::Kind::CookTorrance, GlintSampler::Mixture, 21.0f, 45.0f,
+                      -0.7f},
+       }) {
+    SamplingCase c;
+    c.name = r.name;
+    c.kind = r.kind;
+    c.sampler = r.sampler;
+    c.logDensity = r.logDensity;
+    c.thetaDegrees = r.theta;
+    c.rho = r.rho;
     cases.push_back(c);
   }
   for (float theta : {30.0f, 80.0f}) {
@@ -458,7 +485,9 @@ const int kChiSquareSamples = std::getenv("GLINT_CHI_SQUARE_SAMPLES") ? std::ato
 // The half vector's slope lies in this box wherever a glint or Beckmann pdf of roughness alpha can
 // be non-zero (glintSlopeExtent: the dictionary's rotated, scaled support; Beckmann keeps under
 // 1e-7 of its mass beyond it), with 1% to spare.
-glm::dvec2 supportBox(float alpha) { return glm::dvec2(glintSlopeExtent(defaultDictionary(), glm::vec2(alpha))) * 1.01; }
+glm::dvec2 supportBox(float alpha, float rho = 0.0f) {
+  return glm::dvec2(glintSlopeExtent(defaultDictionary(), glm::vec2(alpha), rho)) * 1.01;
+}
 
 // The quadrature's step in half-vector slope: a third of the dictionary's texel spacing
 // 4 sigma_d / R, scaled by alpha / alpha_d, where glints are sparse. A level-0 lobe (std 0.02 in
@@ -508,16 +537,16 @@ TEST_P(SamplingStat, ChiSquareAgainstOwnPdf) {
   const GlintParameters parameters = caseParameters(c);
   const std::uint64_t seed = 1000u + static_cast<std::uint64_t>(index);
   Quadrature quadrature;
-  quadrature.box = supportBox(c.alpha);
+  quadrature.box = supportBox(c.alpha, c.rho);
   quadrature.slopeStep = quadratureSlopeStep(c);
   quadrature.slopeOf = reflectionSlope(wo);
   ChiSquareResult result;
   double mass = 0.0;  // the visible mass in the slope plane
-  const glm::vec2 extent = glintSlopeExtent(defaultDictionary(), parameters.alpha);
+  const glm::vec2 extent = glintSlopeExtent(defaultDictionary(), parameters.alpha, parameters.rho);
   const GlintBsdf microfacets(defaultDictionary(), parameters, footprint, Fresnel::none(), Spectrum(1.0f), c.sampler);
   const std::function<double(glm::vec2)> p22 = [&](glm::vec2 slope) {
     return c.sampler == GlintSampler::Gaussian || c.kind == SamplingCase::Kind::CookTorrance
-               ? static_cast<double>(kernel::beckmannP22(slope, parameters.alpha))
+               ? static_cast<double>(kernel::beckmannP22(slope, parameters.alpha, parameters.rho))
                : static_cast<double>(microfacets.p22(slope));
   };
   const auto reflectionValid = [&](glm::vec3 m) { return glm::reflect(-wo, m).z * wo.z > 0.0f ? 1.0 : 0.0; };
@@ -526,7 +555,7 @@ TEST_P(SamplingStat, ChiSquareAgainstOwnPdf) {
                           [&](glm::vec3 wi) { return microfacets.pdf(wo, wi); }, quadrature, kChiSquareSamples, seed);
     mass = visibleMass(p22, wo, extent, quadrature.slopeStep, reflectionValid);
   } else if (c.kind == SamplingCase::Kind::CookTorrance) {
-    const CookTorranceBsdf bsdf(glm::vec2(c.alpha));
+    const CookTorranceBsdf bsdf(glm::vec2(c.alpha), c.rho);
     result = runChiSquare([&](float uc, glm::vec2 u) { return bsdf.sample(wo, uc, u); },
                           [&](glm::vec3 wi) { return bsdf.pdf(wo, wi); }, quadrature, kChiSquareSamples, seed);
     mass = visibleMass(p22, wo, extent, quadrature.slopeStep, reflectionValid);
@@ -600,7 +629,7 @@ TEST(Sampling, EverySampleCarriesFAndPdfAndItsWeight) {
     const Spectrum colour(0.9f, 0.6f, 0.3f);
     const float eta = std::array<float, 4>{1.33f, 1.5f, 2.4f, 1.0f / 1.5f}[rng.nextBelow(4)];
     const GlintBsdf glint(defaultDictionary(), parameters, footprint, fresnel, colour, sampler);
-    const CookTorranceBsdf cookTorrance(parameters.alpha, fresnel, colour);
+    const CookTorranceBsdf cookTorrance(parameters.alpha, parameters.rho, fresnel, colour);
     const GlintDielectricBsdf dielectric(defaultDictionary(), parameters, footprint, eta, sampler);
     for (int k = 0; k < 64; ++k) {
       const float uChoice = unitFloat(rng);

@@ -105,9 +105,12 @@ double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, gl
   return sum * hx * hy;
 }
 
-glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha) {
+glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha, float rho) {
   const float support = dictionary.parameters().slopeDomain() * std::sqrt(2.0f) / dictionary.parameters().alpha;
-  return glm::max(alpha * support, 4.0f * alpha) * 1.001f;
+  // A correlated cell maps the disc of that radius by M (glintCorrelatedScale): x reaches
+  // (sqrt(1 - rho^2) + |rho|) times as far, y as far as without correlation.
+  const glm::vec2 shear(std::sqrt(1.0f - rho * rho) + std::abs(rho), 1.0f);
+  return glm::max(alpha * support * shear, 4.0f * alpha) * 1.001f;
 }
 
 }  // namespace glint::test

@@ -51,7 +51,7 @@ double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, gl
 // The slope extent outside of which a glint P22 of roughness alpha has no mass: the dictionary's
 // support 4 sigma_d, rotated (x sqrt 2) and scaled by alpha / alpha_d; beyond 4 alpha Beckmann cells
 // keep under 1e-7 of their mass.
-glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha);
+glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha, float rho = 0.0f);
 
 // CPU versus GLSL (tests/test_gl_kernel.cpp, tests/test_zirr_kaplanyan.cpp): relative agreement
 // with an absolute floor, values under 1e-5 (invisible in 8-bit output under an intensity of 1)

@@ -555,6 +555,7 @@ CrossCheck crossRendererRelMse(const std::string& name, bool spot = false, bool 
     frame.width = size;
     frame.height = size;
     frame.brdf = model;
+    frame.antiAliasing = gl::AntiAliasing::None;  // the tracer's pixel centres: one half vector a pixel
     frame.camera = orthographic ? orthographicTwin(scene.cameras.at("default")) : scene.cameras.at("default");
     renderer.renderFrame(frame);
     const std::vector<float> rgba = renderer.readRadiance();

@@ -18,8 +18,9 @@ namespace {
 
 using nlohmann::json;
 
-const std::set<std::string> kFields = {"uv",    "duvdx", "duvdy",         "wo",           "wi",
-                                       "alpha", "brdf",  "log_density",   "relative_area", "density_randomisation",
+const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy",          "wo",
+                                       "wi",          "alpha",         "rho",            "brdf",
+                                       "log_density", "relative_area", "density_randomisation",
                                        "max_anisotropy", "pattern_seed"};
 
 template <int N>
@@ -64,6 +65,7 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   }
   GlintParameters parameters = defaultGlintParameters();
   parameters.alpha = readVector<2>(input, "alpha", parameters.alpha);
+  parameters.rho = readNumber(input, "rho", parameters.rho);
   parameters.logDensity = readNumber(input, "log_density", parameters.logDensity);
   parameters.relativeArea = readNumber(input, "relative_area", parameters.relativeArea);
   parameters.densityRandomisation = readNumber(input, "density_randomisation", parameters.densityRandomisation);
@@ -97,7 +99,7 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   if (brdf == "cook-torrance") {
     validateGlintParameters(parameters);  // the same inputs are accepted by both BRDFs
     validateFootprint(footprint);
-    return report(CookTorranceBsdf(parameters.alpha));
+    return report(CookTorranceBsdf(parameters.alpha, parameters.rho));
   }
   throw Error("field 'brdf' must be \"glint\" or \"cook-torrance\", got \"" + brdf + "\"");
 }

@@ -20,7 +20,10 @@ struct RenderOptions {
   std::string output;
   std::string size = "512x512";
   std::string brdf = "glint";
+  std::string antiAliasing = "ggaa";
+  float aaKernel = 1.0f;
   int spp = 1;
+  int reference = 0;
   float exposure = 1.0f;
 };
 
@@ -32,6 +35,15 @@ void runRender(const RenderOptions& options) {
     throw Error(options.output + ": the output must end in .png or .exr");
   }
   if (options.spp < 1 || options.spp > 65536) throw Error("--spp must be in [1, 65536]");
+  if (options.reference != 0 && (options.reference < 1 || options.reference > 65536)) {
+    throw Error("--reference must be in [1, 65536]");
+  }
+  if (options.reference != 0 && options.spp != 1) throw Error("--reference and --spp cannot be combined");
+  if (!(options.aaKernel >= 0.0f && options.aaKernel <= 16.0f)) throw Error("--aa-kernel must be in [0, 16]");
+  // The anti-aliasing paper's reference protocol: the 2020 model, averaged over jittered frames.
+  const gl::AntiAliasing antiAliasing =
+      options.reference != 0 ? gl::AntiAliasing::None : gl::antiAliasingFromString(options.antiAliasing);
+  const int spp = options.reference != 0 ? options.reference : options.spp;
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
   const scene::Scene scene = options.scene.loadScene();
   const Dictionary dictionary = options.scene.loadDictionary();
@@ -44,10 +56,12 @@ void runRender(const RenderOptions& options) {
   frame.width = width;
   frame.height = height;
   frame.brdf = brdf;
+  frame.antiAliasing = antiAliasing;
+  frame.filterScale = options.aaKernel;
   frame.camera = options.scene.findCamera(scene);
-  const bool progress = options.spp > 1 && isatty(STDERR_FILENO);
-  const ImageRgbF image = gl::renderSupersampled(renderer, frame, options.spp, [&](int k) {
-    if (progress) std::fprintf(stderr, "\rglint: sample %d/%d", k + 1, options.spp);
+  const bool progress = spp > 1 && isatty(STDERR_FILENO);
+  const ImageRgbF image = gl::renderSupersampled(renderer, frame, spp, [&](int k) {
+    if (progress) std::fprintf(stderr, "\rglint: sample %d/%d", k + 1, spp);
   });
   if (progress) std::fprintf(stderr, "\n");
   if (extension == ".exr") {
@@ -56,9 +70,9 @@ void runRender(const RenderOptions& options) {
     writePng(options.output, displayEncode(image, scene.exposure * options.exposure));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, %.2f s on %s)\n", options.output.c_str(),
-               options.scene.scene.c_str(), width, height, options.spp, gl::toString(brdf), seconds,
-               gl::currentContextInfo().renderer.c_str());
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",
+               options.output.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
 }
 
 }  // namespace
@@ -72,8 +86,17 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
       ->capture_default_str();
+  command->add_option("--aa", options->antiAliasing,
+                      "Glint anti-aliasing: ggaa (filtered by the half vector's variation over the pixel) or none "
+                      "(the 2020 model)")
+      ->capture_default_str();
+  command->add_option("--aa-kernel", options->aaKernel,
+                      "Size of the anti-aliasing kernel: 1 matches the pixel's box, 0 filters nothing")
+      ->capture_default_str();
   command->add_option("--spp", options->spp, "Jittered samples per pixel, averaged: a supersampled reference")
       ->capture_default_str();
+  command->add_option("--reference", options->reference,
+                      "The anti-aliasing reference: the mean of N jittered frames of the 2020 model (--aa none)");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   command->callback([options] { runRender(*options); });
 }

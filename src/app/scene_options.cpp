@@ -20,6 +20,7 @@ void SceneOptions::addTo(CLI::App& command) {
   command.add_option("--glint-material", glintMaterials,
                      "Put a glint layer on this material of a glTF scene ('*' for all); repeatable");
   command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY")->delimiter(',');
+  command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
@@ -45,6 +46,7 @@ scene::Scene SceneOptions::loadScene() const {
   for (scene::Material& m : s.materials) {
     if (!m.glint.enabled) continue;
     if (!alpha.empty()) m.glint.alpha = glm::vec2(alpha.front(), alpha.back());
+    if (rho) m.glint.rho = *rho;
     if (logDensity) m.glint.logDensity = *logDensity;
     if (relativeArea) m.glint.relativeArea = *relativeArea;
     try {

@@ -21,6 +21,7 @@ struct SceneOptions {
   std::string dictionary;
   std::vector<std::string> glintMaterials;
   std::vector<float> alpha;
+  std::optional<float> rho;
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
   std::optional<float> sky;

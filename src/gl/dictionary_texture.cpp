@@ -10,7 +10,28 @@
 
 namespace glint::gl {
 
-DictionaryTexture::DictionaryTexture(const Dictionary& dictionary) : parameters_(dictionary.parameters()) {
+namespace {
+
+// A buffer texture over `halves`, `components` binary16 values a texel.
+void createBufferTexture(std::span<const std::uint16_t> halves, int components, GLenum format, const char* what,
+                         GLuint& buffer, GLuint& texture) {
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const std::size_t texels = halves.size() / static_cast<std::size_t>(components);
+  if (static_cast<std::size_t>(maxTexels) < texels) {
+    throw Error(std::string(what) + " of " + std::to_string(texels) +
+                " texels exceeds this OpenGL's buffer texture limit (" + std::to_string(maxTexels) + " texels)");
+  }
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(halves.size() * sizeof(std::uint16_t)), halves.data(), 0);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture);
+  glTextureBuffer(texture, format, buffer);
+}
+
+}  // namespace
+
+DictionaryTexture::DictionaryTexture(const Dictionary& dictionary)
+    : parameters_(dictionary.parameters()), numMips_(dictionary.numMips()), mipRowLength_(dictionary.mipRowLength()) {
   // Texel k of a distribution holds the pair (p[k], p[k+1]), with p[R] = 0 (the marginal falls to
   // 0 at 4 sigma_d), so that glintMarginal's linear interpolation costs one fetch instead of two:
   // on llvmpipe the fetches were about 40% of the glint shader's time (docs/benchmarks.md).
@@ -24,26 +45,23 @@ DictionaryTexture::DictionaryTexture(const Dictionary& dictionary) : parameters_
   }
   // A buffer texture, not a texture array: llvmpipe's texelFetch on an array computes a mip level,
   // row and layer stride per pixel, about 100 instructions around each fetch; on a buffer it is a
-  // bounds check and a gather (docs/benchmarks.md, third round).
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  if (static_cast<std::size_t>(maxTexels) < halves.size()) {
-    throw Error("dictionary of " + std::to_string(halves.size()) + " texels exceeds this OpenGL's buffer texture limit (" +
-                std::to_string(maxTexels) + " texels)");
-  }
-  glCreateBuffers(1, &buffer_);
-  glNamedBufferStorage(buffer_, static_cast<GLsizeiptr>(pairs.size() * sizeof(std::uint16_t)), pairs.data(), 0);
-  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture_);
-  glTextureBuffer(texture_, GL_RG16F, buffer_);
+  // bounds check and a gather (docs/benchmarks.md, third round). The mip chain likewise: four
+  // values a texel, so that one fetch serves both levels of a filtered lookup.
+  createBufferTexture(pairs, 2, GL_RG16F, "dictionary", buffer_, texture_);
+  createBufferTexture(dictionary.filteredHalfTexels(), 4, GL_RGBA16F, "dictionary mip chain", mipBuffer_, mipTexture_);
 }
 
 DictionaryTexture::~DictionaryTexture() {
   glDeleteTextures(1, &texture_);
   glDeleteBuffers(1, &buffer_);
+  glDeleteTextures(1, &mipTexture_);
+  glDeleteBuffers(1, &mipBuffer_);
 }
 
 void DictionaryTexture::bind(const ShaderProgram& program) const {
   glBindTextureUnit(0, texture_);
+  glBindTextureUnit(10, mipTexture_);
+  glUniform2i(program.uniform("uGlintDictionaryMips"), numMips_, mipRowLength_);
   glUniform3i(program.uniform("uGlintDictionaryShape"), parameters_.numLevels, parameters_.numDistributions,
               parameters_.texelsPerDistribution);
   glUniform1f(program.uniform("uGlintDictionaryAlpha"), parameters_.alpha);

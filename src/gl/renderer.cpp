@@ -73,6 +73,22 @@ const char* toString(BrdfModel model) {
   return "unknown";
 }
 
+std::vector<AntiAliasing> allAntiAliasingModes() { return {AntiAliasing::None, AntiAliasing::Ggaa}; }
+
+AntiAliasing antiAliasingFromString(const std::string& name) {
+  if (name == "none") return AntiAliasing::None;
+  if (name == "ggaa") return AntiAliasing::Ggaa;
+  throw Error("unknown anti-aliasing '" + name + "' (choices: none, ggaa)");
+}
+
+const char* toString(AntiAliasing mode) {
+  switch (mode) {
+    case AntiAliasing::None: return "none";
+    case AntiAliasing::Ggaa: return "ggaa";
+  }
+  return "unknown";
+}
+
 glm::vec2 supersampleJitter(int k) {
   if (k == 0) return glm::vec2(0.0f);
   // R2: the fractional parts of k / g and k / g^2, g the plastic number.
@@ -119,6 +135,7 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
+  bool filtered;   // GLINT_FILTERED: glint programs that anti-alias (AntiAliasing::Ggaa)
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
@@ -133,6 +150,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
                        {{"SPECULAR_MODEL", specular},
                         {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},
+                        {"GLINT_FILTERED", variant.filtered ? "1" : "0"},
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
                         {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
                         {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
@@ -151,13 +169,15 @@ bool isMasked(const scene::Material& material) { return material.alphaMode == sc
 // The program a material is drawn with. A material without a glint layer is Cook-Torrance under
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
-ForwardVariant forwardVariant(BrdfModel brdf, const scene::Material& material, const GpuMesh& mesh, int lightCount) {
-  const BrdfModel model = material.glint.enabled ? brdf : BrdfModel::CookTorrance;
+ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
+                              int lightCount) {
+  const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
   const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
+  const bool filtered = model == BrdfModel::Glint && settings.antiAliasing != AntiAliasing::None;
   const bool transforms = !(material.baseColourUv.identity() && material.metallicRoughnessUv.identity() &&
                             material.normalUv.identity() && material.occlusionUv.identity() &&
                             material.emissiveUv.identity());
-  return ForwardVariant{model, coloured, lightCount, isMasked(material), transforms, mesh.vertexColours};
+  return ForwardVariant{model, coloured, filtered, lightCount, isMasked(material), transforms, mesh.vertexColours};
 }
 
 struct Renderer::Gpu {
@@ -375,6 +395,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform2fv(p.uniform("uSpotCone"), lightCount, &spotCones[0].x);
     glUniform1fv(p.uniform("uLightInverseRange"), lightCount, inverseRanges);
     glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
+    glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
     glBindTextureUnit(9, g.environment);
@@ -382,7 +403,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings.brdf, m, mesh, lightCount);
+    const ForwardVariant variant = forwardVariant(settings, m, mesh, lightCount);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
@@ -405,6 +426,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
     glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
     glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
+    glUniform1f(p.uniform("uGlintRho"), glint.rho);
     glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
     glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
     glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);

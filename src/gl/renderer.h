@@ -26,10 +26,22 @@ std::vector<BrdfModel> allBrdfModels();
 BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices
 const char* toString(BrdfModel model);
 
+// Glint anti-aliasing (docs/antialiasing.md): None is the 2020 model, each pixel's P-SDF at one
+// half vector; Ggaa filters it by the half vector's variation over the pixel (Chermain et al.
+// 2021, kernel/glint_antialiasing.h).
+enum class AntiAliasing { None, Ggaa };
+std::vector<AntiAliasing> allAntiAliasingModes();
+AntiAliasing antiAliasingFromString(const std::string& name);  // throws Error naming the choices
+const char* toString(AntiAliasing mode);
+
 struct FrameSettings {
   int width = 512;
   int height = 512;
   BrdfModel brdf = BrdfModel::Glint;
+  AntiAliasing antiAliasing = AntiAliasing::Ggaa;
+  // The filter kernel's size: 1 gives the kernel the covariance of the pixel's box (the reference
+  // averages over that box); 0 filters nothing.
+  float filterScale = 1.0f;
   scene::Camera camera;
   glm::vec2 jitter{0.0f};  // sub-pixel offset of the frame, in pixels (supersampling)
 };

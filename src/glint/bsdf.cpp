@@ -32,6 +32,7 @@ void requireFinite(const char* field, glm::vec2 value) {
 GlintParameters defaultGlintParameters() {
   GlintParameters p;
   p.alpha = glm::vec2(0.5f);
+  p.rho = 0.0f;
   p.logDensity = 27.0f;
   p.relativeArea = 1.0f;
   p.densityRandomisation = 2.0f;
@@ -46,8 +47,14 @@ void validateRoughness(glm::vec2 alpha) {
   requireRange("alpha_y", alpha.y, 0.005f, 2.0f);
 }
 
+void validateSlopeCorrelation(float rho) {
+  // |rho| = 1 is a degenerate Gaussian; the clamp keeps M^-1's 1 / sqrt(1 - rho^2) below 7.1.
+  requireRange("rho", rho, -kMaxSlopeCorrelation, kMaxSlopeCorrelation);
+}
+
 void validateGlintParameters(const GlintParameters& p) {
   validateRoughness(p.alpha);
+  validateSlopeCorrelation(p.rho);
   requireRange("log_density", p.logDensity, 0.0f, 100.0f);
   if (!(p.relativeArea > 0.0f && p.relativeArea <= 1.0f)) {
     std::ostringstream message;
@@ -95,13 +102,14 @@ Spectrum Fresnel::evaluate(float cosThetaI) const {
   return Spectrum(1.0f);
 }
 
-CookTorranceBsdf::CookTorranceBsdf(glm::vec2 alpha, Fresnel fresnel, Spectrum reflectance)
-    : alpha_(alpha), fresnel_(fresnel), reflectance_(reflectance) {
+CookTorranceBsdf::CookTorranceBsdf(glm::vec2 alpha, float rho, Fresnel fresnel, Spectrum reflectance)
+    : alpha_(alpha), rho_(rho), fresnel_(fresnel), reflectance_(reflectance) {
   validateRoughness(alpha);
+  validateSlopeCorrelation(rho);
 }
 
 Spectrum CookTorranceBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
-  const float value = kernel::cookTorranceReflectance(alpha_, wo, wi);
+  const float value = kernel::cookTorranceReflectance(alpha_, rho_, wo, wi);
   if (value == 0.0f) return Spectrum(0.0f);
   return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
 }
@@ -110,7 +118,7 @@ float CookTorranceBsdf::ndf(glm::vec3 m) const {
   return m.z > 0.0f ? kernel::ndfFromP22(p22(kernel::slopeFromNormal(m)), m.z) : 0.0f;
 }
 
-float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::beckmannP22(slope, alpha_); }
+float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::beckmannP22(slope, alpha_, rho_); }
 
 GlintBsdf::GlintBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
                      const SurfaceFootprint& footprint, Fresnel fresnel, Spectrum reflectance, GlintSampler sampler)
@@ -177,13 +185,13 @@ glm::vec3 reflectAbout(glm::vec3 wo, glm::vec3 m) { return glm::normalize(2.0f *
 
 // A visible normal of the Beckmann lobe: a slope of its P22 (that is, m from D(m) m.z), then the
 // V-cavity's choice between m and its mirror (Heitz & d'Eon 2014, section 5).
-glm::vec3 sampleBeckmannVisibleNormal(glm::vec2 alpha, glm::vec3 wo, float& uChoice, glm::vec2 u) {
-  const glm::vec3 m = sampling::normalFromSlope(sampling::sampleBeckmannSlope(alpha, u));
+glm::vec3 sampleBeckmannVisibleNormal(glm::vec2 alpha, float rho, glm::vec3 wo, float& uChoice, glm::vec2 u) {
+  const glm::vec3 m = sampling::normalFromSlope(sampling::sampleBeckmannSlope(alpha, rho, u));
   return sampling::sampleVCavityVisibleNormal(wo, m, uChoice);
 }
 
-float beckmannNdf(glm::vec2 alpha, glm::vec3 m) {
-  return m.z > 0.0f ? kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha), m.z) : 0.0f;
+float beckmannNdf(glm::vec2 alpha, float rho, glm::vec3 m) {
+  return m.z > 0.0f ? kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha, rho), m.z) : 0.0f;
 }
 
 // Density of a direction reflected about visible normals: D_wo(wh) / (4 wo.wh), the Jacobian of
@@ -202,7 +210,7 @@ std::optional<BsdfSample> makeSample(Spectrum f, glm::vec3 wi, float pdf, bool t
 
 std::optional<BsdfSample> CookTorranceBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
   if (wo.z <= 0.0f) return std::nullopt;
-  const glm::vec3 wi = reflectAbout(wo, sampleBeckmannVisibleNormal(alpha_, wo, uChoice, u));
+  const glm::vec3 wi = reflectAbout(wo, sampleBeckmannVisibleNormal(alpha_, rho_, wo, uChoice, u));
   if (wi.z <= 0.0f) return std::nullopt;
   return makeSample(f(wo, wi), wi, pdf(wo, wi), false);
 }
@@ -210,11 +218,11 @@ std::optional<BsdfSample> CookTorranceBsdf::sample(glm::vec3 wo, float uChoice, 
 float CookTorranceBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 wh = glm::normalize(wo + wi);
-  return reflectionPdf(wo, wh, sampling::visibleNdf(wo, wh, beckmannNdf(alpha_, wh)));
+  return reflectionPdf(wo, wh, sampling::visibleNdf(wo, wh, beckmannNdf(alpha_, rho_, wh)));
 }
 
 std::optional<glm::vec3> GlintBsdf::sampleVisibleNormal(glm::vec3 wo, float& uChoice, glm::vec2 u) const {
-  if (sampler_ == GlintSampler::Gaussian) return sampleBeckmannVisibleNormal(parameters_.alpha, wo, uChoice, u);
+  if (sampler_ == GlintSampler::Gaussian) return sampleBeckmannVisibleNormal(parameters_.alpha, parameters_.rho, wo, uChoice, u);
   const std::optional<glm::vec2> slope = sampling::sampleGlintSlope(
       dictionary_, parameters_, footprint_.uv, footprint_.duvdx, footprint_.duvdy, uChoice, u);
   if (!slope) return std::nullopt;  // a cell without microfacets
@@ -223,7 +231,7 @@ std::optional<glm::vec3> GlintBsdf::sampleVisibleNormal(glm::vec3 wo, float& uCh
 
 float GlintBsdf::visibleNormalPdf(glm::vec3 wo, glm::vec3 m) const {
   if (m.z <= 0.0f) return 0.0f;
-  const float d = sampler_ == GlintSampler::Gaussian ? beckmannNdf(parameters_.alpha, m) : ndf(m);
+  const float d = sampler_ == GlintSampler::Gaussian ? beckmannNdf(parameters_.alpha, parameters_.rho, m) : ndf(m);
   return sampling::visibleNdf(wo, m, d);
 }
 

@@ -28,6 +28,9 @@ GlintParameters defaultGlintParameters();
 // Throws Error naming the first parameter out of range (ranges in docs/conventions.md).
 void validateGlintParameters(const GlintParameters& parameters);
 void validateRoughness(glm::vec2 alpha);
+// The slope correlation: rho in (-1, 1), at most kMaxSlopeCorrelation in magnitude.
+void validateSlopeCorrelation(float rho);
+inline constexpr float kMaxSlopeCorrelation = 0.99f;
 
 // Fresnel reflectance at the microfacet: none (F = 1), Schlick, or an exact conductor.
 class Fresnel {
@@ -67,10 +70,12 @@ struct BsdfSample {
 // lobe of the same roughness, the baseline (low cost, high variance for glints).
 enum class GlintSampler { Mixture, Gaussian };
 
-// Cook-Torrance with a Beckmann NDF and V-cavity masking: the baseline, and the glint BRDF's limit.
+// Cook-Torrance with a Beckmann NDF (roughness alpha, slope correlation rho) and V-cavity masking:
+// the baseline, and the glint BRDF's limit.
 class CookTorranceBsdf {
  public:
-  CookTorranceBsdf(glm::vec2 alpha, Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f));
+  CookTorranceBsdf(glm::vec2 alpha, float rho = 0.0f, Fresnel fresnel = Fresnel::none(),
+                   Spectrum reflectance = Spectrum(1.0f));
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
   float ndf(glm::vec3 m) const;    // Beckmann D(m)
   float p22(glm::vec2 slope) const;
@@ -80,6 +85,7 @@ class CookTorranceBsdf {
 
  private:
   glm::vec2 alpha_;
+  float rho_;
   Fresnel fresnel_;
   Spectrum reflectance_;
 };

@@ -1,5 +1,6 @@
 #include "dictionary.h"
 
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <regex>
@@ -120,11 +121,82 @@ Dictionary::Dictionary(const DictionaryParameters& parameters, std::span<const f
     halves_[i] = floatToHalf(values[i]);
     values_[i] = halfToFloat(halves_[i]);
   }
+  buildMipChain();
+}
+
+// Level m of the chain samples, at texel spacing 2^m h (h = 4 sigma_d / R), the box average of
+// width 2^m h of the level-0 marginal (piecewise linear between its texels, even, 0 from
+// 4 sigma_d on): f_m[k] = mean of p over [(k - 1/2), (k + 1/2)] 2^m h, the box at k = 0 taking
+// both sides of the even marginal. The mass beyond the last texel's box, which the texel
+// convention cannot hold (the marginal falls to 0 at 4 sigma_d), goes to the last texel, so that
+// every level integrates, under the kernel's interpolation, exactly as level 0 does.
+void Dictionary::buildMipChain() {
+  const int texels = parameters_.texelsPerDistribution;
+  numMips_ = 1 + std::countr_zero(static_cast<unsigned>(texels));
+  mipRowLength_ = kernel::glintMipOffset(texels, numMips_);
+  const std::size_t rows = static_cast<std::size_t>(parameters_.numLevels) * parameters_.numDistributions;
+  std::vector<std::vector<double>> mips(static_cast<std::size_t>(numMips_));
+  filteredHalves_.assign(rows * static_cast<std::size_t>(mipRowLength_) * 4, 0);
+  filteredValues_.assign(filteredHalves_.size(), 0.0f);
+  std::vector<double> cumulative(static_cast<std::size_t>(texels) + 1);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const float* v = values_.data() + row * static_cast<std::size_t>(texels);
+    auto value = [&](int k) { return k < texels ? static_cast<double>(v[k]) : 0.0; };
+    // C(u) = integral of p over [0, u], u in level-0 texels: exact for the piecewise-linear marginal.
+    cumulative[0] = 0.0;
+    for (int k = 0; k < texels; ++k) cumulative[k + 1] = cumulative[k] + 0.5 * (value(k) + value(k + 1));
+    auto integral = [&](double u) {
+      if (u >= texels) return cumulative[static_cast<std::size_t>(texels)];
+      const int k = static_cast<int>(u);
+      const double t = u - k;
+      return cumulative[static_cast<std::size_t>(k)] + value(k) * t + 0.5 * (value(k + 1) - value(k)) * t * t;
+    };
+    for (int m = 0; m < numMips_; ++m) {
+      const int count = texels >> m;
+      const double width = static_cast<double>(1 << m);
+      std::vector<double>& f = mips[static_cast<std::size_t>(m)];
+      f.assign(static_cast<std::size_t>(count) + 1, 0.0);  // f[count] = 0: the convention's fall to 0
+      if (m == 0) {
+        for (int k = 0; k < count; ++k) f[static_cast<std::size_t>(k)] = value(k);
+      } else {
+        for (int k = 0; k < count; ++k) {
+          const double low = (k - 0.5) * width;
+          const double high = (k + 0.5) * width;
+          const double mass = k == 0 ? 2.0 * integral(high) : integral(high) - integral(low);
+          f[static_cast<std::size_t>(k)] = mass / width;
+        }
+        // The rest of the half beyond the last box; the last texel counts twice (both sides) in
+        // the even marginal's integral, once when it is also the first.
+        const double rest = integral(texels) - integral((count - 0.5) * width);
+        f[static_cast<std::size_t>(count - 1)] += (count == 1 ? 2.0 : 1.0) * rest / width;
+      }
+    }
+    for (int m = 0; m < numMips_; ++m) {
+      const std::vector<double>& fine = mips[static_cast<std::size_t>(m)];
+      const bool last = m + 1 == numMips_;
+      for (int k = 0; k < (texels >> m); ++k) {
+        const std::size_t at =
+            4 * (row * static_cast<std::size_t>(mipRowLength_) + static_cast<std::size_t>(kernel::glintMipOffset(texels, m) + k));
+        const double quad[4] = {fine[static_cast<std::size_t>(k)], fine[static_cast<std::size_t>(k) + 1],
+                                last ? 0.0 : mips[static_cast<std::size_t>(m) + 1][static_cast<std::size_t>(k / 2)],
+                                last ? 0.0 : mips[static_cast<std::size_t>(m) + 1][static_cast<std::size_t>(k / 2) + 1]};
+        for (int c = 0; c < 4; ++c) {
+          // Level 0's own values are halves already; the others are rounded as the GPU holds them.
+          filteredHalves_[at + static_cast<std::size_t>(c)] = floatToHalf(static_cast<float>(quad[c]));
+          filteredValues_[at + static_cast<std::size_t>(c)] = halfToFloat(filteredHalves_[at + static_cast<std::size_t>(c)]);
+        }
+      }
+    }
+  }
+}
+
+float Dictionary::mipTexel(int mip, int level, int distribution, int texel) const {
+  return kernel::glintDictionaryFilteredTexels(view(), mip, level, distribution, texel).x;
 }
 
 kernel::DictionaryView Dictionary::view() const {
-  return {values_.data(), parameters_.numLevels, parameters_.numDistributions, parameters_.texelsPerDistribution,
-          parameters_.alpha};
+  return {values_.data(),   parameters_.numLevels, parameters_.numDistributions, parameters_.texelsPerDistribution,
+          parameters_.alpha, filteredValues_.data(), numMips_, mipRowLength_};
 }
 
 float Dictionary::texel(int level, int distribution, int texel) const {

@@ -54,6 +54,15 @@ class Dictionary {
   std::span<const std::uint16_t> halfTexels() const { return halves_; }  // for GPU upload
   std::span<const float> texels() const { return values_; }
 
+  // The mip chain that anti-aliasing filters the marginals with (docs/dictionary.md, "Mip chain"),
+  // made from the texels at construction: 1 + (the number of times 2 divides R) levels, level m of
+  // R / 2^m box averages 2^m texels wide. mipTexel is texel k of level m (level 0: texel());
+  // filteredTexels the kernel's layout (prelude.h, DictionaryView), four binary16 values a texel.
+  int numMips() const { return numMips_; }
+  int mipRowLength() const { return mipRowLength_; }
+  float mipTexel(int mip, int level, int distribution, int texel) const;
+  std::span<const std::uint16_t> filteredHalfTexels() const { return filteredHalves_; }  // for GPU upload
+
   // The versioned binary file (docs/dictionary.md, "File format").
   std::vector<std::byte> serialise() const;
   static Dictionary deserialise(std::span<const std::byte> bytes, const std::string& name);
@@ -68,6 +77,12 @@ class Dictionary {
   DictionaryParameters parameters_;
   std::vector<std::uint16_t> halves_;
   std::vector<float> values_;  // halves_ converted back: what the kernel reads on the CPU
+  int numMips_ = 1;
+  int mipRowLength_ = 0;
+  std::vector<std::uint16_t> filteredHalves_;
+  std::vector<float> filteredValues_;  // filteredHalves_ converted back
+
+  void buildMipChain();
 };
 
 // Generates a dictionary (model.md section 1) in parallel with oneTBB. The result depends only on

@@ -11,12 +11,15 @@ float remapUniform(float u, float low, float width) {
 
 glm::vec3 normalFromSlope(glm::vec2 slope) { return glm::normalize(glm::vec3(-slope.x, -slope.y, 1.0f)); }
 
-glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, glm::vec2 u) {
-  // Box-Muller: radius sqrt(-2 ln(1 - u.x)) of a unit Gaussian pair, angle 2 pi u.y; then the
-  // per-axis standard deviations alpha / sqrt(2).
+glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
+  // Box-Muller: radius sqrt(-2 ln(1 - u.x)) of a unit Gaussian pair z = radius (cos, sin), angle
+  // 2 pi u.y; then the covariance's Cholesky factor: sigma_x (sqrt(1 - rho^2) z.x + rho z.y),
+  // sigma_y z.y, sigma = alpha / sqrt(2) (exactly the uncorrelated sigma z when rho = 0).
   const float radius = std::sqrt(-2.0f * std::log1p(-std::min(u.x, kOneMinusEpsilon)));
   const float phi = 2.0f * kernel::kPi * u.y;
-  return alpha * 0.70710678f * radius * glm::vec2(std::cos(phi), std::sin(phi));
+  const float c = std::cos(phi);
+  const float s = std::sin(phi);
+  return alpha * 0.70710678f * radius * glm::vec2(std::sqrt(1.0f - rho * rho) * c + rho * s, s);
 }
 
 float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u) {
@@ -61,7 +64,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
                                           glm::vec2 u) {
   const kernel::GlintFootprint footprint =
       kernel::glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
-  if (footprint.degenerate) return sampleBeckmannSlope(params.alpha, u);
+  if (footprint.degenerate) return sampleBeckmannSlope(params.alpha, params.rho, u);
   // P22_P = (1 - w) P22_il + w P22_il+1 (model.md 2.3): level il + 1 with probability w.
   int level = kernel::glintLodLevel(footprint);
   const float blend = kernel::glintLodBlend(footprint);
@@ -112,7 +115,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them.
   const kernel::GlintCell drawn = kernel::glintCell(
       dict, params, kernel::glintLevelDraw(dict, params, footprint.logDensity, level), cell.x, cell.y, level);
-  if (drawn.smoothLimit) return sampleBeckmannSlope(params.alpha, u);
+  if (drawn.smoothLimit) return sampleBeckmannSlope(params.alpha, params.rho, u);
   if (!drawn.readsDictionary) return std::nullopt;
   const glm::uvec4 hash = drawn.hash;
   const int dictLevel = drawn.dictionaryLevel;
@@ -120,11 +123,11 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   // Tensor product: x' and y' independent, each from its marginal (model.md 2.5).
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
   const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
-  // Back from the dictionary's space: slope = S R(theta) (x', y'), the inverse of
-  // glintDictionarySlope(glintUnscaledSlope(slope))'s (x', y') = R(-theta) S^-1 slope.
+  // Back from the dictionary's space: slope = M R(theta) (x', y'), the inverse of
+  // glintDictionarySlope(glintUnscaledSlope(slope))'s (x', y') = R(-theta) M^-1 slope.
   const glm::vec2 rotation = kernel::glintCellRotation(hash);
-  const glm::vec2 scaled(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y);
-  return scaled * (params.alpha / dict.alpha);
+  const glm::vec2 rotated(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y);
+  return kernel::glintScaledSlope(dict, params, rotated);
 }
 
 glm::vec3 sampleVCavityVisibleNormal(glm::vec3 wo, glm::vec3 m, float& u) {

@@ -27,9 +27,10 @@ float remapUniform(float u, float low, float width);
 // A microfacet normal from its slope: m = (-x, -y, 1) / sqrt(1 + x^2 + y^2) (model.md, notation).
 glm::vec3 normalFromSlope(glm::vec2 slope);
 
-// A slope of the anisotropic Beckmann P22 (microfacet.h, beckmannP22): a centred Gaussian of std
-// alpha / sqrt(2) per axis, by the Box-Muller transform.
-glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, glm::vec2 u);
+// A slope of the anisotropic Beckmann P22 with correlation rho (microfacet.h, beckmannP22): a
+// centred Gaussian of std alpha / sqrt(2) per axis and correlation rho, by the Box-Muller transform
+// and the covariance's Cholesky factor.
+glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u);
 
 // A signed dictionary-space slope of distribution `distribution` at level `level`, by inverting
 // the CDF of the kernel's piecewise-linear marginal (glintMarginal: texel k at slope k 4 sigma_d / R,

@@ -288,7 +288,7 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
 
 // ---- Glint extras -----------------------------------------------------------------------------
 
-const std::array<const char*, 12> kGlintFields = {"alpha", "log_density", "relative_area", "density_randomisation",
+const std::array<const char*, 13> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
                                                   "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
                                                   "roughness_texture", "log_density_texture", "log_density_range",
                                                   "relative_area_texture"};
@@ -974,7 +974,8 @@ class GltfReader {
         throw error("alpha must be a number or an array of two numbers");
       }
     }
-    const std::pair<const char*, float*> numbers[] = {{"log_density", &layer.logDensity},
+    const std::pair<const char*, float*> numbers[] = {{"rho", &layer.rho},
+                                                      {"log_density", &layer.logDensity},
                                                       {"relative_area", &layer.relativeArea},
                                                       {"density_randomisation", &layer.densityRandomisation},
                                                       {"max_anisotropy", &layer.maxAnisotropy},

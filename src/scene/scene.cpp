@@ -31,6 +31,7 @@ float alphaFromRoughness(float roughness) { return std::max(roughness * roughnes
 GlintParameters glintParameters(const GlintLayer& layer) {
   GlintParameters p = defaultGlintParameters();
   p.alpha = layer.alpha;
+  p.rho = layer.rho;
   p.logDensity = layer.logDensity;
   p.relativeArea = layer.relativeArea;
   p.densityRandomisation = layer.densityRandomisation;

@@ -46,6 +46,7 @@ struct Texture {
 struct GlintLayer {
   bool enabled = false;
   glm::vec2 alpha{0.5f};          // roughness alpha_x, alpha_y (x along the tangent)
+  float rho = 0.0f;                // slope correlation of the target Beckmann, in (-1, 1)
   float logDensity = 27.0f;
   float relativeArea = 1.0f;
   float densityRandomisation = 2.0f;

@@ -151,7 +151,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const Spectrum specularAlbedo = fresnel.evaluate(wo.z);
 
   if (!layer.enabled) {
-    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), fresnel);
+    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), 0.0f, fresnel);
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
   }
 
@@ -165,7 +165,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   params.relativeArea =
       std::clamp(layer.relativeArea * texture(layer.relativeAreaTexture, uv, footprint).r, 1e-4f, 1.0f);
   if (model_ == SpecularModel::CookTorrance) {
-    const CookTorranceBsdf specular(params.alpha, fresnel);
+    const CookTorranceBsdf specular(params.alpha, params.rho, fresnel);
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
   }
   // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives.

@@ -1,6 +1,9 @@
 // The glint BRDF of Chermain, Sauvage, Dischler & Dachsbacher 2020, "Procedural Physically based
 // BRDF for Real-Time Rendering of Glints" (Pacific Graphics; CGF 39(7)): the P-SDF over a pixel
-// footprint (model.md section 2), its P-NDF, and the BRDF (model.md section 3).
+// footprint (docs/conventions.md), its P-NDF, and the BRDF. The walk over the footprint's cells
+// also carries the 2021 extension's slope correlation and anti-aliasing filter
+// (glint_antialiasing.h), which leave the 2020 values unchanged bit for bit when rho = 0 and the
+// slopes have no derivatives.
 // Shared by the CPU library and the GLSL renderer: see prelude.h for the rules.
 #ifndef GLINT_KERNEL_GLINT_BRDF_H
 #define GLINT_KERNEL_GLINT_BRDF_H
@@ -8,6 +11,8 @@
 #include "prelude.h"
 #include "random.h"
 #include "microfacet.h"
+#include "dictionary_lookup.h"
+#include "glint_antialiasing.h"
 
 GLINT_KERNEL_BEGIN
 
@@ -21,6 +26,7 @@ GLINT_CONST uint kCellIndexMask = 0xFFFFu;
 // The material inputs of the model (model.md section 2), validated by the host.
 struct GlintParameters {
   vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
+  float rho;                   // its slope correlation, in (-1, 1) (glint_antialiasing.h)
   float logDensity;            // D = ln(microfacets per unit uv area)
   float relativeArea;          // MRA, in (0, 1]: probability that a cell has microfacets
   float densityRandomisation;  // zeta: std of the per-cell dictionary level around log4(n)
@@ -77,22 +83,6 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   footprint.degenerate = !(minorLength > 0.0f);
   footprint.lod = footprint.degenerate ? 0.0f : max(0.0f, float(numLevels - 1) + log2(minorLength));
   return footprint;
-}
-
-// The dictionary's slope support 4 sigma_d = 4 alpha_d / sqrt(2): marginals vanish beyond it.
-GLINT_FN float glintDictionaryDomain(DictionaryView dict) {
-  return 2.82842712f * dict.alpha;
-}
-
-// One tabulated 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R and
-// the marginal falls linearly to 0 at 4 sigma_d (docs/dictionary.md, "Texel convention"). The
-// caller guarantees 0 <= absSlope < 4 sigma_d.
-GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, float absSlope) {
-  float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict));
-  int k = min(int(x), dict.texelsPerDistribution - 1);
-  float f = x - float(k);
-  vec2 ab = glintDictionaryTexelPair(dict, level, distribution, k);
-  return ab.x + f * (ab.y - ab.x);
 }
 
 // A saturated random hue for a cell (the paper's "cheap iridescence"), from its own hash so that
@@ -208,10 +198,16 @@ GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
 
-// Into the dictionary's space, (x', y') = R(-theta) S^-1 slope (model.md 2.5), in two steps: undo
-// the roughness scaling S = alpha / alpha_d (the same for every cell of a pixel) ...
+// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (model.md 2.5), in two steps: undo
+// the roughness scaling and correlation M (the same for every cell of a pixel; with rho = 0 the
+// 2020 model's S = alpha / alpha_d) ...
 GLINT_FN vec2 glintUnscaledSlope(DictionaryView dict, GlintParameters params, vec2 slope) {
-  return slope * (vec2(dict.alpha) / params.alpha);
+  return glintCorrelatedUnscale(slope, params.alpha, params.rho, dict.alpha);
+}
+
+// ... whose inverse takes a dictionary-space slope, rotated back, to the target's slopes.
+GLINT_FN vec2 glintScaledSlope(DictionaryView dict, GlintParameters params, vec2 unscaled) {
+  return glintCorrelatedScale(unscaled, params.alpha, params.rho, dict.alpha);
 }
 
 // ... then the cell's rotation.
@@ -221,9 +217,9 @@ GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
   return vec2(x, y);
 }
 
-// Jacobian of the scaling, 1 / det(S) (model.md 2.5).
+// Jacobian of the scaling, det(M^-1) (model.md 2.5; with correlation, glintCorrelatedJacobian).
 GLINT_FN float glintScalingJacobian(DictionaryView dict, GlintParameters params) {
-  return (dict.alpha * dict.alpha) / (params.alpha.x * params.alpha.y);
+  return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
 }
 
 // Whether an unscaled slope (glintUnscaledSlope) lies beyond the circumradius of the dictionary's
@@ -284,6 +280,21 @@ GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec
          glintMarginal(dict, dictionaryLevel, distributions.y, abs(local.y));
 }
 
+// The same product with each marginal filtered by the anti-aliasing kernel (glint_antialiasing.h),
+// whose covariance in the unscaled space is `unscaledKernel`: the cell's rotation turns it onto the
+// cell's axes, and each marginal is read at the mip level of its axis' variance.
+GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions,
+                                          vec2 rotation, vec2 unscaled, vec3 unscaledKernel) {
+  float fourSigma = glintDictionaryDomain(dict);
+  vec2 local = glintDictionarySlope(rotation, unscaled);
+  if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
+    return 0.0f;
+  }
+  vec2 variance = glintCellKernelVariance(rotation, unscaledKernel);
+  return glintFilteredMarginal(dict, dictionaryLevel, distributions.x, abs(local.x), glintMarginalLod(dict, variance.x)) *
+         glintFilteredMarginal(dict, dictionaryLevel, distributions.y, abs(local.y), glintMarginalLod(dict, variance.y));
+}
+
 // The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
 // a pixel's lights at once, one half vector each, so that a cell's hash, dictionary level, rotation
 // and distributions are drawn once per pixel instead of once per light (docs/renderer.md, "Cost");
@@ -296,6 +307,9 @@ GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec
 
 struct GlintSlopeSet {
   vec2 slope[GLINT_SLOPE_COUNT];
+  // Each slope's screen-space derivatives (d/dx, d/dy) as (dx.x, dx.y, dy.x, dy.y), times the
+  // anti-aliasing kernel's size: the filter's input (glint_antialiasing.h). Zero: no filtering.
+  vec4 derivatives[GLINT_SLOPE_COUNT];
 };
 
 struct GlintP22Set {
@@ -307,6 +321,7 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
   GlintSlopeSet slopes;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     slopes.slope[k] = slope;
+    slopes.derivatives[k] = vec4(0.0f);
   }
   return slopes;
 }
@@ -396,13 +411,25 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // would be); when all are, the cells' rotations and texel reads are skipped.
   bool inSupport[GLINT_SLOPE_COUNT];
   bool anyInSupport = false;
+  // The anti-aliasing kernel of each slope, in slope space (for the smooth cells) and in the
+  // unscaled space (for the dictionary cells, which rotate it onto their axes).
+  vec3 slopeKernel[GLINT_SLOPE_COUNT];
+  vec3 unscaledKernel[GLINT_SLOPE_COUNT];
+  bool anyDerivative = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
     colouredSum[k] = vec3(0.0f);
     inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
     anyInSupport = anyInSupport || inSupport[k];
+    vec4 d = slopes.derivatives[k];
+    slopeKernel[k] = glintKernelCovariance(d);
+    vec2 ux = glintUnscaledSlope(dict, params, vec2(d.x, d.y));
+    vec2 uy = glintUnscaledSlope(dict, params, vec2(d.z, d.w));
+    unscaledKernel[k] = glintKernelCovariance(vec4(ux, uy));
+    anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
+  bool filtering = GLINT_FILTERS(anyDerivative);
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
   // One loop over the cells, moving to the next line when a line is done, rather than a loop over
@@ -432,9 +459,12 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
         ivec2 distributions = glintCellDistributions(dict, cell.hash);
         vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
         for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-          float p = inSupport[k]
-                        ? glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k])
-                        : 0.0f;
+          float p = 0.0f;
+          if (inSupport[k]) {
+            p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
+                                                       unscaled[k], unscaledKernel[k])
+                          : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
+          }
           dictionarySum[k] += weight * p;
           if (params.colouredCells) {
             colouredSum[k] += weight * (colour * p);
@@ -450,7 +480,9 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
       vec3 colourWeighted = params.colouredCells ? colouredSum[k] : vec3(dictionarySum[k]);
       p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
-        p22.p22[k] += vec4(smoothWeightSum * beckmannP22(slopes.slope[k], params.alpha));
+        float smoothP22 = filtering ? glintFilteredBeckmannP22(slopes.slope[k], params.alpha, params.rho, slopeKernel[k])
+                                 : beckmannP22(slopes.slope[k], params.alpha, params.rho);
+        p22.p22[k] += vec4(smoothWeightSum * smoothP22);
       }
       p22.p22[k] = p22.p22[k] / weightSum;
     }
@@ -484,7 +516,8 @@ GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, ve
   GlintP22Set p22;
   if (footprint.degenerate) {
     for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-      p22.p22[k] = vec4(beckmannP22(slopes.slope[k], params.alpha));
+      p22.p22[k] = vec4(glintFilteredBeckmannP22(slopes.slope[k], params.alpha, params.rho,
+                                                 glintKernelCovariance(slopes.derivatives[k])));
     }
     return p22;
   }
@@ -514,6 +547,17 @@ GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2
 
 GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
   return glintP22Coloured(dict, params, uv, duvdx, duvdy, slope).w;
+}
+
+// The anti-aliased P-SDF at one slope whose screen derivatives (times the kernel size) are
+// `derivatives` (dx.x, dx.y, dy.x, dy.y) (glint_antialiasing.h); zero derivatives give glintP22.
+GLINT_FN float glintFilteredP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                                vec2 slope, vec4 derivatives) {
+  GlintSlopeSet slopes = glintSingleSlope(slope);
+  for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
+    slopes.derivatives[k] = derivatives;
+  }
+  return glintP22Set(dict, params, uv, duvdx, duvdy, slopes).p22[0].w;
 }
 
 // The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4.

@@ -14,12 +14,33 @@ GLINT_FN vec2 slopeFromNormal(vec3 m) {
   return vec2(-m.x / m.z, -m.y / m.z);
 }
 
-// Anisotropic Beckmann slope distribution P22: a centred Gaussian of standard deviation
-// alpha / sqrt(2) per axis (Walter et al. 2007, Eq. 25 in slope space).
-GLINT_FN float beckmannP22(vec2 slope, vec2 alpha) {
+// Anisotropic Beckmann slope distribution P22 with slope correlation rho: a centred Gaussian of
+// standard deviation sigma = alpha / sqrt(2) per axis and correlation rho, covariance
+// [[sx^2, rho sx sy], [rho sx sy, sy^2]] (Walter et al. 2007, Eq. 25 in slope space, with the
+// correlation of Chermain et al. 2021, "Real-Time Geometric Glint Anti-Aliasing with Normal Map
+// Filtering", I3D, Section 5). rho = 0 computes exactly the uncorrelated expression: the terms
+// rho adds are exact zeros and its divisions exact ones.
+GLINT_FN float beckmannP22(vec2 slope, vec2 alpha, float rho) {
   vec2 sigma = alpha * 0.70710678f;
   vec2 t = slope / sigma;
-  return exp(-0.5f * dot(t, t)) / (2.0f * kPi * sigma.x * sigma.y);
+  float oneMinusRho2 = 1.0f - rho * rho;
+  float q = (dot(t, t) - 2.0f * rho * t.x * t.y) / oneMinusRho2;
+  return exp(-0.5f * q) / (2.0f * kPi * sigma.x * sigma.y * sqrt(oneMinusRho2));
+}
+
+// A centred Gaussian slope distribution of any covariance (xx, xy, yy), positive definite: the
+// Beckmann P22 widened by a filter kernel of covariance K is this with covariance Sigma + K.
+GLINT_FN float gaussianSlopeP22(vec2 slope, vec3 covariance) {
+  float determinant = covariance.x * covariance.z - covariance.y * covariance.y;
+  float q = (covariance.z * slope.x * slope.x - 2.0f * covariance.y * slope.x * slope.y +
+             covariance.x * slope.y * slope.y) / determinant;
+  return exp(-0.5f * q) / (2.0f * kPi * sqrt(determinant));
+}
+
+// The covariance (xx, xy, yy) of the Beckmann slopes of roughness alpha and correlation rho.
+GLINT_FN vec3 beckmannSlopeCovariance(vec2 alpha, float rho) {
+  vec2 sigma = alpha * 0.70710678f;
+  return vec3(sigma.x * sigma.x, rho * sigma.x * sigma.y, sigma.y * sigma.y);
 }
 
 // Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m).
@@ -72,13 +93,14 @@ GLINT_FN vec3 fresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
   return 0.5f * (rp + rs);
 }
 
-// The Cook-Torrance baseline the glint BRDF converges to: Beckmann D, V-cavity G, F = 1.
-GLINT_FN float cookTorranceReflectance(vec2 alpha, vec3 wo, vec3 wi) {
+// The Cook-Torrance baseline the glint BRDF converges to: Beckmann D (correlation rho), V-cavity G,
+// F = 1.
+GLINT_FN float cookTorranceReflectance(vec2 alpha, float rho, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;
   }
   vec3 wh = normalize(wo + wi);
-  return microfacetReflectance(wo, wi, wh, ndfFromP22(beckmannP22(slopeFromNormal(wh), alpha), wh.z));
+  return microfacetReflectance(wo, wi, wh, ndfFromP22(beckmannP22(slopeFromNormal(wh), alpha, rho), wh.z));
 }
 
 GLINT_KERNEL_END

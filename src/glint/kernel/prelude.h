@@ -8,9 +8,10 @@
 //   - functions are declared with GLINT_FN, out-parameters with GLINT_OUT(T), in-out ones with
 //     GLINT_INOUT(T).
 // The kernel reaches the dictionary only through glintDictionaryTexelPair() (texels k and k+1 of a
-// distribution, 0 past the last), which each language defines: below for C++ (a DictionaryView
-// over host memory), in shaders/ for GLSL (a buffer texture of pairs). The host's own code reads
-// single texels with glintDictionaryTexel().
+// distribution, 0 past the last) and glintDictionaryFilteredTexels() (the same pair from a level
+// of the dictionary's mip chain, with the next level's pair: docs/dictionary.md, "Mip chain"),
+// which each language defines: below for C++ (a DictionaryView over host memory), in shaders/ for
+// GLSL (buffer textures). The host's own code reads single texels with glintDictionaryTexel().
 #ifndef GLINT_KERNEL_PRELUDE_H
 #define GLINT_KERNEL_PRELUDE_H
 
@@ -40,6 +41,12 @@ struct DictionaryView {
   int numDistributions;
   int texelsPerDistribution;
   float alpha;  // alpha_d, the dictionary's roughness
+  // The mip chain (docs/dictionary.md, "Mip chain"): numMips levels of each distribution, level m
+  // of R / 2^m texels, one after the other in a row of mipRowLength texels per distribution; each
+  // texel four floats, (p_m[k], p_m[k+1], p_m+1[k / 2], p_m+1[k / 2 + 1]), binary16 values.
+  const float* filteredTexels;
+  int numMips;
+  int mipRowLength;
 };
 
 GLINT_FN float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
@@ -49,6 +56,18 @@ GLINT_FN float glintDictionaryTexel(DictionaryView dict, int level, int distribu
 GLINT_FN vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
   const float* row = dict.texels + (level * dict.numDistributions + distribution) * dict.texelsPerDistribution;
   return vec2(row[texel], texel + 1 < dict.texelsPerDistribution ? row[texel + 1] : 0.0f);
+}
+
+// Where level m of the mip chain starts in a distribution's row: R + R/2 + ... + R/2^(m-1) texels.
+GLINT_FN int glintMipOffset(int texelsPerDistribution, int mip) {
+  return 2 * texelsPerDistribution - ((2 * texelsPerDistribution) >> mip);
+}
+
+GLINT_FN vec4 glintDictionaryFilteredTexels(DictionaryView dict, int mip, int level, int distribution, int texel) {
+  const float* t = dict.filteredTexels +
+                   4 * ((level * dict.numDistributions + distribution) * dict.mipRowLength +
+                        glintMipOffset(dict.texelsPerDistribution, mip) + texel);
+  return vec4(t[0], t[1], t[2], t[3]);
 }
 
 GLINT_KERNEL_END

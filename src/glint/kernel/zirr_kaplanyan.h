@@ -285,7 +285,7 @@ GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 
   // Step 4: p0 = pi mu_x mu_y D_Beckmann(h; r); the masking Lambda = G1 G1 / (4 n.l n.v);
   // K = Lambda / (4 pi mu_x mu_y); the search cone flattens p (phenomenological, no pi).
   // (Below h.z = 1e-6 the slope exceeds 1e6 and D is exactly 0 in float; the guard avoids 0 / 0.)
-  float p0 = h.z > 1e-6f ? kPi * mu.x * mu.y * ndfFromP22(beckmannP22(slopeFromNormal(h), r), h.z) : 0.0f;
+  float p0 = h.z > 1e-6f ? kPi * mu.x * mu.y * ndfFromP22(beckmannP22(slopeFromNormal(h), r, 0.0f), h.z) : 0.0f;
   float a2 = r.x * r.y;
   float lambda = 1.0f / (zirrKaplanyanSmithDenominator(wi.z, a2) * zirrKaplanyanSmithDenominator(wo.z, a2));
   pixel.brdfScale = lambda / (4.0f * kPi * mu.x * mu.y);

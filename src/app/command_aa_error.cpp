@@ -1,0 +1,177 @@
+// `glint aa-error`: how far each anti-aliasing mode's frame is from the supersampled reference, and
+// how much its glints flicker under sub-pixel camera drift (docs/antialiasing.md, "Metrics").
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/scene_options.h"
+#include "gl/context.h"
+#include "gl/renderer.h"
+#include "glint/error.h"
+
+namespace glint::app {
+
+namespace {
+
+struct AaErrorOptions {
+  std::vector<std::string> scenes;
+  std::string size = "256x256";
+  int reference = 256;
+  int sequence = 32;
+  std::string camera = "default";
+  std::string dictionary;
+  bool json = false;
+};
+
+using Frame = std::vector<double>;  // RGB radiance, pixel after pixel
+
+Frame renderFrame(gl::Renderer& renderer, gl::FrameSettings frame) {
+  renderer.renderFrame(frame);
+  const std::vector<float> rgba = renderer.readRadiance();
+  Frame rgb(rgba.size() / 4 * 3);
+  for (std::size_t p = 0; p < rgba.size() / 4; ++p) {
+    for (int c = 0; c < 3; ++c) rgb[3 * p + static_cast<std::size_t>(c)] = rgba[4 * p + static_cast<std::size_t>(c)];
+  }
+  return rgb;
+}
+
+// The glint layer's radiance: a glint frame minus the Cook-Torrance frame of the same view, so that
+// what both share (diffuse light, the environment, geometric edges) cancels.
+Frame glintLayer(gl::Renderer& renderer, gl::FrameSettings frame) {
+  Frame glint = renderFrame(renderer, frame);
+  frame.brdf = gl::BrdfModel::CookTorrance;
+  const Frame smooth = renderFrame(renderer, frame);
+  for (std::size_t i = 0; i < glint.size(); ++i) glint[i] -= smooth[i];
+  return glint;
+}
+
+double mean(const Frame& frame) {
+  double sum = 0.0;
+  for (double v : frame) sum += v;
+  return sum / static_cast<double>(frame.size());
+}
+
+struct ModeResult {
+  double relativeRmse;     // against the reference, relative to the reference's mean
+  double relativeFlicker;  // mean per-pixel temporal standard deviation over the mean radiance
+};
+
+nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& dictionary, const AaErrorOptions& options,
+                            int width, int height) {
+  gl::Renderer renderer(scene, dictionary);
+  gl::FrameSettings frame;
+  frame.width = width;
+  frame.height = height;
+  frame.brdf = gl::BrdfModel::Glint;
+  frame.camera = scene.cameras.at(options.camera);
+
+  // The reference: the mean of N jittered frames of the 2020 model (glint render --reference N).
+  frame.antiAliasing = gl::AntiAliasing::None;
+  Frame reference(static_cast<std::size_t>(width) * height * 3, 0.0);
+  for (int k = 0; k < options.reference; ++k) {
+    frame.jitter = gl::supersampleJitter(k);
+    const Frame layer = glintLayer(renderer, frame);
+    for (std::size_t i = 0; i < reference.size(); ++i) reference[i] += layer[i] / options.reference;
+  }
+  const double referenceMean = mean(reference);
+
+  nlohmann::json entry = {{"scene", scene.name}, {"reference_mean", referenceMean}};
+  for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+    frame.antiAliasing = mode;
+    frame.jitter = glm::vec2(0.0f);
+    const Frame centre = glintLayer(renderer, frame);
+    double squared = 0.0;
+    for (std::size_t i = 0; i < centre.size(); ++i) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
+    ModeResult result{};
+    result.relativeRmse = std::sqrt(squared / static_cast<double>(centre.size())) / referenceMean;
+    // Sub-pixel drift: the camera moves one pixel along a slanted line over the sequence.
+    std::vector<double> sum(centre.size(), 0.0), sumSquares(centre.size(), 0.0);
+    for (int k = 0; k < options.sequence; ++k) {
+      const float t = (static_cast<float>(k) + 0.5f) / static_cast<float>(options.sequence) - 0.5f;
+      frame.jitter = t * glm::vec2(1.0f, 0.37f);
+      const Frame layer = glintLayer(renderer, frame);
+      for (std::size_t i = 0; i < layer.size(); ++i) {
+        sum[i] += layer[i];
+        sumSquares[i] += layer[i] * layer[i];
+      }
+    }
+    double deviation = 0.0;
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+      const double m = sum[i] / options.sequence;
+      deviation += std::sqrt(std::max(0.0, sumSquares[i] / options.sequence - m * m));
+    }
+    result.relativeFlicker = deviation / static_cast<double>(sum.size()) / referenceMean;
+    entry[gl::toString(mode)] = {{"relative_rmse", result.relativeRmse}, {"relative_flicker", result.relativeFlicker}};
+  }
+  return entry;
+}
+
+void runAaError(const AaErrorOptions& options) {
+  const auto [width, height] = parseImageSize(options.size);
+  if (options.reference < 1 || options.reference > 65536) throw Error("--reference must be in [1, 65536]");
+  if (options.sequence < 2 || options.sequence > 4096) throw Error("--sequence must be in [2, 4096]");
+  const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
+  SceneOptions sceneOptions;
+  sceneOptions.dictionary = options.dictionary;
+  std::vector<scene::Scene> scenes;
+  for (const std::string& name : names) {
+    sceneOptions.scene = name;
+    sceneOptions.camera = options.camera;
+    scenes.push_back(sceneOptions.loadScene());
+    sceneOptions.findCamera(scenes.back());
+  }
+  const Dictionary dictionary = sceneOptions.loadDictionary();
+  gl::HeadlessContext context;
+  nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},
+                           {"size", options.size},
+                           {"reference_frames", options.reference},
+                           {"sequence_frames", options.sequence},
+                           {"scenes", nlohmann::json::array()}};
+  for (const scene::Scene& scene : scenes) {
+    const auto start = std::chrono::steady_clock::now();
+    report["scenes"].push_back(measureScene(scene, dictionary, options, width, height));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "glint: measured %s in %.1f s\n", scene.name.c_str(), seconds);
+  }
+  if (options.json) {
+    std::printf("%s\n", report.dump(2).c_str());
+    return;
+  }
+  std::printf("glint layer against the %d-frame reference at %s (%s); flicker over %d frames of sub-pixel drift\n",
+              options.reference, options.size.c_str(), report["renderer"].get<std::string>().c_str(), options.sequence);
+  std::printf("%-16s %12s %12s %10s %14s %14s %10s\n", "scene", "RMSE none", "RMSE ggaa", "ratio", "flicker none",
+              "flicker ggaa", "ratio");
+  for (const auto& entry : report["scenes"]) {
+    const double rmseNone = entry["none"]["relative_rmse"], rmseGgaa = entry["ggaa"]["relative_rmse"];
+    const double flickerNone = entry["none"]["relative_flicker"], flickerGgaa = entry["ggaa"]["relative_flicker"];
+    std::printf("%-16s %11.1f%% %11.1f%% %10.3f %13.1f%% %13.1f%% %10.3f\n",
+                entry["scene"].get<std::string>().c_str(), 100.0 * rmseNone, 100.0 * rmseGgaa, rmseGgaa / rmseNone,
+                100.0 * flickerNone, 100.0 * flickerGgaa, flickerGgaa / flickerNone);
+  }
+}
+
+}  // namespace
+
+void registerAaErrorCommand(CLI::App& app) {
+  auto options = std::make_shared<AaErrorOptions>();
+  CLI::App* command = app.add_subcommand(
+      "aa-error", "Measure each anti-aliasing mode's glint error against a supersampled reference, and its flicker");
+  command->add_option("scenes", options->scenes, "Scenes to measure (default: sphere)");
+  command->add_option("--size", options->size, "Frame size WxH")->capture_default_str();
+  command->add_option("--reference", options->reference,
+                      "Jittered frames of the 2020 model averaged into the reference")
+      ->capture_default_str();
+  command->add_option("--sequence", options->sequence, "Frames of sub-pixel camera drift for the flicker")
+      ->capture_default_str();
+  command->add_option("--camera", options->camera, "Camera preset (every scene must have it)")->capture_default_str();
+  command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  command->add_flag("--json", options->json, "Print the measurements as JSON");
+  command->callback([options] { runAaError(*options); });
+}
+
+}  // namespace glint::app

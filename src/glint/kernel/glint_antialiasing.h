@@ -1,0 +1,142 @@
+// The first extension of the glint BRDF: Chermain, Lucas, Sauvage, Dischler & Dachsbacher 2021,
+// "Real-Time Geometric Glint Anti-Aliasing with Normal Map Filtering" (I3D; PACMCGIT 4(1)), as
+// glint defines it (docs/antialiasing.md):
+//
+// 1. Slope correlation rho (the paper's Eq. 18): each cell's map to the dictionary's space becomes
+//    upper-triangular, M^-1 = sigma_d [[1 / (sx s), -rho / (sy s)], [0, 1 / sy]], s = sqrt(1 - rho^2),
+//    so that sigma_d^2 M M^T is the full covariance [[sx^2, rho sx sy], [rho sx sy, sy^2]] and the
+//    cells converge to the correlated Beckmann (microfacet.h, beckmannP22).
+// 2. Geometric glint anti-aliasing (GGAA). Within a pixel the half vector's slope moves: to first
+//    order h(p) = h0 + dx p.x + dy p.y over the pixel's box p in [-1/2, 1/2]^2, with dx, dy its
+//    screen derivatives. The pixel's mean P-SDF is then the P-SDF convolved with that box pushed into
+//    slope space, whose covariance is K = (dx dx^T + dy dy^T) / 12. glint filters with a kernel of
+//    covariance K: in a cell's dictionary space (h_o = R M^-1 h, linear) its covariance is
+//    R M^-1 K M^-T R^T, and each of the cell's two marginals is filtered along its own axis by that
+//    matrix's diagonal entry (the paper's separable approximation; it takes the larger of two
+//    derivatives, times a kernel size of 0.5, instead of the variance). The filter is the
+//    dictionary's mip chain in glint's texel convention (docs/dictionary.md, "Mip chain"), read
+//    with the kernel's own interpolation, so that the CPU and GLSL agree.
+// 3. The smooth cells (and the whole pixel where the footprint has no area) are the Beckmann P22;
+//    convolved with the same kernel it is the Gaussian of covariance Sigma + K, exactly, so no part
+//    of the P-SDF is left unfiltered (the paper leaves them).
+#ifndef GLINT_KERNEL_GLINT_ANTIALIASING_H
+#define GLINT_KERNEL_GLINT_ANTIALIASING_H
+
+#include "prelude.h"
+#include "microfacet.h"
+#include "dictionary_lookup.h"
+
+// Whether a walk over the footprint's cells filters. A GLSL program is compiled for one mode
+// (GLINT_FILTERED 0: the 2020 model, the default; 1: anti-aliased; shaders/glint_dictionary.glsl),
+// so that neither pays for the other's code; C++ filters where a slope has derivatives, and with
+// none computes the 2020 sums exactly.
+#if defined(__cplusplus)
+#define GLINT_FILTERS(anyDerivative) (anyDerivative)
+#elif GLINT_FILTERED
+#define GLINT_FILTERS(anyDerivative) true
+#else
+#define GLINT_FILTERS(anyDerivative) false
+#endif
+
+GLINT_KERNEL_BEGIN
+
+// ---- 1. Slope correlation --------------------------------------------------------------------
+
+// The linear part of a cell's map to the dictionary's space, M^-1 h (Eq. 18), for the target
+// roughness alpha and correlation rho of a dictionary of roughness alphaD. With rho = 0 it is
+// exactly the 2020 scaling h alpha_d / alpha: the terms rho adds are exact zeros and ones.
+GLINT_FN vec2 glintCorrelatedUnscale(vec2 slope, vec2 alpha, float rho, float alphaD) {
+  float s = sqrt(1.0f - rho * rho);
+  vec2 scale = vec2(alphaD) / alpha;
+  return vec2(scale.x * (slope.x - rho * (alpha.x / alpha.y) * slope.y) / s, scale.y * slope.y);
+}
+
+// Its inverse, M h_o: from the dictionary's space back to the target's slopes (the sampler's).
+GLINT_FN vec2 glintCorrelatedScale(vec2 unscaled, vec2 alpha, float rho, float alphaD) {
+  float s = sqrt(1.0f - rho * rho);
+  vec2 scale = alpha / vec2(alphaD);
+  return vec2(scale.x * (s * unscaled.x + rho * unscaled.y), scale.y * unscaled.y);
+}
+
+// The Jacobian det(M^-1) = alpha_d^2 / (alpha_x alpha_y sqrt(1 - rho^2)), so that every cell
+// integrates to 1 (Eq. 15).
+GLINT_FN float glintCorrelatedJacobian(vec2 alpha, float rho, float alphaD) {
+  return (alphaD * alphaD) / (alpha.x * alpha.y) / sqrt(1.0f - rho * rho);
+}
+
+// ---- 2. The filter kernel --------------------------------------------------------------------
+
+// The covariance (xx, xy, yy) of the pixel's box pushed into slope space by the slope's screen
+// derivatives (dx.x, dx.y, dy.x, dy.y): K = (dx dx^T + dy dy^T) / 12. Derivatives are clamped to
+// 1e4 slope units a pixel (a half vector a thousandth of a degree from the horizon), so that K and
+// the covariances it is added to stay finite.
+GLINT_FN vec3 glintKernelCovariance(vec4 derivatives) {
+  vec4 d = clamp(derivatives, vec4(-1e4f), vec4(1e4f));
+  vec2 dx = vec2(d.x, d.y);
+  vec2 dy = vec2(d.z, d.w);
+  return vec3(dx.x * dx.x + dy.x * dy.x, dx.x * dx.y + dy.x * dy.y, dx.y * dx.y + dy.y * dy.y) *
+         (1.0f / 12.0f);
+}
+
+// The kernel's variance along a cell's two dictionary axes, given its covariance B in the unscaled
+// space (before the cell's rotation, whose (cos, sin) is `rotation`, glintDictionarySlope's
+// convention: x' = c x + s y, y' = -s x + c y): the diagonal of R B R^T.
+GLINT_FN vec2 glintCellKernelVariance(vec2 rotation, vec3 unscaledCovariance) {
+  float cc = rotation.x * rotation.x;
+  float ss = rotation.y * rotation.y;
+  float cs2 = 2.0f * rotation.x * rotation.y;
+  vec3 b = unscaledCovariance;
+  return vec2(cc * b.x + cs2 * b.y + ss * b.z, ss * b.x - cs2 * b.y + cc * b.z);
+}
+
+// The level of detail whose lookup widens a marginal by a kernel of this variance
+// (docs/dictionary.md, "Mip chain"). Mip m >= 1 holds box averages of width 2^m h (h the texel
+// spacing), read with linear interpolation, which widens a marginal by a variance of
+// V_m = (2^m h)^2 / 4: the box's 1/12 and the interpolation's hat's 1/6 (MipChain tests measure
+// it); mip 0 by V_0 = 0. A blend of two levels is a mixture, whose variance is the blend of theirs,
+// so the blend between the two levels around the kernel's variance v is (v - V_m) / (V_m+1 - V_m):
+// the variance is matched exactly, from the smallest kernels on (a log2 of the width, as hardware
+// filtering takes, would leave every kernel under half a texel unfiltered). Clamped to the chain.
+GLINT_FN float glintMarginalLod(DictionaryView dict, float variance) {
+  float spacing = glintDictionaryDomain(dict) / float(dict.texelsPerDistribution);
+  float v = max(variance, 0.0f) / (spacing * spacing);  // in texels^2
+  if (v < 1.0f) {
+    return v;  // between mip 0 (V_0 = 0) and mip 1 (V_1 = 1)
+  }
+  int mip = min(int(floor(0.5f * log2(4.0f * v))), dict.numMips - 1);
+  float level = float(1 << (2 * mip)) * 0.25f;  // V_mip
+  float lod = float(mip) + (v - level) / (3.0f * level);  // V_mip+1 - V_mip = 3 V_mip
+  return min(lod, float(dict.numMips - 1));
+}
+
+// A marginal at |slope| (< 4 sigma_d) filtered at a level of detail in [0, numMips - 1]: the mip
+// level floor(lod) blended with the next, each read with the texel convention's linear
+// interpolation at its own spacing. One fetch: a mip texel holds its own pair and the next level's.
+// At lod 0 it is glintMarginal exactly (the blend adds an exact zero).
+GLINT_FN float glintFilteredMarginal(DictionaryView dict, int level, int distribution, float absSlope, float lod) {
+  int mip = int(lod);
+  float blend = lod - float(mip);
+  float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict)) * (1.0f / float(1 << mip));
+  int k = min(int(x), (dict.texelsPerDistribution >> mip) - 1);
+  float f = x - float(k);
+  vec4 t = glintDictionaryFilteredTexels(dict, mip, level, distribution, k);
+  float fine = t.x + f * (t.y - t.x);
+  float fNext = (float(k & 1) + f) * 0.5f;  // the position within the next level's texel k / 2
+  float coarse = t.z + fNext * (t.w - t.z);
+  return fine + blend * (coarse - fine);
+}
+
+// ---- 3. The smooth lobe ----------------------------------------------------------------------
+
+// The Beckmann P22 (roughness alpha, correlation rho) convolved with a kernel of slope covariance
+// K: the Gaussian of covariance Sigma + K; exactly beckmannP22 where there is no kernel.
+GLINT_FN float glintFilteredBeckmannP22(vec2 slope, vec2 alpha, float rho, vec3 kernelCovariance) {
+  if (kernelCovariance.x + kernelCovariance.z > 0.0f) {
+    return gaussianSlopeP22(slope, beckmannSlopeCovariance(alpha, rho) + kernelCovariance);
+  }
+  return beckmannP22(slope, alpha, rho);
+}
+
+GLINT_KERNEL_END
+
+#endif
