@@ -13,5 +13,6 @@ void registerRenderCommand(CLI::App& app);
 void registerViewCommand(CLI::App& app);
 void registerTraceCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
+void registerExportCommand(CLI::App& app);
 
 }  // namespace glint::app
