@@ -165,7 +165,7 @@ fs::path writeSeparateGltf(const scene::Scene& scene, const fs::path& folder, co
   const std::string bytes = decodeBase64(uri.substr(uri.find(',') + 1));
   std::ofstream(folder / (stem + ".bin"), std::ios::binary) << bytes;
   document["buffers"][0]["uri"] = stem + ".bin";
-  for (std::size_t i = 0; i < document["images"].size(); ++i) {
+  for (std::size_t i = 0; document.contains("images") && i < document["images"].size(); ++i) {
     json& image = document["images"][i];
     const json& view = document["bufferViews"][image["bufferView"].get<std::size_t>()];
     const std::size_t offset = view.value("byteOffset", std::size_t{0});
