@@ -40,7 +40,7 @@ TEST(DictionaryStat, AuthorsDictionaryUnderOurInterpolation) {
   // (docs/dictionary.md): under our interpolation (linear, falling to 0 at 4 sigma_d) the
   // authors' marginals integrate to 0.9932..1.0003. The few below 0.999 have a lobe crossing the
   // domain's end, whose mass beyond 4 sigma_d their normalisation counts and the table drops.
-  if (!authorsDictionary()) GTEST_SKIP() << "no " << authorsDictionaryFolder();
+  if (!authorsDictionary()) GTEST_SKIP() << "needs ../shared/reference/dict_16_192_64_0p5_0p02 (the authors' published dictionary, from their code release; not in the repository)";
   for (const LevelStatistics& level : computeStatistics(*authorsDictionary())) {
     EXPECT_GT(level.minIntegral, 0.99);
     EXPECT_LT(level.maxIntegral, 1.001);
@@ -211,7 +211,7 @@ TEST(Dictionary, InvalidParametersAreRejectedByName) {
 }
 
 TEST(Dictionary, AuthorsExrChannelsMapToDistributions) {
-  if (!authorsDictionary()) GTEST_SKIP() << "no " << authorsDictionaryFolder();
+  if (!authorsDictionary()) GTEST_SKIP() << "needs ../shared/reference/dict_16_192_64_0p5_0p02 (the authors' published dictionary, from their code release; not in the repository)";
   // Distributions 3t + {0, 1, 2} of level l are the R, G, B channels of file _<t>_<l>.exr.
   const auto file = authorsDictionaryFolder() / "dict_16_192_64_0p5_0p02_0005_0007.exr";
   float* rgba = nullptr;
@@ -229,7 +229,7 @@ TEST(Dictionary, AuthorsExrChannelsMapToDistributions) {
 }
 
 TEST(Dictionary, BrokenExrFoldersNameTheFile) {
-  if (!authorsDictionary()) GTEST_SKIP() << "no " << authorsDictionaryFolder();
+  if (!authorsDictionary()) GTEST_SKIP() << "needs ../shared/reference/dict_16_192_64_0p5_0p02 (the authors' published dictionary, from their code release; not in the repository)";
   const auto folder = temporaryFolder("exr") / "dict_16_192_64_0p5_0p02";
   std::filesystem::copy(authorsDictionaryFolder(), folder);
   const auto victim = folder / "dict_16_192_64_0p5_0p02_0010_0003.exr";

@@ -1,5 +1,6 @@
-// The scene module: glTF loading (the shared helmet and Suzanne, a hand-made file with a node
-// hierarchy), one-line errors for broken files, glint parameters from extras, applyGlint, the
+// The scene module: glTF loading (a file the repository writes, laid out as exporters lay files out;
+// hand-made files with a node hierarchy, lights and cameras; the third-party helmet and Suzanne
+// when ../shared has them), one-line errors for broken files, glint parameters from extras, applyGlint, the
 // tangent generator and the built-in scenes.
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,8 @@
 #include "scene/builtin_scenes.h"
 #include "scene/geometry.h"
 #include "scene/gltf_loader.h"
+#include "scene/gltf_writer.h"
+#include "scene_support.h"
 #include "test_support.h"
 
 namespace glint::scene {
@@ -26,9 +29,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-fs::path sharedScenes() { return fs::path(GLINT_SHARED_DIR) / "scenes"; }
-fs::path helmetPath() { return sharedScenes() / "damaged-helmet" / "DamagedHelmet.glb"; }
-fs::path suzannePath() { return sharedScenes() / "suzanne" / "Suzanne.gltf"; }
+constexpr const char* kHelmet = "scenes/damaged-helmet/DamagedHelmet.glb";
+constexpr const char* kSuzanne = "scenes/suzanne/Suzanne.gltf";
 
 bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -101,14 +103,10 @@ void expectLoadError(const fs::path& path, const std::string& problem) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
-// A private copy of Suzanne (gltf, bin, two PNGs) in a fresh folder.
-fs::path copySuzanne(const std::string& test) {
-  const fs::path folder = test::temporaryFolder(test);
-  for (const auto& entry : fs::directory_iterator(suzannePath().parent_path())) {
-    fs::copy_file(entry.path(), folder / entry.path().filename());
-    fs::permissions(folder / entry.path().filename(), fs::perms::owner_write, fs::perm_options::add);
-  }
-  return folder / "Suzanne.gltf";
+// The test scene (scene_support.h) laid out as textured.gltf, textured.bin and image0.png to
+// image4.png in a fresh folder: a file of the repository's own to load and break.
+fs::path copyTextured(const std::string& test) {
+  return test::writeSeparateGltf(test::texturedTestScene(), test::temporaryFolder(test), "textured");
 }
 
 void editJson(const fs::path& path, const std::function<void(json&)>& edit) {
@@ -117,10 +115,87 @@ void editJson(const fs::path& path, const std::function<void(json&)>& edit) {
   std::ofstream(path) << document.dump(1);
 }
 
-// ---- Loading the shared assets ----------------------------------------------------------------
+// ---- Loading whole files ----------------------------------------------------------------------
+
+// A file laid out as exporters write it: its buffer and images in files beside it.
+TEST(GltfLoader, LoadsALaidOutFileWithItsTexturesAndTangents) {
+  const Scene original = test::texturedTestScene();
+  const Scene scene = loadGltf(copyTextured("gltf_laid_out"));
+  expectWellFormed(scene);
+  EXPECT_EQ(scene.name, "textured");
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].vertices.size(), original.meshes[0].vertices.size());
+  EXPECT_EQ(scene.meshes[0].indices, original.meshes[0].indices);
+  ASSERT_EQ(scene.materials.size(), 2u);
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.name, "textured");
+  EXPECT_TRUE(m.glint.enabled);
+  EXPECT_FALSE(scene.materials[1].glint.enabled);
+  ASSERT_EQ(scene.textures.size(), 5u);
+  for (int index : {m.baseColourTexture, m.metallicRoughnessTexture, m.normalTexture, m.emissiveTexture, m.occlusionTexture}) {
+    ASSERT_GE(index, 0);
+  }
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.baseColourTexture)].srgb);
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.emissiveTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.metallicRoughnessTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.normalTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.occlusionTexture)].srgb);
+  EXPECT_EQ(scene.textures[static_cast<std::size_t>(m.baseColourTexture)].rgba, original.textures[0].rgba);
+  for (const Texture& t : scene.textures) {
+    EXPECT_EQ(t.width, 8);
+    EXPECT_EQ(t.height, 8);
+  }
+  EXPECT_EQ(scene.boundsMin(), original.boundsMin());  // an identity node leaves the vertices as they are
+  EXPECT_EQ(scene.boundsMax(), original.boundsMax());
+  EXPECT_EQ(scene.lights.size(), 3u);
+  for (const char* name : {"default", "front", "side", "top", "close", "plan"}) EXPECT_TRUE(scene.cameras.contains(name)) << name;
+  EXPECT_EQ(scene.exposure, 1.0f);
+}
+
+// Without TANGENT attributes the loader generates them; every texture slot decodes in its colour
+// space (what the third-party helmet below checks of a real-world file).
+TEST(GltfLoader, GeneratesMissingTangentsAndDecodesEveryTextureSlot) {
+  const fs::path path = copyTextured("gltf_no_tangents");
+  editJson(path, [](json& d) {
+    for (json& mesh : d["meshes"]) mesh["primitives"][0]["attributes"].erase("TANGENT");
+  });
+  const Scene original = test::texturedTestScene();
+  const Scene scene = loadGltf(path);
+  expectWellFormed(scene);
+  // The generator is the one the built-in scenes use: the same tangents as the file had.
+  ASSERT_EQ(scene.meshes.size(), original.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    for (std::size_t i = 0; i < scene.meshes[m].vertices.size(); ++i) {
+      const glm::vec4 generated = scene.meshes[m].vertices[i].tangent;
+      const glm::vec4 written = original.meshes[m].vertices[i].tangent;
+      ASSERT_LT(glm::length(glm::vec3(generated) - glm::vec3(written)), 1e-4f) << scene.meshes[m].name << " vertex " << i;
+      ASSERT_EQ(generated.w, written.w);
+    }
+  }
+  ASSERT_EQ(scene.textures.size(), 5u);
+  const Material& m = scene.materials[0];
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(m.emissiveTexture)].srgb);
+  EXPECT_FALSE(scene.textures[static_cast<std::size_t>(m.normalTexture)].srgb);
+  EXPECT_EQ(scene.textures[static_cast<std::size_t>(m.occlusionTexture)].rgba, original.textures[3].rgba);
+  // No lights in the file: the default lighting.
+  editJson(path, [](json& d) {
+    d.erase("extensions");
+    d.erase("extensionsUsed");
+    json nodes = json::array();
+    for (const json& node : d["nodes"]) {
+      if (!node.contains("extensions")) nodes.push_back(node);
+    }
+    d["nodes"] = nodes;
+    d["scenes"][0]["nodes"] = json::array();
+    for (std::size_t i = 0; i < nodes.size(); ++i) d["scenes"][0]["nodes"].push_back(i);
+  });
+  EXPECT_GE(loadGltf(path).lights.size(), 2u);
+}
 
 TEST(GltfLoader, LoadsSuzanneWithItsTexturesAndTangents) {
-  const Scene scene = loadGltf(suzannePath());
+  const fs::path suzannePath = test::sharedAsset(kSuzanne);
+  if (suzannePath.empty()) GTEST_SKIP() << test::sharedAssetMissing("scenes/suzanne");
+  const Scene scene = loadGltf(suzannePath);
   expectWellFormed(scene);
   EXPECT_EQ(scene.name, "Suzanne");
   ASSERT_EQ(scene.meshes.size(), 1u);
@@ -148,7 +223,9 @@ TEST(GltfLoader, LoadsSuzanneWithItsTexturesAndTangents) {
 }
 
 TEST(GltfLoader, LoadsTheDamagedHelmetWithDecodedTexturesAndGeneratedTangents) {
-  const Scene scene = loadGltf(helmetPath());
+  const fs::path helmetPath = test::sharedAsset(kHelmet);
+  if (helmetPath.empty()) GTEST_SKIP() << test::sharedAssetMissing("scenes/damaged-helmet");
+  const Scene scene = loadGltf(helmetPath);
   expectWellFormed(scene);
   EXPECT_GT(vertexCount(scene), 10000u);
   EXPECT_GT(triangleCount(scene), 10000u);
@@ -660,7 +737,7 @@ TEST(GltfErrors, MistypedPropertiesInABinaryGltf) {
 // ---- Glint parameters from extras -------------------------------------------------------------
 
 TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
-  const fs::path path = copySuzanne("gltf_glint_extras");
+  const fs::path path = copyTextured("gltf_glint_extras");
   editJson(path, [](json& d) {
     d["materials"][0]["extras"] = {{"glint", {{"alpha", {0.2, 0.3}}, {"log_density", 20}, {"relative_area", 0.5},
                                               {"density_randomisation", 1}, {"max_anisotropy", 16}, {"pattern_seed", 4000000000u},
@@ -684,11 +761,11 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
   ASSERT_GE(g.roughnessTexture, 0);
   // The same image as the metal-roughness texture, linear: shared, not decoded twice.
   EXPECT_EQ(g.roughnessTexture, scene.materials[0].metallicRoughnessTexture);
-  EXPECT_EQ(scene.textures.size(), 2u);
+  EXPECT_EQ(scene.textures.size(), 5u);
 }
 
 TEST(GltfGlint, AlphaDefaultsToRoughnessSquared) {
-  const fs::path path = copySuzanne("gltf_glint_alpha");
+  const fs::path path = copyTextured("gltf_glint_alpha");
   editJson(path, [](json& d) {
     d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
     d["materials"][0]["extras"] = {{"glint", json::object()}, {"other_tool", "ignored"}};
@@ -714,34 +791,36 @@ TEST(GltfErrors, MissingFileAndBadJson) {
 }
 
 TEST(GltfErrors, MissingBufferFile) {
-  const fs::path path = copySuzanne("gltf_missing_bin");
-  fs::remove(path.parent_path() / "Suzanne.bin");
-  expectLoadError(path, "Suzanne.bin");
+  const fs::path path = copyTextured("gltf_missing_bin");
+  fs::remove(path.parent_path() / "textured.bin");
+  expectLoadError(path, "textured.bin");
 }
 
 TEST(GltfErrors, MissingTextureImage) {
-  const fs::path path = copySuzanne("gltf_missing_png");
-  fs::remove(path.parent_path() / "Suzanne_BaseColor.png");
-  expectLoadError(path, "Suzanne_BaseColor.png");
+  const fs::path path = copyTextured("gltf_missing_png");
+  fs::remove(path.parent_path() / "image0.png");  // the base colour's image
+  expectLoadError(path, "image0.png");
 }
 
 TEST(GltfErrors, AccessorBeyondItsBufferView) {
-  const fs::path path = copySuzanne("gltf_accessor_range");
+  const fs::path path = copyTextured("gltf_accessor_range");
   editJson(path, [](json& d) { d["accessors"][0]["count"] = 20000; });
   expectLoadError(path, "accessor 0");
 }
 
 TEST(GltfErrors, IndexBeyondTheVertices) {
-  const fs::path path = copySuzanne("gltf_index_range");
+  const fs::path path = copyTextured("gltf_index_range");
   // Fewer vertices than the indices reach for.
   editJson(path, [](json& d) {
-    for (int a = 1; a <= 4; ++a) d["accessors"][a]["count"] = 100;
+    for (const auto& [name, accessor] : d["meshes"][0]["primitives"][0]["attributes"].items()) {
+      d["accessors"][accessor.get<std::size_t>()]["count"] = 100;
+    }
   });
   expectLoadError(path, "out of range (100 vertices)");
 }
 
 TEST(GltfErrors, MissingMaterialTextureAndNode) {
-  const fs::path path = copySuzanne("gltf_bad_references");
+  const fs::path path = copyTextured("gltf_bad_references");
   editJson(path, [](json& d) { d["meshes"][0]["primitives"][0]["material"] = 3; });
   expectLoadError(path, "material 3 does not exist");
   editJson(path, [](json& d) {
@@ -752,22 +831,26 @@ TEST(GltfErrors, MissingMaterialTextureAndNode) {
 }
 
 TEST(GltfErrors, NonFinitePosition) {
-  const fs::path path = copySuzanne("gltf_nan");
+  const fs::path path = copyTextured("gltf_nan");
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  std::fstream bin(path.parent_path() / "Suzanne.bin", std::ios::in | std::ios::out | std::ios::binary);
-  bin.seekp(23616 + 12 * 5);  // POSITION's buffer view starts at 23616: vertex 5's x
+  const json document = json::parse(std::ifstream(path));
+  const json& accessor = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<std::size_t>()];
+  const std::size_t start = document["bufferViews"][accessor["bufferView"].get<std::size_t>()].value("byteOffset", std::size_t{0}) +
+                            accessor.value("byteOffset", std::size_t{0});
+  std::fstream bin(path.parent_path() / "textured.bin", std::ios::in | std::ios::out | std::ios::binary);
+  bin.seekp(static_cast<std::streamoff>(start + 12 * 5));  // vertex 5's x
   bin.write(reinterpret_cast<const char*>(&nan), sizeof nan);
   bin.close();
   expectLoadError(path, "POSITION: element 5 is not finite");
 }
 
 TEST(GltfErrors, BadGlintExtras) {
-  const fs::path path = copySuzanne("gltf_bad_glint");
+  const fs::path path = copyTextured("gltf_bad_glint");
   auto withGlint = [&](const json& glint) {
     editJson(path, [&](json& d) { d["materials"][0]["extras"] = {{"glint", glint}}; });
   };
   withGlint({{"relative_area", 2}});
-  expectLoadError(path, "material 0 'Suzanne': extras.glint: relative_area must be in (0, 1], got 2");
+  expectLoadError(path, "material 0 'textured': extras.glint: relative_area must be in (0, 1], got 2");
   withGlint({{"alpha", "x"}});
   expectLoadError(path, "alpha must be a number or an array of two numbers");
   withGlint({{"alpha", {0.1, 3}}});
@@ -779,7 +862,7 @@ TEST(GltfErrors, BadGlintExtras) {
   withGlint({{"pattern_seed", 1.5}});
   expectLoadError(path, "pattern_seed must be an integer");
   withGlint({{"roughness_texture", 7}});
-  expectLoadError(path, "roughness_texture must be an integer in [0, 1]");
+  expectLoadError(path, "roughness_texture must be an integer in [0, 4]");
   withGlint({{"log_density_range", {10, 200}}});
   expectLoadError(path, "log_density_range: log_density must be in [0, 100], got 200");
   withGlint({{"uv_scale", 0}});
@@ -930,7 +1013,9 @@ TEST(BuiltinScenes, UnknownNamesAreErrors) {
   EXPECT_TRUE(isBuiltinScene("sphere"));
   EXPECT_FALSE(isBuiltinScene("Sphere"));
   EXPECT_EQ(loadScene("sphere").name, "sphere");
-  EXPECT_EQ(loadScene(suzannePath().string()).name, "Suzanne");
+  const fs::path file = test::temporaryFolder("scene_by_path") / "textured.glb";
+  writeGltf(file, test::texturedTestScene());
+  EXPECT_EQ(loadScene(file.string()).name, "textured");
 }
 
 }  // namespace

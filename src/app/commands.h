@@ -13,6 +13,7 @@ void registerRenderCommand(CLI::App& app);
 void registerViewCommand(CLI::App& app);
 void registerTraceCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
+void registerExportCommand(CLI::App& app);
 void registerAaErrorCommand(CLI::App& app);
 
 }  // namespace glint::app

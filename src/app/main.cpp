@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   glint::app::registerViewCommand(app);
   glint::app::registerTraceCommand(app);
   glint::app::registerBenchCommand(app);
+  glint::app::registerExportCommand(app);
   glint::app::registerAaErrorCommand(app);
   try {
     app.parse(argc, argv);

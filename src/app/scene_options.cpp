@@ -11,19 +11,23 @@
 namespace glint::app {
 
 void SceneOptions::addTo(CLI::App& command) {
-  std::string builtins;
-  for (const std::string& name : scene::builtinSceneNames()) builtins += (builtins.empty() ? "" : ", ") + name;
-  command.add_option("scene", scene, "A built-in scene (" + builtins + ") or a glTF 2.0 file")->capture_default_str();
+  addSceneAndMaterialsTo(command);
   command.add_option("--camera", camera, "Camera preset of the scene (see docs/scenes.md)")->capture_default_str();
   command.add_option("--dict", dictionary,
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
+  command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
+}
+
+void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
+  std::string builtins;
+  for (const std::string& name : scene::builtinSceneNames()) builtins += (builtins.empty() ? "" : ", ") + name;
+  command.add_option("scene", scene, "A built-in scene (" + builtins + ") or a glTF 2.0 file")->capture_default_str();
   command.add_option("--glint-material", glintMaterials,
                      "Put a glint layer on this material of a glTF scene ('*' for all); repeatable");
   command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY")->delimiter(',');
   command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
-  command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
 }
 
 scene::Scene SceneOptions::loadScene() const {

@@ -26,7 +26,11 @@ struct SceneOptions {
   std::optional<float> relativeArea;
   std::optional<float> sky;
 
+  // All of the options below (render, view, trace).
   void addTo(CLI::App& command);
+  // The scene argument and the options that change its materials (--glint-material, --alpha,
+  // --log-density, --relative-area), without those of a view (camera, dictionary, sky): export.
+  void addSceneAndMaterialsTo(CLI::App& command);
   // Loads the scene, applies --glint-material and the overrides (validated like the file's own
   // parameters), and checks the camera; throws Error with one line.
   scene::Scene loadScene() const;

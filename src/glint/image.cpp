@@ -72,15 +72,26 @@ int ImageRgb8::textWidth(const char* text, int scale) {
   return stb_easy_font_width(copy.data()) * scale;
 }
 
-void writePng(const std::filesystem::path& path, const ImageRgb8& image) {
+std::vector<std::byte> encodePng(int width, int height, int channels, const std::uint8_t* pixels) {
   std::vector<std::byte> encoded;
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<std::byte>*>(context);
     const auto* bytes = static_cast<const std::byte*>(data);
     out->insert(out->end(), bytes, bytes + size);
   };
-  if (!stbi_write_png_to_func(append, &encoded, image.width(), image.height(), 3, image.data(), image.width() * 3)) {
-    throw Error(path.string() + ": PNG encoding failed");
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+      !stbi_write_png_to_func(append, &encoded, width, height, channels, pixels, width * channels)) {
+    throw Error("PNG encoding failed");
+  }
+  return encoded;
+}
+
+void writePng(const std::filesystem::path& path, const ImageRgb8& image) {
+  std::vector<std::byte> encoded;
+  try {
+    encoded = encodePng(image.width(), image.height(), 3, image.data());
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
   }
   writeFileAtomically(path, encoded);
 }

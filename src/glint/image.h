@@ -1,6 +1,7 @@
 // 8-bit RGB images and PNG output (stb_image_write), written all-or-nothing.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -32,6 +33,11 @@ class ImageRgb8 {
   int height_;
   std::vector<Rgb8> pixels_;
 };
+
+// 8-bit pixels (`channels` 1 to 4 per pixel, rows from the top, tightly packed) as PNG bytes
+// (stb_image_write); throws Error when encoding fails. The one PNG encoder: writePng and the glTF
+// writer's embedded textures use it.
+std::vector<std::byte> encodePng(int width, int height, int channels, const std::uint8_t* pixels);
 
 // Throws Error naming the file when it cannot be written; leaves no partial file.
 void writePng(const std::filesystem::path& path, const ImageRgb8& image);
