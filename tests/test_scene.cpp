@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -863,6 +864,55 @@ TEST(SceneGeometry, SphereTrianglesFaceOutwards) {
     EXPECT_NEAR(glm::distance(v.position, glm::vec3(1, 2, 3)), 2.0f, 1e-5f);
     EXPECT_NEAR(glm::distance(v.normal, (v.position - glm::vec3(1, 2, 3)) / 2.0f), 0.0f, 1e-5f);
   }
+}
+
+TEST(SceneGeometry, UvSphereScalesItsUvsByTheExtent) {
+  const Mesh unit = makeUvSphere("s", 0, glm::vec3(0.0f), 0.5f, 16, 8);
+  const Mesh metres = makeUvSphere("s", 0, glm::vec3(0.0f), 0.5f, 16, 8, glm::vec2(3.0f, 1.5f));
+  ASSERT_EQ(unit.vertices.size(), metres.vertices.size());
+  for (std::size_t i = 0; i < unit.vertices.size(); ++i) {
+    EXPECT_EQ(metres.vertices[i].uv, unit.vertices[i].uv * glm::vec2(3.0f, 1.5f)) << i;
+    EXPECT_EQ(metres.vertices[i].position, unit.vertices[i].position) << i;
+  }
+}
+
+TEST(SceneGeometry, TorusIsATubeAroundItsRingWithTangentsAlongIt) {
+  const glm::vec3 centre(1, 2, 3);
+  const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 1.0f, -0.2f));
+  constexpr float kRing = 0.5f;
+  constexpr float kTube = 0.05f;
+  constexpr float kUvPerMetre = 4.0f;
+  const Mesh torus = makeTorus("t", 0, centre, axis, kRing, kTube, 48, 12, kUvPerMetre);
+  EXPECT_EQ(torus.vertices.size(), 49u * 13u);
+  EXPECT_EQ(torus.indices.size(), 48u * 12u * 6u);
+  for (const Vertex& v : torus.vertices) {
+    const glm::vec3 offset = v.position - centre;
+    const glm::vec3 inPlane = offset - axis * glm::dot(axis, offset);
+    const glm::vec3 ringPoint = centre + kRing * glm::normalize(inPlane);  // the nearest point of the ring
+    EXPECT_NEAR(glm::distance(v.position, ringPoint), kTube, 1e-5f);
+    EXPECT_NEAR(glm::distance(v.normal, (v.position - ringPoint) / kTube), 0.0f, 1e-4f);
+    // u runs along the ring: the tangent is the ring's direction at this point, turning
+    // counter-clockwise about the axis (the direction of increasing u).
+    const glm::vec3 along = glm::normalize(glm::cross(axis, inPlane));
+    EXPECT_NEAR(glm::distance(glm::vec3(v.tangent), along), 0.0f, 1e-5f);
+    // The bitangent cross(n, t) w points towards decreasing v, i.e. against the tube's turn.
+    const glm::vec3 aroundTube = glm::cross(v.normal, along);  // direction of increasing tube angle, v
+    EXPECT_LT(glm::dot(glm::cross(v.normal, glm::vec3(v.tangent)) * v.tangent.w, aroundTube), -0.99f);
+    EXPECT_GE(v.uv.x, 0.0f);
+    EXPECT_LE(v.uv.x, 2.0f * std::numbers::pi_v<float> * kRing * kUvPerMetre + 1e-4f);
+    EXPECT_LE(v.uv.y, 2.0f * std::numbers::pi_v<float> * kTube * kUvPerMetre + 1e-4f);
+  }
+  // Triangles face outwards, away from the ring inside the tube.
+  for (std::size_t i = 0; i < torus.indices.size(); i += 3) {
+    const Vertex& a = torus.vertices[torus.indices[i]];
+    const Vertex& b = torus.vertices[torus.indices[i + 1]];
+    const Vertex& c = torus.vertices[torus.indices[i + 2]];
+    ASSERT_GT(glm::dot(glm::cross(b.position - a.position, c.position - a.position), a.normal), 0.0f) << i;
+  }
+  // The seams close exactly: the last column repeats the first one's positions, the last row the
+  // first row's.
+  for (int j = 0; j <= 12; ++j) EXPECT_EQ(torus.vertices[j * 49 + 48].position, torus.vertices[j * 49].position) << j;
+  for (int i = 0; i <= 48; ++i) EXPECT_EQ(torus.vertices[12 * 49 + i].position, torus.vertices[i].position) << i;
 }
 
 // ---- Built-in scenes --------------------------------------------------------------------------

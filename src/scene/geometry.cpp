@@ -178,15 +178,41 @@ Mesh makeBox(std::string name, int material, glm::vec3 centre, glm::vec3 halfSiz
   return box;
 }
 
-Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings) {
+Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings,
+                  glm::vec2 uvExtent) {
   return makeParametricSurface(std::move(name), material, segments, rings, [=](float s, float t) {
     const float phi = kTwoPi * s;
     const float theta = std::numbers::pi_v<float> * t;
     // Exact zeros at the poles, so that their vertices coincide and their slivers are dropped.
     const float sinTheta = (t <= 0.0f || t >= 1.0f) ? 0.0f : std::sin(theta);
     const glm::vec3 direction(sinTheta * std::sin(phi), std::cos(theta), sinTheta * std::cos(phi));
-    return SurfacePoint{centre + radius * direction, direction, glm::vec2(s, t)};
+    return SurfacePoint{centre + radius * direction, direction, glm::vec2(s, t) * uvExtent};
   });
+}
+
+Mesh makeTorus(std::string name, int material, glm::vec3 centre, glm::vec3 axis, float majorRadius, float minorRadius,
+               int segments, int sides, float uvPerMetre) {
+  const glm::vec3 first = anyPerpendicular(axis);
+  const glm::vec3 second = glm::cross(axis, first);
+  const glm::vec2 uvExtent = uvPerMetre * kTwoPi * glm::vec2(majorRadius, minorRadius);
+  Mesh torus = makeParametricSurface(std::move(name), material, segments, sides, [=](float s, float t) {
+    // The last row and column take the first ones' angles exactly (float's 2 pi would not give
+    // cos 1, sin 0), so the seams close without cracks; only their uvs run on.
+    const float ringAngle = s >= 1.0f ? 0.0f : kTwoPi * s;
+    const float tubeAngle = t >= 1.0f ? 0.0f : kTwoPi * t;
+    const glm::vec3 radial = std::cos(ringAngle) * first + std::sin(ringAngle) * second;
+    const glm::vec3 normal = std::cos(tubeAngle) * radial + std::sin(tubeAngle) * axis;
+    return SurfacePoint{centre + majorRadius * radial + minorRadius * normal, normal, glm::vec2(s, t) * uvExtent};
+  });
+  // The generated tangents follow the chords of the grid, which at the seam come from one side
+  // only (a segment's half angle off); the ring's own direction there is known exactly. The
+  // generated handedness stays.
+  for (Vertex& v : torus.vertices) {
+    const glm::vec3 offset = v.position - centre;
+    const glm::vec3 along = glm::normalize(glm::cross(axis, offset - axis * glm::dot(axis, offset)));
+    v.tangent = glm::vec4(along, v.tangent.w);
+  }
+  return torus;
 }
 
 Mesh makeLathe(std::string name, int material, glm::vec3 centre, int segments, int rings,
