@@ -915,6 +915,28 @@ TEST(SceneGeometry, TorusIsATubeAroundItsRingWithTangentsAlongIt) {
   for (int i = 0; i <= 48; ++i) EXPECT_EQ(torus.vertices[12 * 49 + i].position, torus.vertices[i].position) << i;
 }
 
+TEST(SceneGeometry, ConeRunsFromItsBaseCircleToItsTip) {
+  const glm::vec3 base(0, 1, 0);
+  const glm::vec3 axis = glm::normalize(glm::vec3(1, 0, 1));
+  const Mesh cone = makeCone("c", 0, base, axis, 0.1f, 0.4f, 16);
+  EXPECT_EQ(cone.indices.size() / 3, 16u);  // one triangle per segment: the tip's slivers are left out
+  const glm::vec3 tip = base + 0.4f * axis;
+  for (const Vertex& v : cone.vertices) {
+    const glm::vec3 offset = v.position - base;
+    const float along = glm::dot(offset, axis);
+    EXPECT_NEAR(glm::length(offset - along * axis), 0.1f * (1.0f - along / 0.4f), 1e-6f);
+    // The normal is perpendicular to the slant line through the vertex and leans towards the tip.
+    if (v.uv.y < 1.0f) EXPECT_NEAR(glm::dot(v.normal, glm::normalize(tip - v.position)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(v.normal, axis), 0.1f / std::sqrt(0.1f * 0.1f + 0.4f * 0.4f), 1e-5f);
+  }
+  for (std::size_t i = 0; i < cone.indices.size(); i += 3) {
+    const Vertex& a = cone.vertices[cone.indices[i]];
+    const Vertex& b = cone.vertices[cone.indices[i + 1]];
+    const Vertex& c = cone.vertices[cone.indices[i + 2]];
+    ASSERT_GT(glm::dot(glm::cross(b.position - a.position, c.position - a.position), a.normal), 0.0f) << i;
+  }
+}
+
 // ---- Built-in scenes --------------------------------------------------------------------------
 
 TEST(BuiltinScenes, EveryOneIsWellFormedLitAndGlinting) {

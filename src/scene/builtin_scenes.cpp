@@ -351,21 +351,6 @@ Mesh curtain(int material, float z0, float width, float height, float y0, float 
   });
 }
 
-// A cone from the disc of radius baseRadius at `base` to the tip at base + length * axis (unit);
-// the tip's coincident vertices close it, the base stays open (it sits inside the snowman's head).
-Mesh cone(std::string name, int material, glm::vec3 base, glm::vec3 axis, float baseRadius, float length) {
-  const glm::vec3 first = anyPerpendicular(axis);
-  const glm::vec3 second = glm::cross(axis, first);
-  return makeParametricSurface(std::move(name), material, 24, 4, [=](float s, float t) {
-    const float angle = s >= 1.0f ? 0.0f : 2.0f * kPi * s;
-    const glm::vec3 radial = std::cos(angle) * first + std::sin(angle) * second;
-    const float radius = t >= 1.0f ? 0.0f : baseRadius * (1.0f - t);
-    // Perpendicular to the slant line, which runs -baseRadius along radial per length along axis.
-    const glm::vec3 normal = length * radial + baseRadius * axis;
-    return SurfacePoint{base + t * length * axis + radius * radial, normal, glm::vec2(s, t)};
-  });
-}
-
 // The point of a sphere at `elevation` above its equator and `azimuth` to the left of `facing`
 // (a horizontal unit vector), radians.
 glm::vec3 onSphere(glm::vec3 centre, float radius, glm::vec3 facing, float azimuth, float elevation) {
@@ -401,14 +386,16 @@ void addSnowman(Scene& scene, int snowMaterial, int coal, int carrot, glm::vec3 
                                         0.035f, 12, 6));
   }
   const glm::vec3 noseBase = onSphere(centres[2], 0.8f * head, facing, 0.0f, 0.05f);
-  scene.meshes.push_back(cone("snowman nose", carrot, noseBase, facing, 0.045f, 0.28f));
+  // Its open base lies inside the head.
+  scene.meshes.push_back(makeCone("snowman nose", carrot, noseBase, facing, 0.045f, 0.28f, 24));
 }
 
 // A snowflake ornament of silver tube rings, resting on one of its petals: a central ring and six
 // petal rings around it touching it, in a plane that faces `facing` (horizontal, unit) and leans
 // back by `lean` radians, turning the rings' tops towards the sky and the lights. Every other
-// petal tilts out of the plane, so the rings catch the light at different angles.
-void addSnowflakeOrnament(Scene& scene, int material, glm::vec3 ground, glm::vec3 facing, float lean) {
+// petal tilts out of the plane, so the rings catch the light at different angles. Returns the
+// centre of the central ring.
+glm::vec3 addSnowflakeOrnament(Scene& scene, int material, glm::vec3 ground, glm::vec3 facing, float lean) {
   constexpr float kCentreRadius = 0.3f;
   constexpr float kPetalRadius = 0.18f;
   constexpr float kTube = 0.03f;
@@ -434,6 +421,7 @@ void addSnowflakeOrnament(Scene& scene, int material, glm::vec3 ground, glm::vec
     scene.meshes.push_back(makeTorus("ornament petal", material, centre + kPetalDistance * radial, axis, kPetalRadius, kTube,
                                      64, 16, kUvPerMetre));
   }
+  return centre;
 }
 
 // ---- Lighting ---------------------------------------------------------------------------------
@@ -646,19 +634,19 @@ Scene arcticScene() {
   const glm::vec3 snowmanAt(1.3f, 0.0f, -2.0f);
   addSnowman(scene, snowBalls, coal, carrot, snowmanAt, facingCamera(snowmanAt));
   const glm::vec3 ornamentAt(-1.1f, 0.0f, -0.8f);
-  addSnowflakeOrnament(scene, silver, ornamentAt, facingCamera(ornamentAt), glm::radians(20.0f));
+  const glm::vec3 ornamentCentre = addSnowflakeOrnament(scene, silver, ornamentAt, facingCamera(ornamentAt), glm::radians(20.0f));
 
   // The low sun, 16 degrees left of the view axis (-z), 12 degrees up: its glitter band runs from
-  // the horizon to the bottom left of the default view. The objects stand nearly against it, where a
-  // thin tube shows the sun only along slivers under a pixel wide, so a cool fill from behind the
-  // camera (the bright sky there, which the environment lights without glints) makes the snowman
-  // and the ornament glitter; its mirror image on the snow lies behind the camera.
+  // the horizon to the bottom left of the default view. The objects stand between the camera and
+  // the sun, lit from behind, where a thin tube shows the sun's highlight only in slivers under a
+  // pixel wide; so a cool fill from behind the camera, standing in for the bright sky there (the
+  // environment lights without glints), makes the snowman and the ornament glitter. Its mirror
+  // image on the snow lies behind the camera.
   scene.lights.push_back(directionalLight(-horizonDirection(16.0f, 12.0f), glm::vec3(6.0f, 5.6f, 5.0f)));
   scene.lights.push_back(directionalLight(-horizonDirection(160.0f, 30.0f), glm::vec3(1.5f, 1.65f, 1.9f)));
   scene.environment = sky(0.4f);
   setCameras(scene, camera(cameraPosition, {0.0f, 0.6f, -2.0f}));
-  const glm::vec3 ornamentMiddle = ornamentAt + glm::vec3(0.0f, 0.7f, 0.0f);
-  scene.cameras["ornament"] = camera(ornamentMiddle + 2.2f * facingCamera(ornamentAt) + glm::vec3(0.0f, 0.3f, 0.0f), ornamentMiddle);
+  scene.cameras["ornament"] = camera(ornamentCentre + 2.2f * facingCamera(ornamentAt) + glm::vec3(0.0f, 0.3f, 0.0f), ornamentCentre);
   return scene;
 }
 

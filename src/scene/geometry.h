@@ -1,5 +1,5 @@
 // Mesh building blocks shared by the glTF loader and the built-in scenes: the one tangent
-// generator, flat normals, and parametric surfaces (quads, boxes, UV spheres, tori, lathes) with
+// generator, flat normals, and parametric surfaces (quads, boxes, UV spheres, tori, cones, lathes) with
 // analytic normals.
 #pragma once
 
@@ -67,6 +67,11 @@ Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius
 // (u = 0) at anyPerpendicular(axis) from the centre.
 Mesh makeTorus(std::string name, int material, glm::vec3 centre, glm::vec3 axis, float majorRadius, float minorRadius,
                int segments, int sides, float uvPerMetre = 1.0f);
+
+// A cone from the circle of radius baseRadius around `base` in the plane perpendicular to the unit
+// vector `axis` to its tip at base + length * axis, open at the base: uv = (angle / 2 pi, t) with
+// t from the base (0) to the tip (1); the tip's coincident vertices leave no slivers.
+Mesh makeCone(std::string name, int material, glm::vec3 base, glm::vec3 axis, float baseRadius, float length, int segments);
 
 // A point of a lathe profile at t in [0, 1]: its abscissa along the axis, its radius (>= 0) and
 // the profile's outward normal in the (axis, radius) plane.
