@@ -51,10 +51,10 @@ TEST(RenderCli, RendersTheDamagedHelmetWithAndWithoutGlints) {
 
 TEST(RenderCli, RendersEveryBuiltinSceneAndTheDefault) {
   const auto folder = temporaryFolder("render_builtin");
-  for (const char* name : {"sphere", "parquet", "carpaint", "showroom"}) {
-    const RunResult result = runGlint(folder, std::string("render ") + name + " -o " + name + ".png --size 96x64");
+  for (const std::string& name : scene::builtinSceneNames()) {
+    const RunResult result = runGlint(folder, "render " + name + " -o " + name + ".png --size 96x64");
     ASSERT_EQ(result.exitCode, 0) << result.err;
-    expectPlausibleImage(folder / (std::string(name) + ".png"), 96, 64);
+    expectPlausibleImage(folder / (name + ".png"), 96, 64);
   }
   const RunResult result = runGlint(folder, "render -o default.png --size 64x64 --brdf cook-torrance --spp 2");
   ASSERT_EQ(result.exitCode, 0) << result.err;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -948,6 +949,77 @@ TEST(SceneGeometry, SphereTrianglesFaceOutwards) {
   }
 }
 
+TEST(SceneGeometry, UvSphereScalesItsUvsByTheExtent) {
+  const Mesh unit = makeUvSphere("s", 0, glm::vec3(0.0f), 0.5f, 16, 8);
+  const Mesh metres = makeUvSphere("s", 0, glm::vec3(0.0f), 0.5f, 16, 8, glm::vec2(3.0f, 1.5f));
+  ASSERT_EQ(unit.vertices.size(), metres.vertices.size());
+  for (std::size_t i = 0; i < unit.vertices.size(); ++i) {
+    EXPECT_EQ(metres.vertices[i].uv, unit.vertices[i].uv * glm::vec2(3.0f, 1.5f)) << i;
+    EXPECT_EQ(metres.vertices[i].position, unit.vertices[i].position) << i;
+  }
+}
+
+TEST(SceneGeometry, TorusIsATubeAroundItsRingWithTangentsAlongIt) {
+  const glm::vec3 centre(1, 2, 3);
+  const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 1.0f, -0.2f));
+  constexpr float kRing = 0.5f;
+  constexpr float kTube = 0.05f;
+  constexpr float kUvPerMetre = 4.0f;
+  const Mesh torus = makeTorus("t", 0, centre, axis, kRing, kTube, 48, 12, kUvPerMetre);
+  EXPECT_EQ(torus.vertices.size(), 49u * 13u);
+  EXPECT_EQ(torus.indices.size(), 48u * 12u * 6u);
+  for (const Vertex& v : torus.vertices) {
+    const glm::vec3 offset = v.position - centre;
+    const glm::vec3 inPlane = offset - axis * glm::dot(axis, offset);
+    const glm::vec3 ringPoint = centre + kRing * glm::normalize(inPlane);  // the nearest point of the ring
+    EXPECT_NEAR(glm::distance(v.position, ringPoint), kTube, 1e-5f);
+    EXPECT_NEAR(glm::distance(v.normal, (v.position - ringPoint) / kTube), 0.0f, 1e-4f);
+    // u runs along the ring: the tangent is the ring's direction at this point, turning
+    // counter-clockwise about the axis (the direction of increasing u).
+    const glm::vec3 along = glm::normalize(glm::cross(axis, inPlane));
+    EXPECT_NEAR(glm::distance(glm::vec3(v.tangent), along), 0.0f, 1e-5f);
+    // The bitangent cross(n, t) w points towards decreasing v, i.e. against the tube's turn.
+    const glm::vec3 aroundTube = glm::cross(v.normal, along);  // direction of increasing tube angle, v
+    EXPECT_LT(glm::dot(glm::cross(v.normal, glm::vec3(v.tangent)) * v.tangent.w, aroundTube), -0.99f);
+    EXPECT_GE(v.uv.x, 0.0f);
+    EXPECT_LE(v.uv.x, 2.0f * std::numbers::pi_v<float> * kRing * kUvPerMetre + 1e-4f);
+    EXPECT_LE(v.uv.y, 2.0f * std::numbers::pi_v<float> * kTube * kUvPerMetre + 1e-4f);
+  }
+  // Triangles face outwards, away from the ring inside the tube.
+  for (std::size_t i = 0; i < torus.indices.size(); i += 3) {
+    const Vertex& a = torus.vertices[torus.indices[i]];
+    const Vertex& b = torus.vertices[torus.indices[i + 1]];
+    const Vertex& c = torus.vertices[torus.indices[i + 2]];
+    ASSERT_GT(glm::dot(glm::cross(b.position - a.position, c.position - a.position), a.normal), 0.0f) << i;
+  }
+  // The seams close exactly: the last column repeats the first one's positions, the last row the
+  // first row's.
+  for (int j = 0; j <= 12; ++j) EXPECT_EQ(torus.vertices[j * 49 + 48].position, torus.vertices[j * 49].position) << j;
+  for (int i = 0; i <= 48; ++i) EXPECT_EQ(torus.vertices[12 * 49 + i].position, torus.vertices[i].position) << i;
+}
+
+TEST(SceneGeometry, ConeRunsFromItsBaseCircleToItsTip) {
+  const glm::vec3 base(0, 1, 0);
+  const glm::vec3 axis = glm::normalize(glm::vec3(1, 0, 1));
+  const Mesh cone = makeCone("c", 0, base, axis, 0.1f, 0.4f, 16);
+  EXPECT_EQ(cone.indices.size() / 3, 16u);  // one triangle per segment: the tip's slivers are left out
+  const glm::vec3 tip = base + 0.4f * axis;
+  for (const Vertex& v : cone.vertices) {
+    const glm::vec3 offset = v.position - base;
+    const float along = glm::dot(offset, axis);
+    EXPECT_NEAR(glm::length(offset - along * axis), 0.1f * (1.0f - along / 0.4f), 1e-6f);
+    // The normal is perpendicular to the slant line through the vertex and leans towards the tip.
+    if (v.uv.y < 1.0f) EXPECT_NEAR(glm::dot(v.normal, glm::normalize(tip - v.position)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(v.normal, axis), 0.1f / std::sqrt(0.1f * 0.1f + 0.4f * 0.4f), 1e-5f);
+  }
+  for (std::size_t i = 0; i < cone.indices.size(); i += 3) {
+    const Vertex& a = cone.vertices[cone.indices[i]];
+    const Vertex& b = cone.vertices[cone.indices[i + 1]];
+    const Vertex& c = cone.vertices[cone.indices[i + 2]];
+    ASSERT_GT(glm::dot(glm::cross(b.position - a.position, c.position - a.position), a.normal), 0.0f) << i;
+  }
+}
+
 // ---- Built-in scenes --------------------------------------------------------------------------
 
 TEST(BuiltinScenes, EveryOneIsWellFormedLitAndGlinting) {
@@ -1003,12 +1075,109 @@ TEST(BuiltinScenes, ShowroomHasItsPresetsAndMaterials) {
   EXPECT_EQ(parquet.materials[0].glint.roughnessTexture, 1);
 }
 
+const Material& materialNamed(const Scene& scene, const std::string& name) {
+  const auto found = std::find_if(scene.materials.begin(), scene.materials.end(), [&](const Material& m) { return m.name == name; });
+  if (found == scene.materials.end()) throw Error("no material " + name);
+  return *found;
+}
+
+// A texel of an 8-bit tangent-space normal map, decoded as glTF does.
+glm::vec3 decodedNormal(const Texture& texture, int column, int row) {
+  const std::size_t at = (static_cast<std::size_t>(row) * static_cast<std::size_t>(texture.width) + static_cast<std::size_t>(column)) * 4;
+  return glm::vec3(texture.rgba[at], texture.rgba[at + 1], texture.rgba[at + 2]) / 255.0f * 2.0f - 1.0f;
+}
+
+// Mean length of the difference of decoded normals between column a and column b (columns of
+// the transposed map when `rows`).
+float meanNormalDifference(const Texture& texture, int a, int b, bool rows) {
+  float sum = 0.0f;
+  for (int i = 0; i < texture.width; ++i) {
+    sum += rows ? glm::distance(decodedNormal(texture, i, a), decodedNormal(texture, i, b))
+                : glm::distance(decodedNormal(texture, a, i), decodedNormal(texture, b, i));
+  }
+  return sum / static_cast<float>(texture.width);
+}
+
+TEST(BuiltinScenes, ArcticSnowHasSparseGlintsOnATilingNormalMap) {
+  const Scene scene = makeBuiltinScene("arctic");
+  const Material& snow = materialNamed(scene, "snow field");
+  EXPECT_TRUE(snow.glint.enabled);
+  EXPECT_EQ(snow.glint.alpha, glm::vec2(0.05f));
+  EXPECT_LT(snow.glint.relativeArea, 1.0f);
+  ASSERT_GE(snow.normalTexture, 0);
+  const Texture& map = scene.textures[static_cast<std::size_t>(snow.normalTexture)];
+  EXPECT_FALSE(map.srgb);
+  ASSERT_EQ(map.width, map.height);
+  EXPECT_GE(map.width, 256);
+  ASSERT_EQ(map.rgba.size(), static_cast<std::size_t>(map.width) * static_cast<std::size_t>(map.height) * 4);
+
+  // Unit normals (to 8-bit rounding) facing out of the surface, bumpy: tilted by degrees on
+  // average, not flat and not wild.
+  float tilt = 0.0f;
+  for (int row = 0; row < map.height; ++row) {
+    for (int column = 0; column < map.width; ++column) {
+      const glm::vec3 n = decodedNormal(map, column, row);
+      ASSERT_NEAR(glm::length(n), 1.0f, 0.02f) << column << ", " << row;
+      ASSERT_GT(n.z, 0.0f) << column << ", " << row;
+      tilt += std::acos(std::min(1.0f, n.z / glm::length(n)));
+    }
+  }
+  tilt = glm::degrees(tilt / static_cast<float>(map.width * map.height));
+  EXPECT_GT(tilt, 3.0f);
+  EXPECT_LT(tilt, 25.0f);
+
+  // It tiles: across the wrap from the last column (row) to the first the normals change about as
+  // much as between neighbours inside (0.066 against 0.085 on average, measured); half a tile
+  // apart, as unrelated as the two sides of a seam, they differ 2.4 times as much.
+  const int last = map.width - 1;
+  for (bool rows : {false, true}) {
+    SCOPED_TRACE(rows ? "rows" : "columns");
+    float neighbours = 0.0f;
+    for (int i = 0; i < last; ++i) neighbours += meanNormalDifference(map, i, i + 1, rows);
+    neighbours /= static_cast<float>(last);
+    EXPECT_LT(meanNormalDifference(map, last, 0, rows), 1.25f * neighbours);
+    EXPECT_GT(meanNormalDifference(map, map.width / 2, 0, rows), 2.0f * neighbours);
+  }
+
+  // The ground repeats the map many times, so far away many texels fall in a pixel.
+  const auto field = std::find_if(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) { return m.name == "snow field"; });
+  ASSERT_NE(field, scene.meshes.end());
+  float uvMax = 0.0f;
+  for (const Vertex& v : field->vertices) uvMax = std::max({uvMax, v.uv.x, v.uv.y});
+  EXPECT_GE(uvMax, 30.0f);
+  EXPECT_GE(glm::distance(field->vertices.front().position, field->vertices.back().position), 50.0f);
+}
+
+TEST(BuiltinScenes, ArcticHasItsObjectsAndALowSun) {
+  const Scene scene = makeBuiltinScene("arctic");
+  for (const char* mesh : {"snowman base", "snowman body", "snowman head", "ornament centre", "ornament petal"}) {
+    EXPECT_TRUE(std::any_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == mesh; })) << mesh;
+  }
+  EXPECT_TRUE(materialNamed(scene, "snowman snow").glint.enabled);
+  const Material& silver = materialNamed(scene, "sparkly silver");
+  EXPECT_TRUE(silver.glint.enabled);
+  EXPECT_EQ(silver.metallic, 1.0f);
+  // The sun: the brightest light, a directional one a few degrees above the horizon, ahead of the
+  // default camera (its glitter band lies in view).
+  const auto sun = std::max_element(scene.lights.begin(), scene.lights.end(),
+                                    [](const Light& a, const Light& b) { return a.intensity.g < b.intensity.g; });
+  ASSERT_EQ(sun->type, Light::Type::Directional);
+  const float elevation = glm::degrees(std::asin(-sun->direction.y));
+  EXPECT_GT(elevation, 3.0f);
+  EXPECT_LT(elevation, 15.0f);
+  const Camera& camera = scene.cameras.at("default");
+  const glm::vec3 forward = glm::normalize(camera.target - camera.position);
+  EXPECT_LT(glm::dot(glm::normalize(glm::vec2(sun->direction.x, sun->direction.z)), glm::normalize(glm::vec2(forward.x, forward.z))),
+            -std::cos(glm::radians(22.5f)));
+  EXPECT_TRUE(scene.cameras.contains("ornament"));
+}
+
 TEST(BuiltinScenes, UnknownNamesAreErrors) {
   const std::string message = errorOf([] { makeBuiltinScene("teapot"); });
   EXPECT_NE(message.find("'teapot'"), std::string::npos) << message;
   EXPECT_NE(message.find("sphere, parquet, carpaint, showroom"), std::string::npos) << message;
   EXPECT_EQ(errorOf([] { loadScene("teapot"); }),
-            "unknown scene 'teapot' (built-in: sphere, parquet, carpaint, showroom, grazing-smooth, grazing-rough) "
+            "unknown scene 'teapot' (built-in: sphere, parquet, carpaint, showroom, grazing-smooth, grazing-rough, arctic) "
             "and no such file");
   EXPECT_TRUE(isBuiltinScene("sphere"));
   EXPECT_FALSE(isBuiltinScene("Sphere"));

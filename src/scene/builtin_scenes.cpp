@@ -40,6 +40,82 @@ float valueNoise(glm::vec2 p, std::uint32_t seed) {
   return glm::mix(glm::mix(a, b, w.x), glm::mix(c, d, w.x), w.y);
 }
 
+// Gradient noise that tiles: the lattice wraps every `period` cells in x and y, so the noise on
+// [0, period.x) x [0, period.y) continues seamlessly across its edges. About [-0.7, 0.7], zero at
+// the lattice points, smooth (C2, Perlin's quintic fade). In double, for the normal map's
+// central differences.
+double periodicGradientNoise(glm::dvec2 p, glm::ivec2 period, std::uint32_t seed) {
+  const glm::dvec2 cell = glm::floor(p);
+  const glm::dvec2 f = p - cell;
+  const glm::dvec2 fade = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+  auto corner = [&](int i, int j) {
+    const int x = ((static_cast<int>(cell.x) + i) % period.x + period.x) % period.x;
+    const int y = ((static_cast<int>(cell.y) + j) % period.y + period.y) % period.y;
+    const double angle = 2.0 * std::numbers::pi * hashUnit(x, y, seed);
+    return std::cos(angle) * (f.x - i) + std::sin(angle) * (f.y - j);
+  };
+  return glm::mix(glm::mix(corner(0, 0), corner(1, 0), fade.x), glm::mix(corner(0, 1), corner(1, 1), fade.x), fade.y);
+}
+
+// ---- Arctic snow ------------------------------------------------------------------------------
+
+constexpr int kSnowNormalMapSize = 256;    // texels on a side
+constexpr double kSnowTileMetres = 1.6;     // one normal-map tile: 40 tiles across the 64 m field
+
+// One octave of the snow's height field: `cells` lattice cells across the tile in x and y
+// (unequal for drifts stretched along x), `amplitude` in metres.
+struct SnowOctave {
+  glm::ivec2 cells;
+  double amplitude;
+};
+
+// Gentle drifts, stretched along x as if by the wind, down to bumps 2.5 cm across. The slope of
+// an octave goes with amplitude x cells: the bumps are the steepest (about ten times the drifts),
+// so near the camera they scatter the sun's glints into separate sparkles, while far away, where
+// a pixel averages them out, the band narrows. The normals lean 7.6 degrees on average.
+constexpr SnowOctave kSnowOctaves[] = {
+    {{2, 3}, 0.01}, {{4, 6}, 0.006}, {{8, 8}, 0.004}, {{16, 16}, 0.004}, {{32, 32}, 0.005}, {{64, 64}, 0.004},
+};
+
+// The snow's tangent-space normal map (glTF convention: rgb = normal * 0.5 + 0.5, +x along +u, +y
+// up the image, i.e. towards decreasing v; linear 8-bit), from a periodic height field by central
+// differences that wrap around, so the map tiles.
+Texture snowNormalMap() {
+  constexpr int size = kSnowNormalMapSize;
+  std::vector<double> height(static_cast<std::size_t>(size) * size);
+  for (int row = 0; row < size; ++row) {
+    for (int column = 0; column < size; ++column) {
+      const glm::dvec2 tileUv = (glm::dvec2(column, row) + 0.5) / static_cast<double>(size);
+      double h = 0.0;
+      std::uint32_t seed = 21u;
+      for (const SnowOctave& octave : kSnowOctaves) {
+        h += octave.amplitude * periodicGradientNoise(tileUv * glm::dvec2(octave.cells), octave.cells, seed++);
+      }
+      height[static_cast<std::size_t>(row) * size + static_cast<std::size_t>(column)] = h;
+    }
+  }
+  auto heightAt = [&](int column, int row) {
+    return height[static_cast<std::size_t>((row + size) % size) * size + static_cast<std::size_t>((column + size) % size)];
+  };
+  Texture map{"snow normal", size, size, {}, false};
+  map.rgba.resize(static_cast<std::size_t>(size) * size * 4);
+  const double texelMetres = kSnowTileMetres / size;
+  for (int row = 0; row < size; ++row) {
+    for (int column = 0; column < size; ++column) {
+      const double slopeX = (heightAt(column + 1, row) - heightAt(column - 1, row)) / (2.0 * texelMetres);
+      // +y points up the image, towards the previous row.
+      const double slopeY = (heightAt(column, row - 1) - heightAt(column, row + 1)) / (2.0 * texelMetres);
+      const glm::dvec3 normal = glm::normalize(glm::dvec3(-slopeX, -slopeY, 1.0));
+      const std::size_t at = (static_cast<std::size_t>(row) * size + static_cast<std::size_t>(column)) * 4;
+      for (int c = 0; c < 3; ++c) {
+        map.rgba[at + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround((normal[c] * 0.5 + 0.5) * 255.0));
+      }
+      map.rgba[at + 3] = 255;
+    }
+  }
+  return map;
+}
+
 // ---- Parquet ----------------------------------------------------------------------------------
 
 constexpr float kPlankWidth = 0.16f;   // metres
@@ -166,14 +242,16 @@ Material carPaint() {
   return m;
 }
 
-Material plainGrey(const char* name, float albedo) {
+Material matte(const char* name, glm::vec3 colour) {
   Material m;
   m.name = name;
-  m.baseColour = glm::vec4(albedo, albedo, albedo, 1.0f);
+  m.baseColour = glm::vec4(colour, 1.0f);
   m.metallic = 0.0f;
   m.roughness = 0.8f;
   return m;
 }
+
+Material plainGrey(const char* name, float albedo) { return matte(name, glm::vec3(albedo)); }
 
 Material sparklingStone() {
   Material m;
@@ -194,6 +272,33 @@ Material glitterCurtain() {
   m.glint = glintLayer(0.4f, 14.0f, 4.0f);
   m.glint.relativeArea = 0.3f;  // only some cells hold flakes: scattered sparkles on cloth
   m.doubleSided = true;         // a single sheet, seen from either side
+  return m;
+}
+
+// Snow: a white diffuse base with the sparse, sharp glints of the arctic scene of Chermain et al.
+// 2021 (alpha 0.05, log density 10.52, relative area 0.25: three cells in four hold no flakes).
+// `glintUvScale` is the mesh's uv per glint uv; kSnowGlintUvPerMetre keeps the sparkles the same
+// size on every snow surface.
+constexpr float kSnowGlintUvPerMetre = 6.25f;  // the paper's uv scale of 10 per 1.6 m tile
+
+Material snow(const char* name, float alpha, float glintUvScale) {
+  Material m;
+  m.name = name;
+  m.baseColour = glm::vec4(0.86f, 0.89f, 0.93f, 1.0f);  // slightly blue: fresh snow's albedo
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(alpha);
+  m.glint = glintLayer(alpha, 10.52f, glintUvScale);
+  m.glint.relativeArea = 0.25f;
+  return m;
+}
+
+Material sparklySilver() {
+  Material m;
+  m.name = "sparkly silver";
+  m.baseColour = glm::vec4(0.92f, 0.92f, 0.95f, 1.0f);
+  m.metallic = 1.0f;
+  m.roughness = roughnessFor(0.3f);
+  m.glint = glintLayer(0.3f, 12.0f, 40.0f);  // uv in metres (makeTorus)
   return m;
 }
 
@@ -246,6 +351,79 @@ Mesh curtain(int material, float z0, float width, float height, float y0, float 
   });
 }
 
+// The point of a sphere at `elevation` above its equator and `azimuth` to the left of `facing`
+// (a horizontal unit vector), radians.
+glm::vec3 onSphere(glm::vec3 centre, float radius, glm::vec3 facing, float azimuth, float elevation) {
+  const glm::vec3 left = glm::cross(glm::vec3(0, 1, 0), facing);
+  const glm::vec3 horizontal = std::cos(azimuth) * facing + std::sin(azimuth) * left;
+  return centre + radius * (std::cos(elevation) * horizontal + std::sin(elevation) * glm::vec3(0, 1, 0));
+}
+
+// A snowman standing at `ground`, 2.2 m tall, its face towards `facing` (horizontal, unit): three
+// snow balls settled into each other, coal eyes and buttons, a carrot nose. Ball uvs in metres.
+void addSnowman(Scene& scene, int snowMaterial, int coal, int carrot, glm::vec3 ground, glm::vec3 facing) {
+  struct Ball {
+    const char* name;
+    float radius;
+    float sink;  // how far it settles into what is below
+  };
+  constexpr Ball kBalls[] = {{"snowman base", 0.55f, 0.08f}, {"snowman body", 0.4f, 0.1f}, {"snowman head", 0.27f, 0.06f}};
+  glm::vec3 centres[3];
+  float top = ground.y;
+  for (int i = 0; i < 3; ++i) {
+    const Ball& ball = kBalls[i];
+    centres[i] = glm::vec3(ground.x, top - ball.sink + ball.radius, ground.z);
+    top = centres[i].y + ball.radius;
+    const glm::vec2 metres = ball.radius * glm::vec2(2.0f * kPi, kPi);
+    scene.meshes.push_back(makeUvSphere(ball.name, snowMaterial, centres[i], ball.radius, 64, 32, metres));
+  }
+  const float head = kBalls[2].radius;
+  for (float side : {-1.0f, 1.0f}) {
+    scene.meshes.push_back(makeUvSphere("snowman eye", coal, onSphere(centres[2], head, facing, side * 0.35f, 0.3f), 0.03f, 12, 6));
+  }
+  for (float elevation : {-0.1f, 0.3f, 0.7f}) {
+    scene.meshes.push_back(makeUvSphere("snowman button", coal, onSphere(centres[1], kBalls[1].radius, facing, 0.0f, elevation),
+                                        0.035f, 12, 6));
+  }
+  const glm::vec3 noseBase = onSphere(centres[2], 0.8f * head, facing, 0.0f, 0.05f);
+  // Its open base lies inside the head.
+  scene.meshes.push_back(makeCone("snowman nose", carrot, noseBase, facing, 0.045f, 0.28f, 24));
+}
+
+// A snowflake ornament of silver tube rings, resting on one of its petals: a central ring and six
+// petal rings around it touching it, in a plane that faces `facing` (horizontal, unit) and leans
+// back by `lean` radians, turning the rings' tops towards the sky and the lights. Every other
+// petal tilts out of the plane, so the rings catch the light at different angles. Returns the
+// centre of the central ring.
+glm::vec3 addSnowflakeOrnament(Scene& scene, int material, glm::vec3 ground, glm::vec3 facing, float lean) {
+  constexpr float kCentreRadius = 0.3f;
+  constexpr float kPetalRadius = 0.18f;
+  constexpr float kTube = 0.03f;
+  constexpr float kPetalDistance = kCentreRadius + kPetalRadius;  // petals touch the centre ring
+  constexpr float kTilt = 0.45f;                                    // radians, every other petal
+  constexpr float kSink = 0.01f;                                    // into the snow
+  constexpr float kUvPerMetre = 1.0f;                               // the material's uv_scale sets the density
+  const glm::vec3 up(0, 1, 0);
+  const glm::vec3 across = glm::cross(up, facing);
+  const glm::vec3 flakeUp = std::cos(lean) * up - std::sin(lean) * facing;
+  const glm::vec3 flakeAxis = std::cos(lean) * facing + std::sin(lean) * up;
+  // The lowest point is the bottom petal's (untilted, in the flake's plane).
+  const float height = (kPetalDistance + kPetalRadius) * std::cos(lean) + kTube - kSink;
+  const glm::vec3 centre = ground + height * up;
+  scene.meshes.push_back(makeTorus("ornament centre", material, centre, flakeAxis, kCentreRadius, kTube, 96, 16, kUvPerMetre));
+  for (int petal = 0; petal < 6; ++petal) {
+    // Petal 0 points down, onto the snow.
+    const float angle = -0.5f * kPi + static_cast<float>(petal) * kPi / 3.0f;
+    const glm::vec3 radial = std::cos(angle) * across + std::sin(angle) * flakeUp;
+    // Tilting turns the petal's axis about its radial direction.
+    const float tilt = petal % 2 == 0 ? 0.0f : kTilt;
+    const glm::vec3 axis = std::cos(tilt) * flakeAxis + std::sin(tilt) * glm::cross(radial, flakeAxis);
+    scene.meshes.push_back(makeTorus("ornament petal", material, centre + kPetalDistance * radial, axis, kPetalRadius, kTube,
+                                     64, 16, kUvPerMetre));
+  }
+  return centre;
+}
+
 // ---- Lighting ---------------------------------------------------------------------------------
 
 Light pointLight(glm::vec3 position, glm::vec3 intensity) {
@@ -284,6 +462,14 @@ Environment sky(float intensity) {
     }
   }
   return environment;
+}
+
+// A unit vector `azimuthDegrees` to the left of -z (the built-in views' forward) and
+// `elevationDegrees` above the horizon.
+glm::vec3 horizonDirection(float azimuthDegrees, float elevationDegrees) {
+  const float azimuth = glm::radians(azimuthDegrees);
+  const float elevation = glm::radians(elevationDegrees);
+  return {-std::sin(azimuth) * std::cos(elevation), std::sin(elevation), -std::cos(azimuth) * std::cos(elevation)};
 }
 
 Camera camera(glm::vec3 position, glm::vec3 target, float fovDegrees = 45.0f) {
@@ -420,6 +606,50 @@ Scene grazingPlaneScene(const char* name, float alpha) {
 Scene grazingSmoothScene() { return grazingPlaneScene("grazing-smooth", 0.1f); }
 Scene grazingRoughScene() { return grazingPlaneScene("grazing-rough", 0.5f); }
 
+// The showcase for glint anti-aliasing and normal-map filtering, after the arctic teaser of
+// Chermain et al. 2021: a 64 x 64 m snow field whose tiling normal map (one 1.6 m tile, 256
+// texels, repeated 40 times) shrinks to many texels per pixel in the distance, a snowman and a
+// silver snowflake ornament of thin rings, a low sun ahead whose glitter band runs to the horizon.
+Scene arcticScene() {
+  Scene scene;
+  scene.name = "arctic";
+  constexpr float kField = 64.0f;
+  const float tiles = kField / static_cast<float>(kSnowTileMetres);
+  const int normalMap = addTexture(scene, snowNormalMap());
+  Material field = snow("snow field", 0.05f, kSnowGlintUvPerMetre * static_cast<float>(kSnowTileMetres));  // uv in tiles
+  field.normalTexture = normalMap;
+  const int snowField = addMaterial(scene, field);
+  const int snowBalls = addMaterial(scene, snow("snowman snow", 0.2f, kSnowGlintUvPerMetre));  // uv in metres
+  const int silver = addMaterial(scene, sparklySilver());
+  const int coal = addMaterial(scene, plainGrey("coal", 0.03f));
+  const int carrot = addMaterial(scene, matte("carrot", glm::vec3(0.8f, 0.25f, 0.03f)));
+
+  // The field runs from 8 m behind the camera to 56 m ahead of it.
+  const glm::vec3 cameraPosition(0.0f, 1.6f, 5.0f);
+  scene.meshes.push_back(makeQuad("snow field", snowField, glm::vec3(0.0f, 0.0f, -24.0f), {0.5f * kField, 0, 0},
+                                  {0, 0, 0.5f * kField}, glm::vec2(tiles)));
+  auto facingCamera = [&](glm::vec3 at) {
+    return glm::normalize(glm::vec3(cameraPosition.x - at.x, 0.0f, cameraPosition.z - at.z));
+  };
+  const glm::vec3 snowmanAt(1.3f, 0.0f, -2.0f);
+  addSnowman(scene, snowBalls, coal, carrot, snowmanAt, facingCamera(snowmanAt));
+  const glm::vec3 ornamentAt(-1.1f, 0.0f, -0.8f);
+  const glm::vec3 ornamentCentre = addSnowflakeOrnament(scene, silver, ornamentAt, facingCamera(ornamentAt), glm::radians(20.0f));
+
+  // The low sun, 16 degrees left of the view axis (-z), 12 degrees up: its glitter band runs from
+  // the horizon to the bottom left of the default view. The objects stand between the camera and
+  // the sun, lit from behind, where a thin tube shows the sun's highlight only in slivers under a
+  // pixel wide; so a cool fill from behind the camera, standing in for the bright sky there (the
+  // environment lights without glints), makes the snowman and the ornament glitter. Its mirror
+  // image on the snow lies behind the camera.
+  scene.lights.push_back(directionalLight(-horizonDirection(16.0f, 12.0f), glm::vec3(6.0f, 5.6f, 5.0f)));
+  scene.lights.push_back(directionalLight(-horizonDirection(160.0f, 30.0f), glm::vec3(1.5f, 1.65f, 1.9f)));
+  scene.environment = sky(0.4f);
+  setCameras(scene, camera(cameraPosition, {0.0f, 0.6f, -2.0f}));
+  scene.cameras["ornament"] = camera(ornamentCentre + 2.2f * facingCamera(ornamentAt) + glm::vec3(0.0f, 0.3f, 0.0f), ornamentCentre);
+  return scene;
+}
+
 struct BuiltinScene {
   const char* name;
   Scene (*make)();
@@ -432,6 +662,7 @@ constexpr BuiltinScene kBuiltinScenes[] = {
     {"showroom", showroomScene},
     {"grazing-smooth", grazingSmoothScene},
     {"grazing-rough", grazingRoughScene},
+    {"arctic", arcticScene},
 };
 
 std::string joinedNames() {

@@ -1,6 +1,8 @@
 // Procedural scenes that need no files (docs/scenes.md, "Built-in scenes"): the authors' red glint
-// sphere, a varnished parquet floor, car paint, and a showroom combining them with glittering stone
-// and curtains. Deterministic: the same name gives the same bytes on every run.
+// sphere, a varnished parquet floor, car paint, a showroom combining them with glittering stone
+// and curtains, two grazing views of a large glittering plane, and an arctic snow field with a
+// tiling normal map, a snowman and a silver ornament under a low sun. Deterministic: the same name
+// gives the same bytes on every run.
 #pragma once
 
 #include <string>
@@ -13,7 +15,7 @@ namespace glint::scene {
 // The scene `glint render` draws when none is named.
 inline constexpr const char* kDefaultScene = "showroom";
 
-// "sphere", "parquet", "carpaint", "showroom".
+// "sphere", "parquet", "carpaint", "showroom", "grazing-smooth", "grazing-rough", "arctic".
 std::vector<std::string> builtinSceneNames();
 bool isBuiltinScene(const std::string& name);
 // Throws Error listing the built-in names for an unknown name.

@@ -15,6 +15,14 @@ constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 // above float round-off of unit vectors' differences.
 constexpr float kDegenerate = 1e-20f;
 
+// The unit vector a fraction `turn` of a full turn from the unit vector `first` towards the unit
+// vector `second` (perpendicular to it). A whole turn gives `first` exactly (float's 2 pi would not
+// give cos 1, sin 0), so rings of vertices close without cracks.
+glm::vec3 turned(glm::vec3 first, glm::vec3 second, float turn) {
+  const float angle = turn >= 1.0f ? 0.0f : kTwoPi * turn;
+  return std::cos(angle) * first + std::sin(angle) * second;
+}
+
 }  // namespace
 
 glm::vec3 anyPerpendicular(glm::vec3 n) {
@@ -178,15 +186,38 @@ Mesh makeBox(std::string name, int material, glm::vec3 centre, glm::vec3 halfSiz
   return box;
 }
 
-Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings) {
+Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings,
+                  glm::vec2 uvExtent) {
   return makeParametricSurface(std::move(name), material, segments, rings, [=](float s, float t) {
     const float phi = kTwoPi * s;
     const float theta = std::numbers::pi_v<float> * t;
     // Exact zeros at the poles, so that their vertices coincide and their slivers are dropped.
     const float sinTheta = (t <= 0.0f || t >= 1.0f) ? 0.0f : std::sin(theta);
     const glm::vec3 direction(sinTheta * std::sin(phi), std::cos(theta), sinTheta * std::cos(phi));
-    return SurfacePoint{centre + radius * direction, direction, glm::vec2(s, t)};
+    return SurfacePoint{centre + radius * direction, direction, glm::vec2(s, t) * uvExtent};
   });
+}
+
+Mesh makeTorus(std::string name, int material, glm::vec3 centre, glm::vec3 axis, float majorRadius, float minorRadius,
+               int segments, int sides, float uvPerMetre) {
+  const glm::vec3 first = anyPerpendicular(axis);
+  const glm::vec3 second = glm::cross(axis, first);
+  const glm::vec2 uvExtent = uvPerMetre * kTwoPi * glm::vec2(majorRadius, minorRadius);
+  Mesh torus = makeParametricSurface(std::move(name), material, segments, sides, [=](float s, float t) {
+    // The last row and column repeat the first ones' positions exactly; only their uvs run on.
+    const glm::vec3 radial = turned(first, second, s);
+    const glm::vec3 normal = turned(radial, axis, t);
+    return SurfacePoint{centre + majorRadius * radial + minorRadius * normal, normal, glm::vec2(s, t) * uvExtent};
+  });
+  // The generated tangents follow the chords of the grid, which at the seam come from one side
+  // only (a segment's half angle off); the ring's own direction there is known exactly. The
+  // generated handedness stays.
+  for (Vertex& v : torus.vertices) {
+    const glm::vec3 offset = v.position - centre;
+    const glm::vec3 along = glm::normalize(glm::cross(axis, offset - axis * glm::dot(axis, offset)));
+    v.tangent = glm::vec4(along, v.tangent.w);
+  }
+  return torus;
 }
 
 Mesh makeLathe(std::string name, int material, glm::vec3 centre, int segments, int rings,
@@ -197,6 +228,18 @@ Mesh makeLathe(std::string name, int material, glm::vec3 centre, int segments, i
     const glm::vec3 radial(0.0f, std::cos(angle), std::sin(angle));
     return SurfacePoint{centre + glm::vec3(p.x, 0.0f, 0.0f) + p.radius * radial,
                         glm::vec3(p.normal.x, 0.0f, 0.0f) + p.normal.y * radial, glm::vec2(t, s)};
+  });
+}
+
+Mesh makeCone(std::string name, int material, glm::vec3 base, glm::vec3 axis, float baseRadius, float length, int segments) {
+  const glm::vec3 first = anyPerpendicular(axis);
+  const glm::vec3 second = glm::cross(axis, first);
+  return makeParametricSurface(std::move(name), material, segments, 1, [=](float s, float t) {
+    const glm::vec3 radial = turned(first, second, s);
+    const float radius = t >= 1.0f ? 0.0f : baseRadius * (1.0f - t);  // an exact zero closes the tip
+    // Perpendicular to the slant line, which runs -baseRadius along radial per length along axis.
+    const glm::vec3 normal = length * radial + baseRadius * axis;
+    return SurfacePoint{base + t * length * axis + radius * radial, normal, glm::vec2(s, t)};
   });
 }
 

@@ -1,5 +1,5 @@
 // Mesh building blocks shared by the glTF loader and the built-in scenes: the one tangent
-// generator, flat normals, and parametric surfaces (quads, boxes, UV spheres, lathes) with
+// generator, flat normals, and parametric surfaces (quads, boxes, UV spheres, tori, cones, lathes) with
 // analytic normals.
 #pragma once
 
@@ -53,9 +53,25 @@ Mesh makeQuad(std::string name, int material, glm::vec3 centre, glm::vec3 halfU,
 // An axis-aligned box, six outward quads; uvs in metres times uvPerMetre on each face.
 Mesh makeBox(std::string name, int material, glm::vec3 centre, glm::vec3 halfSize, float uvPerMetre);
 
-// A UV sphere: uv = (phi / 2 pi, theta / pi) with theta from the +y pole, phi = 0 at +z and growing
-// towards +x, so that the texture is not mirrored seen from outside.
-Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings);
+// A UV sphere: uv = (phi / 2 pi, theta / pi) * uvExtent with theta from the +y pole, phi = 0 at +z
+// and growing towards +x, so that the texture is not mirrored seen from outside. uvExtent
+// (2 pi r, pi r) gives uvs in metres along the equator and the meridians.
+Mesh makeUvSphere(std::string name, int material, glm::vec3 centre, float radius, int segments, int rings,
+                  glm::vec2 uvExtent = glm::vec2(1.0f));
+
+// A torus (a ring of tube): the circle of radius majorRadius around `centre` in the plane
+// perpendicular to the unit vector `axis`, swept by a tube of radius minorRadius, `segments` quads
+// around the ring and `sides` around the tube. uv in metres times uvPerMetre: u = arc length
+// along the ring's centre line (the tangent runs along it), v = arc length around the tube, so
+// that a texture or a glint pattern keeps its proportions on a thin tube. The ring starts
+// (u = 0) at anyPerpendicular(axis) from the centre.
+Mesh makeTorus(std::string name, int material, glm::vec3 centre, glm::vec3 axis, float majorRadius, float minorRadius,
+               int segments, int sides, float uvPerMetre = 1.0f);
+
+// A cone from the circle of radius baseRadius around `base` in the plane perpendicular to the unit
+// vector `axis` to its tip at base + length * axis, open at the base: uv = (angle / 2 pi, t) with
+// t from the base (0) to the tip (1); the tip's coincident vertices leave no slivers.
+Mesh makeCone(std::string name, int material, glm::vec3 base, glm::vec3 axis, float baseRadius, float length, int segments);
 
 // A point of a lathe profile at t in [0, 1]: its abscissa along the axis, its radius (>= 0) and
 // the profile's outward normal in the (axis, radius) plane.
