@@ -92,6 +92,7 @@ scene::Scene texturedTestScene() {
   textured.emissiveTexture = 4;
   textured.glint.enabled = true;
   textured.glint.alpha = glm::vec2(0.3f, 0.2f);
+  textured.glint.rho = -0.35f;
   textured.glint.logDensity = 18.5f;
   textured.glint.relativeArea = 0.6f;
   textured.glint.densityRandomisation = 1.5f;

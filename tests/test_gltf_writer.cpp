@@ -98,6 +98,7 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     ASSERT_EQ(g.enabled, h.enabled);
     if (!g.enabled) continue;
     EXPECT_EQ(g.alpha, h.alpha);
+    EXPECT_EQ(g.rho, h.rho);
     EXPECT_EQ(g.logDensity, h.logDensity);
     EXPECT_EQ(g.relativeArea, h.relativeArea);
     EXPECT_EQ(g.densityRandomisation, h.densityRandomisation);

@@ -25,6 +25,7 @@ struct AaErrorOptions {
   int sequence = 32;
   std::string camera = "default";
   std::string dictionary;
+  float aaKernel = 1.0f;
   bool json = false;
 };
 
@@ -50,10 +51,16 @@ Frame glintLayer(gl::Renderer& renderer, gl::FrameSettings frame) {
   return glint;
 }
 
-double mean(const Frame& frame) {
-  double sum = 0.0;
-  for (double v : frame) sum += v;
-  return sum / static_cast<double>(frame.size());
+// The values where the glint layer shows in the reference (its glint and Cook-Torrance frames
+// differ): the pixels the metrics are taken over.
+std::vector<std::size_t> glintValues(const Frame& referenceLayer) {
+  std::vector<std::size_t> values;
+  for (std::size_t p = 0; p + 2 < referenceLayer.size(); p += 3) {
+    if (referenceLayer[p] != 0.0 || referenceLayer[p + 1] != 0.0 || referenceLayer[p + 2] != 0.0) {
+      for (std::size_t c = 0; c < 3; ++c) values.push_back(p + c);
+    }
+  }
+  return values;
 }
 
 struct ModeResult {
@@ -70,25 +77,38 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   frame.brdf = gl::BrdfModel::Glint;
   frame.camera = scene.cameras.at(options.camera);
 
-  // The reference: the mean of N jittered frames of the 2020 model (glint render --reference N).
+  // The reference: the mean of N jittered frames of the 2020 model (glint render --reference N),
+  // its glint layer and its full glint frame.
   frame.antiAliasing = gl::AntiAliasing::None;
+  frame.filterScale = options.aaKernel;
   Frame reference(static_cast<std::size_t>(width) * height * 3, 0.0);
+  Frame referenceRadiance(reference.size(), 0.0);
   for (int k = 0; k < options.reference; ++k) {
     frame.jitter = gl::supersampleJitter(k);
+    const Frame radiance = renderFrame(renderer, frame);
     const Frame layer = glintLayer(renderer, frame);
-    for (std::size_t i = 0; i < reference.size(); ++i) reference[i] += layer[i] / options.reference;
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      reference[i] += layer[i] / options.reference;
+      referenceRadiance[i] += radiance[i] / options.reference;
+    }
   }
-  const double referenceMean = mean(reference);
+  // Errors are relative to the reference's mean radiance where its glint layer shows.
+  const std::vector<std::size_t> values = glintValues(reference);
+  if (values.empty()) throw Error("scene '" + scene.name + "' shows no glint layer from camera '" + options.camera + "'");
+  double referenceMean = 0.0;
+  for (std::size_t i : values) referenceMean += referenceRadiance[i] / static_cast<double>(values.size());
 
-  nlohmann::json entry = {{"scene", scene.name}, {"reference_mean", referenceMean}};
+  nlohmann::json entry = {{"scene", scene.name},
+                          {"reference_mean", referenceMean},
+                          {"glint_pixels", values.size() / 3}};
   for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
     frame.antiAliasing = mode;
     frame.jitter = glm::vec2(0.0f);
     const Frame centre = glintLayer(renderer, frame);
     double squared = 0.0;
-    for (std::size_t i = 0; i < centre.size(); ++i) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
+    for (std::size_t i : values) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
     ModeResult result{};
-    result.relativeRmse = std::sqrt(squared / static_cast<double>(centre.size())) / referenceMean;
+    result.relativeRmse = std::sqrt(squared / static_cast<double>(values.size())) / referenceMean;
     // Sub-pixel drift: the camera moves one pixel along a slanted line over the sequence.
     std::vector<double> sum(centre.size(), 0.0), sumSquares(centre.size(), 0.0);
     for (int k = 0; k < options.sequence; ++k) {
@@ -101,11 +121,11 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
       }
     }
     double deviation = 0.0;
-    for (std::size_t i = 0; i < sum.size(); ++i) {
+    for (std::size_t i : values) {
       const double m = sum[i] / options.sequence;
       deviation += std::sqrt(std::max(0.0, sumSquares[i] / options.sequence - m * m));
     }
-    result.relativeFlicker = deviation / static_cast<double>(sum.size()) / referenceMean;
+    result.relativeFlicker = deviation / static_cast<double>(values.size()) / referenceMean;
     entry[gl::toString(mode)] = {{"relative_rmse", result.relativeRmse}, {"relative_flicker", result.relativeFlicker}};
   }
   return entry;
@@ -115,6 +135,7 @@ void runAaError(const AaErrorOptions& options) {
   const auto [width, height] = parseImageSize(options.size);
   if (options.reference < 1 || options.reference > 65536) throw Error("--reference must be in [1, 65536]");
   if (options.sequence < 2 || options.sequence > 4096) throw Error("--sequence must be in [2, 4096]");
+  if (!(options.aaKernel >= 0.0f && options.aaKernel <= 16.0f)) throw Error("--aa-kernel must be in [0, 16]");
   const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
@@ -128,6 +149,7 @@ void runAaError(const AaErrorOptions& options) {
   const Dictionary dictionary = sceneOptions.loadDictionary();
   gl::HeadlessContext context;
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},
+                           {"aa_kernel", options.aaKernel},
                            {"size", options.size},
                            {"reference_frames", options.reference},
                            {"sequence_frames", options.sequence},
@@ -169,6 +191,8 @@ void registerAaErrorCommand(CLI::App& app) {
   command->add_option("--sequence", options->sequence, "Frames of sub-pixel camera drift for the flicker")
       ->capture_default_str();
   command->add_option("--camera", options->camera, "Camera preset (every scene must have it)")->capture_default_str();
+  command->add_option("--aa-kernel", options->aaKernel, "Size of the anti-aliasing kernel (as glint render's)")
+      ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runAaError(*options); });

@@ -32,14 +32,17 @@ struct ViewOptions {
   int height = 720;
   int frames = 0;          // 0: until the window closes
   std::string screenshot;  // written after the last frame
+  std::string antiAliasing = "ggaa";
 };
 
 // The parameters the sliders edit, applied to every glint layer of the scene.
 struct Controls {
   glm::vec2 alpha{0.5f};
+  float rho = 0.0f;
   float logDensity = 27.0f;
   float relativeArea = 1.0f;
   int brdf = 0;  // index into gl::allBrdfModels()
+  int antiAliasing = 1;  // index into gl::allAntiAliasingModes()
   float lightAzimuth = 0.6f;
   float lightElevation = 0.9f;
   float lightScale = 1.0f;
@@ -114,9 +117,12 @@ void runView(const ViewOptions& options) {
   ImGuiSession imgui(window.window());
 
   Controls controls;
+  const gl::AntiAliasing initialAntiAliasing = gl::antiAliasingFromString(options.antiAliasing);
+  controls.antiAliasing = initialAntiAliasing == gl::AntiAliasing::None ? 0 : 1;
   for (const scene::Material& m : scene.materials) {
     if (!m.glint.enabled) continue;
     controls.alpha = m.glint.alpha;
+    controls.rho = m.glint.rho;
     controls.logDensity = m.glint.logDensity;
     controls.relativeArea = m.glint.relativeArea;
     break;
@@ -140,6 +146,7 @@ void runView(const ViewOptions& options) {
     for (scene::Material& m : renderer.materials()) {
       if (!m.glint.enabled) continue;
       m.glint.alpha = controls.alpha;
+      m.glint.rho = controls.rho;
       m.glint.logDensity = controls.logDensity;
       m.glint.relativeArea = controls.relativeArea;
     }
@@ -167,6 +174,7 @@ void runView(const ViewOptions& options) {
     frame.width = width;
     frame.height = height;
     frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(controls.brdf)];
+    frame.antiAliasing = gl::allAntiAliasingModes()[static_cast<std::size_t>(controls.antiAliasing)];
     frame.camera = viewCamera;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
@@ -189,6 +197,17 @@ void runView(const ViewOptions& options) {
     ImGui::Combo("BRDF", &controls.brdf, brdfNames.data(), static_cast<int>(brdfNames.size()));
     ImGui::SliderFloat("roughness x", &controls.alpha.x, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("roughness y", &controls.alpha.y, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("slope correlation", &controls.rho, -kMaxSlopeCorrelation, kMaxSlopeCorrelation, "%.2f");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip("rho in [-0.99, 0.99]: the Beckmann target's slope correlation; 0 is the 2020 model");
+    }
+    std::vector<const char*> antiAliasingNames;
+    for (gl::AntiAliasing mode : gl::allAntiAliasingModes()) antiAliasingNames.push_back(gl::toString(mode));
+    ImGui::Combo("anti-aliasing", &controls.antiAliasing, antiAliasingNames.data(),
+                 static_cast<int>(antiAliasingNames.size()));
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip("ggaa: glints filtered by the half vector's variation over the pixel; none: the 2020 model");
+    }
     ImGui::SliderFloat("log density", &controls.logDensity, 10.0f, 45.0f, "%.1f");
     ImGui::SliderFloat("relative area", &controls.relativeArea, 0.01f, 1.0f, "%.2f");
     ImGui::SliderAngle("light azimuth", &controls.lightAzimuth, -180.0f, 180.0f);
@@ -234,6 +253,8 @@ void registerViewCommand(CLI::App& app) {
   command->add_option("--width", options->width, "Window width")->capture_default_str();
   command->add_option("--height", options->height, "Window height")->capture_default_str();
   command->add_option("--frames", options->frames, "Close after this many frames (0: when the window is closed)")
+      ->capture_default_str();
+  command->add_option("--aa", options->antiAliasing, "Glint anti-aliasing at start: ggaa or none")
       ->capture_default_str();
   command->add_option("--screenshot", options->screenshot, "With --frames N: write frame N, sliders included, to a PNG");
   command->callback([options] { runView(*options); });

@@ -42,6 +42,7 @@ tinygltf::Value pair(glm::vec2 value) {
 tinygltf::Value glintExtras(const GlintLayer& layer) {
   tinygltf::Value::Object glint;
   glint["alpha"] = pair(layer.alpha);
+  glint["rho"] = number(layer.rho);
   glint["log_density"] = number(layer.logDensity);
   glint["relative_area"] = number(layer.relativeArea);
   glint["density_randomisation"] = number(layer.densityRandomisation);
