@@ -110,17 +110,7 @@ TEST(SlopeCorrelationStat, MeanOverCellsConvergesToTheCorrelatedBeckmann) {
   const CookTorranceBsdf uncorrelated(alpha, 0.0f);
   for (glm::vec2 slopeOverAlpha : {glm::vec2(0.0f), glm::vec2(0.5f, 0.5f), glm::vec2(-0.4f, 0.6f)}) {
     const glm::vec3 m = glm::normalize(glm::vec3(-slopeOverAlpha * alpha, 1.0f));
-    Pcg32 rng(99, 5);
-    constexpr int kPositions = 20000;
-    double sum = 0.0;
-    for (int i = 0; i < kPositions; ++i) {
-      SurfaceFootprint footprint;
-      footprint.uv = glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f));
-      footprint.duvdx = glm::vec2(1e-3f, 0.0f);
-      footprint.duvdy = glm::vec2(0.0f, 1e-3f);
-      sum += GlintBsdf(defaultDictionary(), parameters, footprint).ndf(m);
-    }
-    const double mean = sum / kPositions;
+    const double mean = meanNdfOverPositions(parameters, m, 20000, 5);
     EXPECT_NEAR(mean / target.ndf(m), 1.0, 0.02) << "slope/alpha " << slopeOverAlpha.x << "," << slopeOverAlpha.y;
     if (slopeOverAlpha != glm::vec2(0.0f)) {
       EXPECT_GT(std::abs(mean / uncorrelated.ndf(m) - 1.0), 0.1) << "the correlation must show";

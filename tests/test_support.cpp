@@ -105,6 +105,19 @@ double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, gl
   return sum * hx * hy;
 }
 
+double meanNdfOverPositions(const GlintParameters& parameters, glm::vec3 m, int positions, std::uint64_t stream) {
+  Pcg32 rng(99, stream);
+  double sum = 0.0;
+  for (int i = 0; i < positions; ++i) {
+    SurfaceFootprint footprint;
+    footprint.uv = glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f));
+    footprint.duvdx = glm::vec2(1e-3f, 0.0f);
+    footprint.duvdy = glm::vec2(0.0f, 1e-3f);
+    sum += GlintBsdf(defaultDictionary(), parameters, footprint).ndf(m);
+  }
+  return sum / positions;
+}
+
 glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha, float rho) {
   const float support = dictionary.parameters().slopeDomain() * std::sqrt(2.0f) / dictionary.parameters().alpha;
   // A correlated cell maps the disc of that radius by M (glintCorrelatedScale): x reaches

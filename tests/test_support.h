@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -43,6 +44,10 @@ float uniform(Pcg32& rng, float low, float high);
 SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength);
 // A unit direction in the upper hemisphere with the given polar angle and a random azimuth.
 glm::vec3 directionAt(float thetaRadians, float phiRadians);
+
+// The mean of the glint P-NDF at m over `positions` random uv positions in [0, 1)^2 (PCG32 stream
+// `stream` of seed 99), each with a square footprint of 1e-3 uv.
+double meanNdfOverPositions(const GlintParameters& parameters, glm::vec3 m, int positions, std::uint64_t stream);
 
 // Midpoint rule over [-extent.x, extent.x] x [-extent.y, extent.y] with cells x cells samples, in
 // parallel: the integral of a function of slope.
