@@ -4,7 +4,9 @@
 // per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
 // SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
 // glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), glint
-// programs that anti-alias their glints (GLINT_FILTERED = 1, glint_antialiasing.h) theirs, and so do
+// programs that anti-alias their glints (GLINT_FILTERED = 1, glint_antialiasing.h) theirs, those
+// that also filter their normal map (GLINT_LEAN = 1, normal_map_filtering.h) or read it at its
+// finest level (NORMAL_MAP_FINEST = 1, the anti-aliasing reference) theirs, and so do
 // glTF alphaMode MASK materials (ALPHA_MASK = 1), materials with KHR_texture_transform
 // (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
 // compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
@@ -15,6 +17,7 @@
 // One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
+#include "normal_map_filtering.h"
 #include "lights.h"
 #include "environment.glsl"
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
@@ -39,6 +42,11 @@ layout(binding = 5) uniform sampler2D uOcclusionTexture;
 layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
 layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
 layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
+#if GLINT_LEAN
+// The normal map's slope moments (normal_map_filtering.h): (E[sx], E[sy], E[sx^2]), (E[sy^2], E[sx sy], 0).
+layout(binding = 11) uniform sampler2D uLeanFirstMoments;
+layout(binding = 12) uniform sampler2D uLeanSecondMoments;
+#endif
 
 uniform vec4 uCameraPoint;  // the camera's position (w = 1), or for an orthographic camera the direction towards it (w = 0)
 uniform vec4 uBaseColour;
@@ -122,8 +130,22 @@ void main() {
   vec3 n = normalize(vNormal);
   vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
   vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
+#if GLINT_LEAN
+  // The footprint's mean slope (the moments were made with the normal scale applied); the slopes'
+  // covariance widens the glint layer below.
+  vec2 leanUv = TEXTURE_UV(uNormalUv);
+  vec3 leanFirst = texture(uLeanFirstMoments, leanUv).xyz;
+  vec3 leanSecond = texture(uLeanSecondMoments, leanUv).xyz;
+  float leanLambda = textureLevelOfDetail(dFdx(leanUv), dFdy(leanUv), vec2(textureSize(uLeanFirstMoments, 0)));
+  vec3 mapped = leanMeanNormal(leanFirst);
+#else
+#if NORMAL_MAP_FINEST
+  vec3 mapped = textureLod(uNormalTexture, TEXTURE_UV(uNormalUv), 0.0f).xyz * 2.0f - 1.0f;
+#else
   vec3 mapped = texture(uNormalTexture, TEXTURE_UV(uNormalUv)).xyz * 2.0f - 1.0f;
+#endif
   mapped.xy *= uNormalScale;
+#endif
   n = normalize(mat3(t, b, n) * mapped);
   if (dot(n, view) < 0.0f) {
     n = -n;
@@ -145,6 +167,16 @@ void main() {
   // A compile-time switch (one program per variant, src/gl/renderer.cpp): llvmpipe executes both
   // sides of a branch, so a uniform would make every glint material pay for the colours.
   params.colouredCells = GLINT_COLOURED_CELLS != 0;
+#if GLINT_LEAN
+  // The normal map's slope covariance over the footprint, measured in the tangent frame, added to
+  // the glint layer's in the tilted shading frame (a small-tilt approximation, as the authors'),
+  // correlation included. (Filtering the glints by it instead, as by the pixel's own kernel, was
+  // measured and did worse: docs/antialiasing.md, "Normal-map filtering".)
+  vec3 leanRoughness =
+      leanCombinedRoughness(params.alpha, params.rho, leanSlopeCovariance(leanFirst, leanSecond, leanLambda));
+  params.alpha = vec2(leanRoughness.x, leanRoughness.y);
+  params.rho = leanRoughness.z;
+#endif
   DictionaryView dict = glintDictionary();
 
   vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);

@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 
 #include <gtest/gtest.h>
 
 #include "error.h"
+#include "glint/kernel/normal_map_filtering.h"
+#include "scene/builtin_scenes.h"
+#include "scene/normal_map_moments.h"
 #include "test_support.h"
+#include "trace/texture.h"
 
 namespace glint {
 namespace {
@@ -421,6 +426,116 @@ TEST(GlintAntiAliasing, NoNanOrInfinityAtTheLimits) {
       }
     }
   }
+}
+
+// ---- Normal-map filtering ---------------------------------------------------------------------
+
+// A normal map of size x size whose tangent-space normal at texel (x, y) is `normal(x, y)`.
+scene::Texture normalTexture(int size, const std::function<glm::vec3(int, int)>& normal) {
+  scene::Texture t{"test normals", size, size, std::vector<std::uint8_t>(static_cast<std::size_t>(size) * size * 4, 255), false};
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const glm::vec3 n = glm::normalize(normal(x, y));
+      for (int c = 0; c < 3; ++c) {
+        t.rgba[4 * (static_cast<std::size_t>(y) * size + x) + static_cast<std::size_t>(c)] =
+            static_cast<std::uint8_t>(std::lround((n[c] * 0.5f + 0.5f) * 255.0f));
+      }
+    }
+  }
+  return t;
+}
+
+TEST(NormalMapFiltering, ConstantNormalMapChangesNothing) {
+  // One tilted normal everywhere: no covariance at any footprint, so the roughness stays exactly,
+  // and the mean normal is the texel's normal as the unfiltered shader decodes it.
+  const scene::Texture t = normalTexture(8, [](int, int) { return glm::vec3(0.3f, -0.2f, 1.0f); });
+  const scene::NormalMapMoments m = scene::normalMapMoments(t, 1.0f);
+  const trace::MipTexture first(m.width, m.height, m.first), second(m.width, m.height, m.second);
+  for (float footprint : {0.01f, 0.2f, 1.0f, 5.0f}) {
+    const glm::vec2 dx(footprint, 0.0f), dy(0.0f, footprint);
+    const glm::vec3 a = first.sample(glm::vec2(0.3f, 0.6f), dx, dy);
+    const glm::vec3 b = second.sample(glm::vec2(0.3f, 0.6f), dx, dy);
+    const glm::vec3 covariance = kernel::leanSlopeCovariance(a, b, first.levelOfDetail(dx, dy));
+    EXPECT_LE(std::abs(covariance.x) + std::abs(covariance.y) + std::abs(covariance.z), 1e-6f) << footprint;
+    const glm::vec3 alphaRho = kernel::leanCombinedRoughness(glm::vec2(0.05f, 0.3f), 0.2f, glm::vec3(0.0f));
+    EXPECT_EQ(alphaRho, glm::vec3(0.05f, 0.3f, 0.2f));
+    glm::vec3 decoded;
+    for (int c = 0; c < 3; ++c) decoded[c] = static_cast<float>(t.rgba[static_cast<std::size_t>(c)]) / 255.0f * 2.0f - 1.0f;
+    const glm::vec3 mean = kernel::leanMeanNormal(a);
+    EXPECT_NEAR(glm::dot(mean, glm::normalize(decoded)), 1.0f, 1e-6f) << footprint;
+  }
+}
+
+TEST(NormalMapFiltering, MomentMipsAreBoxAveragesWithNonNegativeVariance) {
+  // The arctic snow's normal map: at every level of the moments' chain, every texel's variances
+  // E[s^2] - E[s]^2 are non-negative, and the mean variance grows with the level (the law of total
+  // variance: a coarser texel adds the spread of its four children's means).
+  const scene::Scene arctic = scene::makeBuiltinScene("arctic");
+  const scene::Material* snow = nullptr;
+  for (const scene::Material& material : arctic.materials) {
+    if (material.normalTexture >= 0 && material.glint.enabled) snow = &material;
+  }
+  ASSERT_NE(snow, nullptr);
+  const scene::NormalMapMoments m =
+      scene::normalMapMoments(arctic.textures[static_cast<std::size_t>(snow->normalTexture)], snow->normalScale);
+  const trace::MipTexture first(m.width, m.height, m.first), second(m.width, m.height, m.second);
+  double previous = -1.0;
+  for (int level = 0; level < first.levelCount(); ++level) {
+    const int size = std::max(1, m.width >> level);
+    double meanVariance = 0.0;
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        const glm::vec2 uv((x + 0.5f) / size, (y + 0.5f) / size);
+        const glm::vec3 a = first.bilinear(level, uv), b = second.bilinear(level, uv);
+        const float vx = a.z - a.x * a.x, vy = b.x - a.y * a.y;
+        ASSERT_GE(vx, -1e-6f) << "level " << level;
+        ASSERT_GE(vy, -1e-6f) << "level " << level;
+        meanVariance += (vx + vy) / (static_cast<double>(size) * size);
+      }
+    }
+    EXPECT_GE(meanVariance, previous - 1e-7) << "level " << level;
+    previous = meanVariance;
+  }
+  EXPECT_GT(previous, 1e-3);  // the map has slopes to filter
+}
+
+TEST(NormalMapFiltering, RidgeKeepsItsVarianceAlongOneAxis) {
+  // Ridges along v: slopes vary in x only. The covariance keeps x's variance and none in y, and
+  // only alpha_x widens (the authors' shader drops both when either is small).
+  const scene::Texture t = normalTexture(16, [](int x, int) { return glm::vec3(x % 2 ? 0.4f : -0.4f, 0.0f, 1.0f); });
+  const scene::NormalMapMoments m = scene::normalMapMoments(t, 1.0f);
+  const trace::MipTexture first(m.width, m.height, m.first), second(m.width, m.height, m.second);
+  const glm::vec2 dx(0.25f, 0.0f), dy(0.0f, 0.25f);  // 4 texels: level 2
+  const glm::vec3 covariance = kernel::leanSlopeCovariance(first.sample({0.5f, 0.5f}, dx, dy),
+                                                           second.sample({0.5f, 0.5f}, dx, dy), first.levelOfDetail(dx, dy));
+  const float slope = 0.4f / std::sqrt(1.0f - 0.0f);  // |n.x / n.z| of the decoded texels, about 0.4
+  EXPECT_NEAR(covariance.x, slope * slope, 0.02f);
+  EXPECT_NEAR(covariance.z, 0.0f, 1e-5f);
+  EXPECT_NEAR(covariance.y, 0.0f, 1e-5f);
+  const glm::vec3 combined = kernel::leanCombinedRoughness(glm::vec2(0.1f), 0.0f, covariance);
+  EXPECT_GT(combined.x, 0.5f);
+  EXPECT_NEAR(combined.y, 0.1f, 1e-5f);
+}
+
+TEST(NormalMapFiltering, MagnifiedFootprintsAddNoRoughness) {
+  // Below a texel the covariance scales with the footprint's area in texels, 4^lambda.
+  const glm::vec3 first(0.1f, 0.0f, 0.02f), second(0.01f, 0.0f, 0.0f);
+  const glm::vec3 at0 = kernel::leanSlopeCovariance(first, second, 0.0f);
+  EXPECT_NEAR(kernel::leanSlopeCovariance(first, second, -1.0f).x, 0.25f * at0.x, 1e-7f);
+  EXPECT_NEAR(kernel::leanSlopeCovariance(first, second, -3.0f).z, at0.z / 64.0f, 1e-7f);
+  EXPECT_EQ(kernel::leanSlopeCovariance(first, second, 2.0f), at0);
+  EXPECT_LT(kernel::leanSlopeCovariance(first, second, -128.0f).x, 1e-30f);
+}
+
+TEST(NormalMapFiltering, CombinedRoughnessAddsTheCovariances) {
+  // Rebuilding the covariance from the combined (alpha, rho) gives Sigma_material + Sigma_map.
+  const glm::vec2 alpha(0.2f, 0.35f);
+  const float rho = -0.3f;
+  const glm::vec3 map(0.01f, 0.004f, 0.02f);
+  const glm::vec3 combined = kernel::leanCombinedRoughness(alpha, rho, map);
+  const glm::vec3 rebuilt = kernel::beckmannSlopeCovariance(glm::vec2(combined), combined.z);
+  const glm::vec3 expected = kernel::beckmannSlopeCovariance(alpha, rho) + map;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(rebuilt[c], expected[c], 1e-6f) << c;
 }
 
 }  // namespace

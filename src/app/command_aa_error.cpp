@@ -41,14 +41,14 @@ Frame renderFrame(gl::Renderer& renderer, gl::FrameSettings frame) {
   return rgb;
 }
 
-// The glint layer's radiance: a glint frame minus the Cook-Torrance frame of the same view, so that
-// what both share (diffuse light, the environment, geometric edges) cancels.
-Frame glintLayer(gl::Renderer& renderer, gl::FrameSettings frame) {
-  Frame glint = renderFrame(renderer, frame);
+// The glint layer's radiance: a glint frame minus the Cook-Torrance frame of the same view; where
+// it is not zero, the metrics look.
+Frame glintLayer(gl::Renderer& renderer, gl::FrameSettings frame, const Frame& glint) {
   frame.brdf = gl::BrdfModel::CookTorrance;
   const Frame smooth = renderFrame(renderer, frame);
-  for (std::size_t i = 0; i < glint.size(); ++i) glint[i] -= smooth[i];
-  return glint;
+  Frame layer = glint;
+  for (std::size_t i = 0; i < layer.size(); ++i) layer[i] -= smooth[i];
+  return layer;
 }
 
 // The values where the glint layer shows in the reference (its glint and Cook-Torrance frames
@@ -78,15 +78,16 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   frame.camera = scene.cameras.at(options.camera);
 
   // The reference: the mean of N jittered frames of the 2020 model (glint render --reference N),
-  // its glint layer and its full glint frame.
+  // and of their glint layers, which say where the metrics look.
   frame.antiAliasing = gl::AntiAliasing::None;
+  frame.normalMapFinestLevel = true;
   frame.filterScale = options.aaKernel;
   Frame reference(static_cast<std::size_t>(width) * height * 3, 0.0);
   Frame referenceRadiance(reference.size(), 0.0);
   for (int k = 0; k < options.reference; ++k) {
     frame.jitter = gl::supersampleJitter(k);
     const Frame radiance = renderFrame(renderer, frame);
-    const Frame layer = glintLayer(renderer, frame);
+    const Frame layer = glintLayer(renderer, frame, radiance);
     for (std::size_t i = 0; i < reference.size(); ++i) {
       reference[i] += layer[i] / options.reference;
       referenceRadiance[i] += radiance[i] / options.reference;
@@ -94,6 +95,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   }
   // Errors are relative to the reference's mean radiance where its glint layer shows.
   const std::vector<std::size_t> values = glintValues(reference);
+  reference = referenceRadiance;
   if (values.empty()) throw Error("scene '" + scene.name + "' shows no glint layer from camera '" + options.camera + "'");
   double referenceMean = 0.0;
   for (std::size_t i : values) referenceMean += referenceRadiance[i] / static_cast<double>(values.size());
@@ -101,10 +103,11 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   nlohmann::json entry = {{"scene", scene.name},
                           {"reference_mean", referenceMean},
                           {"glint_pixels", values.size() / 3}};
+  frame.normalMapFinestLevel = false;
   for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
     frame.antiAliasing = mode;
     frame.jitter = glm::vec2(0.0f);
-    const Frame centre = glintLayer(renderer, frame);
+    const Frame centre = renderFrame(renderer, frame);
     double squared = 0.0;
     for (std::size_t i : values) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
     ModeResult result{};
@@ -114,7 +117,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     for (int k = 0; k < options.sequence; ++k) {
       const float t = (static_cast<float>(k) + 0.5f) / static_cast<float>(options.sequence) - 0.5f;
       frame.jitter = t * glm::vec2(1.0f, 0.37f);
-      const Frame layer = glintLayer(renderer, frame);
+      const Frame layer = renderFrame(renderer, frame);
       for (std::size_t i = 0; i < layer.size(); ++i) {
         sum[i] += layer[i];
         sumSquares[i] += layer[i] * layer[i];
@@ -166,14 +169,27 @@ void runAaError(const AaErrorOptions& options) {
   }
   std::printf("glint layer against the %d-frame reference at %s (%s); flicker over %d frames of sub-pixel drift\n",
               options.reference, options.size.c_str(), report["renderer"].get<std::string>().c_str(), options.sequence);
-  std::printf("%-16s %12s %12s %10s %14s %14s %10s\n", "scene", "RMSE none", "RMSE ggaa", "ratio", "flicker none",
-              "flicker ggaa", "ratio");
+  // Each mode's RMSE and flicker, and both as ratios to the 2020 model's (none).
+  std::printf("%-16s", "scene");
+  for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+    std::printf(" %22s", (std::string("RMSE ") + gl::toString(mode)).c_str());
+  }
+  for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+    std::printf(" %22s", (std::string("flicker ") + gl::toString(mode)).c_str());
+  }
+  std::printf("\n");
   for (const auto& entry : report["scenes"]) {
-    const double rmseNone = entry["none"]["relative_rmse"], rmseGgaa = entry["ggaa"]["relative_rmse"];
-    const double flickerNone = entry["none"]["relative_flicker"], flickerGgaa = entry["ggaa"]["relative_flicker"];
-    std::printf("%-16s %11.1f%% %11.1f%% %10.3f %13.1f%% %13.1f%% %10.3f\n",
-                entry["scene"].get<std::string>().c_str(), 100.0 * rmseNone, 100.0 * rmseGgaa, rmseGgaa / rmseNone,
-                100.0 * flickerNone, 100.0 * flickerGgaa, flickerGgaa / flickerNone);
+    std::printf("%-16s", entry["scene"].get<std::string>().c_str());
+    for (const char* metric : {"relative_rmse", "relative_flicker"}) {
+      const double none = entry["none"][metric];
+      for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+        const double value = entry[gl::toString(mode)][metric];
+        char cell[64];
+        std::snprintf(cell, sizeof cell, "%.1f%% (%.3f)", 100.0 * value, value / none);
+        std::printf(" %22s", cell);
+      }
+    }
+    std::printf("\n");
   }
 }
 

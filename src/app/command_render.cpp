@@ -20,7 +20,7 @@ struct RenderOptions {
   std::string output;
   std::string size = "512x512";
   std::string brdf = "glint";
-  std::string antiAliasing = "ggaa";
+  std::string antiAliasing = "ggaa+lean";
   float aaKernel = 1.0f;
   int spp = 1;
   int reference = 0;
@@ -57,6 +57,7 @@ void runRender(const RenderOptions& options) {
   frame.height = height;
   frame.brdf = brdf;
   frame.antiAliasing = antiAliasing;
+  frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
   frame.camera = options.scene.findCamera(scene);
   const bool progress = spp > 1 && isatty(STDERR_FILENO);
@@ -87,8 +88,8 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
       ->capture_default_str();
   command->add_option("--aa", options->antiAliasing,
-                      "Glint anti-aliasing: ggaa (filtered by the half vector's variation over the pixel) or none "
-                      "(the 2020 model)")
+                      "Glint anti-aliasing: ggaa+lean (the glints filtered by the half vector's variation over the "
+                      "pixel and the normal map's slope variance), ggaa (the former only) or none (the 2020 model)")
       ->capture_default_str();
   command->add_option("--aa-kernel", options->aaKernel,
                       "Size of the anti-aliasing kernel: 1 matches the pixel's box, 0 filters nothing")
@@ -96,7 +97,8 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--spp", options->spp, "Jittered samples per pixel, averaged: a supersampled reference")
       ->capture_default_str();
   command->add_option("--reference", options->reference,
-                      "The anti-aliasing reference: the mean of N jittered frames of the 2020 model (--aa none)");
+                      "The anti-aliasing reference: the mean of N jittered frames of the 2020 model (--aa none), "
+                      "normal maps at their finest level");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   command->callback([options] { runRender(*options); });
 }

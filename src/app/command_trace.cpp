@@ -32,6 +32,7 @@ struct TraceOptions {
   int maxDepth = 4;
   bool directOnly = false;
   bool pixelCentres = false;
+  bool unfilteredNormalMaps = false;
   float exposure = 1.0f;
   int threads = 0;
 };
@@ -92,6 +93,7 @@ void runTrace(const TraceOptions& options) {
   settings.sampler = trace::glintSamplerFromString(options.sampler);
   settings.directOnly = options.directOnly;
   settings.pixelCentres = options.pixelCentres;
+  settings.normalMapFiltering = !options.unfilteredNormalMaps;
   trace::validateTraceSettings(settings);
   const std::filesystem::path exrPath = options.output;
   if (lowercaseExtension(exrPath) != ".exr") {
@@ -159,6 +161,9 @@ void registerTraceCommand(CLI::App& app) {
                     "Only point and directional lights at the first hit: no environment, no bounces");
   command->add_flag("--pixel-centres", options->pixelCentres,
                     "Every sample through its pixel's centre (no jitter): the rasteriser's footprint");
+  command->add_flag("--unfiltered-normal-maps", options->unfilteredNormalMaps,
+                    "Glint layers read the filtered normal texture only, not the normal map's slope variance (as "
+                    "glint render --aa ggaa or none)");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for the PNG preview")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores); the image does not depend on it")

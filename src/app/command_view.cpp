@@ -32,7 +32,7 @@ struct ViewOptions {
   int height = 720;
   int frames = 0;          // 0: until the window closes
   std::string screenshot;  // written after the last frame
-  std::string antiAliasing = "ggaa";
+  std::string antiAliasing = "ggaa+lean";
 };
 
 // The parameters the sliders edit, applied to every glint layer of the scene.
@@ -42,7 +42,7 @@ struct Controls {
   float logDensity = 27.0f;
   float relativeArea = 1.0f;
   int brdf = 0;  // index into gl::allBrdfModels()
-  int antiAliasing = 1;  // index into gl::allAntiAliasingModes()
+  int antiAliasing = 2;  // index into gl::allAntiAliasingModes()
   float lightAzimuth = 0.6f;
   float lightElevation = 0.9f;
   float lightScale = 1.0f;
@@ -118,7 +118,9 @@ void runView(const ViewOptions& options) {
 
   Controls controls;
   const gl::AntiAliasing initialAntiAliasing = gl::antiAliasingFromString(options.antiAliasing);
-  controls.antiAliasing = initialAntiAliasing == gl::AntiAliasing::None ? 0 : 1;
+  const std::vector<gl::AntiAliasing> antiAliasingModes = gl::allAntiAliasingModes();
+  controls.antiAliasing = static_cast<int>(
+      std::find(antiAliasingModes.begin(), antiAliasingModes.end(), initialAntiAliasing) - antiAliasingModes.begin());
   for (const scene::Material& m : scene.materials) {
     if (!m.glint.enabled) continue;
     controls.alpha = m.glint.alpha;
@@ -206,7 +208,8 @@ void runView(const ViewOptions& options) {
     ImGui::Combo("anti-aliasing", &controls.antiAliasing, antiAliasingNames.data(),
                  static_cast<int>(antiAliasingNames.size()));
     if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip("ggaa: glints filtered by the half vector's variation over the pixel; none: the 2020 model");
+      ImGui::SetTooltip("ggaa+lean: glints filtered by the half vector's variation over the pixel and by the normal "
+                        "map's slope variance; ggaa: the first only; none: the 2020 model");
     }
     ImGui::SliderFloat("log density", &controls.logDensity, 10.0f, 45.0f, "%.1f");
     ImGui::SliderFloat("relative area", &controls.relativeArea, 0.01f, 1.0f, "%.2f");
@@ -254,7 +257,7 @@ void registerViewCommand(CLI::App& app) {
   command->add_option("--height", options->height, "Window height")->capture_default_str();
   command->add_option("--frames", options->frames, "Close after this many frames (0: when the window is closed)")
       ->capture_default_str();
-  command->add_option("--aa", options->antiAliasing, "Glint anti-aliasing at start: ggaa or none")
+  command->add_option("--aa", options->antiAliasing, "Glint anti-aliasing at start: ggaa+lean, ggaa or none")
       ->capture_default_str();
   command->add_option("--screenshot", options->screenshot, "With --frames N: write frame N, sliders included, to a PNG");
   command->callback([options] { runView(*options); });

@@ -14,6 +14,7 @@
 #include "gl/environment.h"
 #include "gl/shader.h"
 #include "glint/error.h"
+#include "scene/normal_map_moments.h"
 
 namespace glint::gl {
 
@@ -73,18 +74,22 @@ const char* toString(BrdfModel model) {
   return "unknown";
 }
 
-std::vector<AntiAliasing> allAntiAliasingModes() { return {AntiAliasing::None, AntiAliasing::Ggaa}; }
+std::vector<AntiAliasing> allAntiAliasingModes() {
+  return {AntiAliasing::None, AntiAliasing::Ggaa, AntiAliasing::GgaaLean};
+}
 
 AntiAliasing antiAliasingFromString(const std::string& name) {
   if (name == "none") return AntiAliasing::None;
   if (name == "ggaa") return AntiAliasing::Ggaa;
-  throw Error("unknown anti-aliasing '" + name + "' (choices: none, ggaa)");
+  if (name == "ggaa+lean") return AntiAliasing::GgaaLean;
+  throw Error("unknown anti-aliasing '" + name + "' (choices: none, ggaa, ggaa+lean)");
 }
 
 const char* toString(AntiAliasing mode) {
   switch (mode) {
     case AntiAliasing::None: return "none";
     case AntiAliasing::Ggaa: return "ggaa";
+    case AntiAliasing::GgaaLean: return "ggaa+lean";
   }
   return "unknown";
 }
@@ -135,7 +140,9 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
-  bool filtered;   // GLINT_FILTERED: glint programs that anti-alias (AntiAliasing::Ggaa)
+  bool filtered;   // GLINT_FILTERED: glint programs that anti-alias (AntiAliasing::Ggaa, GgaaLean)
+  bool lean;       // GLINT_LEAN: and filter their normal map (AntiAliasing::GgaaLean)
+  bool normalMapFinest;  // NORMAL_MAP_FINEST: the normal map at its finest level
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
@@ -151,6 +158,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                        {{"SPECULAR_MODEL", specular},
                         {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},
                         {"GLINT_FILTERED", variant.filtered ? "1" : "0"},
+                        {"GLINT_LEAN", variant.lean ? "1" : "0"},
+                        {"NORMAL_MAP_FINEST", variant.normalMapFinest ? "1" : "0"},
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
                         {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
                         {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
@@ -174,10 +183,14 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
   const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
   const bool filtered = model == BrdfModel::Glint && settings.antiAliasing != AntiAliasing::None;
+  const bool normalMap = material.normalTexture >= 0;
+  const bool lean = filtered && normalMap && settings.antiAliasing == AntiAliasing::GgaaLean;
+  const bool finest = normalMap && !lean && settings.normalMapFinestLevel;
   const bool transforms = !(material.baseColourUv.identity() && material.metallicRoughnessUv.identity() &&
                             material.normalUv.identity() && material.occlusionUv.identity() &&
                             material.emissiveUv.identity());
-  return ForwardVariant{model, coloured, filtered, lightCount, isMasked(material), transforms, mesh.vertexColours};
+  return ForwardVariant{model,     coloured,      filtered,   lean, finest, lightCount, isMasked(material),
+                        transforms, mesh.vertexColours};
 }
 
 struct Renderer::Gpu {
@@ -188,6 +201,8 @@ struct Renderer::Gpu {
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
+  // Per material with a normal map, its slope moments (scene/normal_map_moments.h), made on first use.
+  std::map<int, std::array<GLuint, 2>> leanMoments;
   GLuint white = 0;
   GLuint flatNormal = 0;
   GLuint environment = 0;
@@ -206,6 +221,7 @@ struct Renderer::Gpu {
       glDeleteBuffers(1, &m.indexBuffer);
     }
     glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
+    for (const auto& [material, moments] : leanMoments) glDeleteTextures(2, moments.data());
     glDeleteTextures(1, &white);
     glDeleteTextures(1, &flatNormal);
     glDeleteTextures(1, &environment);
@@ -443,6 +459,19 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
     glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
     glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
+    if (variant.lean) {
+      auto moments = g.leanMoments.find(mesh.material);
+      if (moments == g.leanMoments.end()) {
+        const scene::NormalMapMoments m0 =
+            scene::normalMapMoments(scene_.textures[static_cast<std::size_t>(m.normalTexture)], m.normalScale);
+        const std::array<GLuint, 2> made = {
+            makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.first.data(), true, true),
+            makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.second.data(), true, true)};
+        moments = g.leanMoments.emplace(mesh.material, made).first;
+      }
+      glBindTextureUnit(11, moments->second[0]);
+      glBindTextureUnit(12, moments->second[1]);
+    }
     setCulling(mesh);
     glBindVertexArray(mesh.vertexArray);
     glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

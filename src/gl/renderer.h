@@ -28,8 +28,9 @@ const char* toString(BrdfModel model);
 
 // Glint anti-aliasing (docs/antialiasing.md): None is the 2020 model, each pixel's P-SDF at one
 // half vector; Ggaa filters it by the half vector's variation over the pixel (Chermain et al.
-// 2021, kernel/glint_antialiasing.h).
-enum class AntiAliasing { None, Ggaa };
+// 2021, kernel/glint_antialiasing.h); GgaaLean also filters the normal map, its slopes' mean tilting
+// the normal and their covariance widening the glint layer (kernel/normal_map_filtering.h).
+enum class AntiAliasing { None, Ggaa, GgaaLean };
 std::vector<AntiAliasing> allAntiAliasingModes();
 AntiAliasing antiAliasingFromString(const std::string& name);  // throws Error naming the choices
 const char* toString(AntiAliasing mode);
@@ -38,7 +39,10 @@ struct FrameSettings {
   int width = 512;
   int height = 512;
   BrdfModel brdf = BrdfModel::Glint;
-  AntiAliasing antiAliasing = AntiAliasing::Ggaa;
+  AntiAliasing antiAliasing = AntiAliasing::GgaaLean;
+  // Normal maps read at their finest level instead of the footprint's (the anti-aliasing
+  // reference protocol: its jittered frames resolve the normal map themselves).
+  bool normalMapFinestLevel = false;
   // The filter kernel's size: 1 gives the kernel the covariance of the pixel's box (the reference
   // averages over that box); 0 filters nothing.
   float filterScale = 1.0f;

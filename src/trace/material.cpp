@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "glint/kernel/normal_map_filtering.h"
+#include "scene/normal_map_moments.h"
 #include "trace/sampling.h"
 
 namespace glint::trace {
@@ -84,10 +86,19 @@ std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoic
 }
 
 SceneMaterials::SceneMaterials(const scene::Scene& scene, const Dictionary& dictionary, SpecularModel model,
-                               GlintSampler sampler)
+                               GlintSampler sampler, bool normalMapFiltering)
     : scene_(scene), dictionary_(dictionary), model_(model), sampler_(sampler) {
   textures_.reserve(scene.textures.size());
   for (const scene::Texture& t : scene.textures) textures_.emplace_back(t);
+  normalMapMoments_.resize(scene.materials.size());
+  for (std::size_t i = 0; i < scene.materials.size() && normalMapFiltering; ++i) {
+    const scene::Material& m = scene.materials[i];
+    if (m.normalTexture < 0 || !m.glint.enabled || model == SpecularModel::CookTorrance) continue;
+    scene::NormalMapMoments moments =
+        scene::normalMapMoments(scene.textures[static_cast<std::size_t>(m.normalTexture)], m.normalScale);
+    normalMapMoments_[i] = NormalMapMoments{MipTexture(moments.width, moments.height, std::move(moments.first)),
+                                            MipTexture(moments.width, moments.height, std::move(moments.second))};
+  }
 }
 
 glm::vec3 SceneMaterials::texture(int index, glm::vec2 uv, const UvDerivatives& footprint) const {
@@ -131,7 +142,21 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   t = glm::normalize(t);
   const float handedness = point.tangent.w < 0.0f ? -1.0f : 1.0f;
   glm::vec3 b = glm::cross(n, t) * handedness;
-  if (m.normalTexture >= 0) {
+  const std::optional<NormalMapMoments>& moments = normalMapMoments_[static_cast<std::size_t>(point.material)];
+  glm::vec3 leanCovariance(0.0f);
+  if (moments) {
+    // Normal-map filtering, as forward.frag's GLINT_LEAN: the moments at the footprint, through the
+    // normal texture's transform.
+    const glm::mat2 linear = m.normalUv.linear();
+    const glm::vec2 at = m.normalUv.identity() ? uv : linear * uv + m.normalUv.offset;
+    const glm::vec2 dx = m.normalUv.identity() ? footprint.duvdx : linear * footprint.duvdx;
+    const glm::vec2 dy = m.normalUv.identity() ? footprint.duvdy : linear * footprint.duvdy;
+    const glm::vec3 first = moments->first.sample(at, dx, dy);
+    const glm::vec3 second = moments->second.sample(at, dx, dy);
+    leanCovariance = kernel::leanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
+    const glm::vec3 mapped = kernel::leanMeanNormal(first);
+    n = glm::normalize(t * mapped.x + b * mapped.y + n * mapped.z);
+  } else if (m.normalTexture >= 0) {
     glm::vec3 mapped = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
     mapped.x *= m.normalScale;
     mapped.y *= m.normalScale;
@@ -164,6 +189,9 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   }
   params.relativeArea =
       std::clamp(layer.relativeArea * texture(layer.relativeAreaTexture, uv, footprint).r, 1e-4f, 1.0f);
+  const glm::vec3 leanRoughness = kernel::leanCombinedRoughness(params.alpha, params.rho, leanCovariance);
+  params.alpha = glm::vec2(leanRoughness);
+  params.rho = leanRoughness.z;
   if (model_ == SpecularModel::CookTorrance) {
     const CookTorranceBsdf specular(params.alpha, params.rho, fresnel);
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};

@@ -58,7 +58,7 @@ PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, 
       settings_(validated(settings)),
       camera_(settings.camera, settings.width, settings.height),
       geometry_(scene),
-      materials_(scene, dictionary, settings.brdf, settings.sampler),
+      materials_(scene, dictionary, settings.brdf, settings.sampler, settings.normalMapFiltering),
       environment_(scene.environment),
       useEnvironment_(!settings.directOnly && !environment_.black()) {}
 

@@ -32,6 +32,10 @@ struct TraceSettings {
   GlintSampler sampler = GlintSampler::Mixture;
   bool directOnly = false;   // only point and directional lights at the first hit, no environment, no bounces
   bool pixelCentres = false; // every sample through its pixel's centre (the rasteriser's footprint)
+  // Normal maps filtered as the rasteriser's --aa ggaa+lean does (kernel/normal_map_filtering.h):
+  // at each hit's footprint, the mean of the normal map's slopes tilts the normal and their
+  // covariance widens the glint layer. Off: the filtered normal texture only.
+  bool normalMapFiltering = true;
   scene::Camera camera;
 };
 

@@ -5,6 +5,7 @@
 
 #include "glint/error.h"
 #include "glint/image_io.h"
+#include "glint/kernel/normal_map_filtering.h"
 
 namespace glint::trace {
 
@@ -28,6 +29,15 @@ MipTexture::MipTexture(const scene::Texture& texture) {
     base.texels[i] = {decode[texture.rgba[4 * i]], decode[texture.rgba[4 * i + 1]], decode[texture.rgba[4 * i + 2]]};
   }
   levels_.push_back(std::move(base));
+  buildMipChain();
+}
+
+MipTexture::MipTexture(int width, int height, std::vector<glm::vec3> texels) {
+  levels_.push_back(Level{width, height, std::move(texels)});
+  buildMipChain();
+}
+
+void MipTexture::buildMipChain() {
   // Level k has max(1, floor(size / 2^k)) texels per axis, each the mean of the 2 x 2 texels
   // below it (the last row or column is repeated for odd sizes).
   while (levels_.back().width > 1 || levels_.back().height > 1) {
@@ -54,10 +64,13 @@ glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv) const {
   return bilinearRepeat(level.texels, level.width, level.height, uv);
 }
 
-glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {
+float MipTexture::levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const {
   const glm::vec2 size(static_cast<float>(levels_.front().width), static_cast<float>(levels_.front().height));
-  const float rho = std::max(glm::length(duvdx * size), glm::length(duvdy * size));
-  const float lambda = rho > 0.0f ? std::log2(rho) : -1.0f;
+  return kernel::textureLevelOfDetail(duvdx, duvdy, size);
+}
+
+glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {
+  const float lambda = levelOfDetail(duvdx, duvdy);
   if (!(lambda > 0.0f)) return bilinear(0, uv);  // magnification, or no footprint
   const int last = levelCount() - 1;
   if (lambda >= static_cast<float>(last)) return bilinear(last, uv);

@@ -43,6 +43,8 @@ void requireTexelData(const scene::Texture& texture);
 class MipTexture {
  public:
   explicit MipTexture(const scene::Texture& texture);
+  // Linear float texels, rows from the top (normal-map moments, scene/normal_map_moments.h).
+  MipTexture(int width, int height, std::vector<glm::vec3> texels);
 
   // RGB at uv with the footprint's uv derivatives (OpenGL 4.5 core, section 8.14: rho is the
   // longer of the two derivatives in texels, lambda = log2(rho); lambda <= 0 magnifies with
@@ -51,6 +53,8 @@ class MipTexture {
   // Bilinear filtering of one level.
   glm::vec3 bilinear(int level, glm::vec2 uv) const;
   int levelCount() const { return static_cast<int>(levels_.size()); }
+  // The level of detail sample() takes for these derivatives (log2 of the longer in texels).
+  float levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const;
 
  private:
   struct Level {
@@ -59,6 +63,8 @@ class MipTexture {
     std::vector<glm::vec3> texels;  // rows from the top, as scene::Texture
   };
   std::vector<Level> levels_;
+
+  void buildMipChain();
 };
 
 }  // namespace glint::trace
