@@ -845,6 +845,18 @@ TEST(GltfErrors, NonFinitePosition) {
   expectLoadError(path, "POSITION: element 5 is not finite");
 }
 
+TEST(GltfErrors, NormalTextureWithoutUvs) {
+  // A normal map needs texture coordinates to be mapped (and filtered): without TEXCOORD_0 the file
+  // is refused, naming the material, rather than drawn with every uv at 0.
+  const fs::path path = copyTextured("gltf_normal_no_uvs");
+  editJson(path, [&](json& d) {
+    for (json& mesh : d["meshes"]) {
+      for (json& primitive : mesh["primitives"]) primitive["attributes"].erase("TEXCOORD_0");
+    }
+  });
+  expectLoadError(path, "material 0 'textured' has a normalTexture but no TEXCOORD_0 to map it");
+}
+
 TEST(GltfErrors, BadGlintExtras) {
   const fs::path path = copyTextured("gltf_bad_glint");
   auto withGlint = [&](const json& glint) {
@@ -870,6 +882,10 @@ TEST(GltfErrors, BadGlintExtras) {
   expectLoadError(path, "uv_scale must be positive");
   withGlint({{"random_colours", 1}});
   expectLoadError(path, "random_colours must be true or false");
+  withGlint({{"rho", 1.0}});
+  expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
+  withGlint({{"rho", "0.5"}});
+  expectLoadError(path, "rho must be a number");
   withGlint({{"alpah", 0.2}});
   expectLoadError(path, "unknown field 'alpah'");
   withGlint(json::array({1, 2}));

@@ -735,6 +735,10 @@ class GltfReader {
     mesh.name = sourceMesh.name.empty() ? "mesh " + std::to_string(meshIndex) : sourceMesh.name;
     if (sourceMesh.primitives.size() > 1) mesh.name += " #" + std::to_string(primitiveIndex);
     mesh.material = materialIndex(primitive.material);
+    const Material& material = scene_.materials[static_cast<std::size_t>(mesh.material)];
+    if (uvs.empty() && material.normalTexture >= 0) {
+      throw error("material ", primitive.material, " '", material.name, "' has a normalTexture but no TEXCOORD_0 to map it");
+    }
     mesh.indices = triangleIndices(primitive, mode, count);
     if (mesh.indices.empty()) return;
     // A mirroring transform turns counter-clockwise triangles clockwise: turn them back.

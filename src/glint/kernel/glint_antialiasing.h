@@ -97,16 +97,18 @@ GLINT_FN vec2 glintCellKernelVariance(vec2 rotation, vec3 unscaledCovariance) {
 // so the blend between the two levels around the kernel's variance v is (v - V_m) / (V_m+1 - V_m):
 // the variance is matched exactly, from the smallest kernels on (a log2 of the width, as hardware
 // filtering takes, would leave every kernel under half a texel unfiltered). Clamped to the chain.
+//
+// No logarithm: the mip level, floor(log4(4 v)), is half the binary exponent of 4 v, read from its
+// bits (exact; llvmpipe runs a log2 for every lane of every cell).
 GLINT_FN float glintMarginalLod(DictionaryView dict, float variance) {
   float spacing = glintDictionaryDomain(dict) / float(dict.texelsPerDistribution);
-  float v = max(variance, 0.0f) / (spacing * spacing);  // in texels^2
-  if (v < 1.0f) {
-    return v;  // between mip 0 (V_0 = 0) and mip 1 (V_1 = 1)
-  }
-  int mip = min(int(floor(0.5f * log2(4.0f * v))), dict.numMips - 1);
-  float level = float(1 << (2 * mip)) * 0.25f;  // V_mip
+  float v = min(max(variance, 0.0f) / (spacing * spacing), 1e30f);  // in texels^2
+  int exponent = ((floatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
+  int mip = min(exponent / 2, dict.numMips - 1);
+  float level = float(1 << (2 * mip)) * 0.25f;            // V_mip
   float lod = float(mip) + (v - level) / (3.0f * level);  // V_mip+1 - V_mip = 3 V_mip
-  return min(lod, float(dict.numMips - 1));
+  // Below V_1 = 1 texel^2, the blend of mip 0 (V_0 = 0) and mip 1.
+  return v < 1.0f ? v : min(lod, float(dict.numMips - 1));
 }
 
 // A marginal at |slope| (< 4 sigma_d) filtered at a level of detail in [0, numMips - 1]: the mip
