@@ -280,19 +280,17 @@ GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec
          glintMarginal(dict, dictionaryLevel, distributions.y, abs(local.y));
 }
 
-// The same product with each marginal filtered by the anti-aliasing kernel (glint_antialiasing.h),
-// whose covariance in the unscaled space is `unscaledKernel`: the cell's rotation turns it onto the
-// cell's axes, and each marginal is read at the mip level of its axis' variance.
+// The same product with both marginals filtered by the anti-aliasing kernel (glint_antialiasing.h)
+// at the level of detail `lod` of its variance (glintKernelVariance, glintMarginalLod).
 GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions,
-                                          vec2 rotation, vec2 unscaled, vec3 unscaledKernel) {
+                                          vec2 rotation, vec2 unscaled, float lod) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return 0.0f;
   }
-  vec2 variance = glintCellKernelVariance(rotation, unscaledKernel);
-  return glintFilteredMarginal(dict, dictionaryLevel, distributions.x, abs(local.x), glintMarginalLod(dict, variance.x)) *
-         glintFilteredMarginal(dict, dictionaryLevel, distributions.y, abs(local.y), glintMarginalLod(dict, variance.y));
+  return glintFilteredMarginal(dict, dictionaryLevel, distributions.x, abs(local.x), lod) *
+         glintFilteredMarginal(dict, dictionaryLevel, distributions.y, abs(local.y), lod);
 }
 
 // The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
@@ -415,6 +413,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // unscaled space (for the dictionary cells, which rotate it onto their axes).
   vec3 slopeKernel[GLINT_SLOPE_COUNT];
   vec3 unscaledKernel[GLINT_SLOPE_COUNT];
+  float kernelLod[GLINT_SLOPE_COUNT];
   bool anyDerivative = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
@@ -427,6 +426,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
     vec2 ux = glintUnscaledSlope(dict, params, vec2(d.x, d.y));
     vec2 uy = glintUnscaledSlope(dict, params, vec2(d.z, d.w));
     unscaledKernel[k] = glintKernelCovariance(vec4(ux, uy));
+    kernelLod[k] = glintMarginalLod(dict, glintKernelVariance(unscaledKernel[k]));
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
@@ -462,7 +462,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
           float p = 0.0f;
           if (inSupport[k]) {
             p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
-                                                       unscaled[k], unscaledKernel[k])
+                                                       unscaled[k], kernelLod[k])
                           : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
           }
           dictionarySum[k] += weight * p;
