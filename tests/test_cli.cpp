@@ -13,6 +13,20 @@ namespace {
 
 using namespace glint::test;
 
+TEST(GlintCli, MistypedCommandsAndSizesSayWhatIsWrong) {
+  const auto folder = temporaryFolder("cli_messages");
+  RunResult result = runGlint(folder, "rendr sphere -o x.png");
+  expectOneLineError(result, "unknown command 'rendr' (commands: dict, eval, diff, render, view, trace, bench");
+  expectOneLineError(result, "did you mean 'render'?");
+  expectOneLineError(runGlint(folder, "zzzzzz"), "unknown command 'zzzzzz'");
+  // A size that looks right but is out of range says the range, not the form.
+  expectOneLineError(runGlint(folder, "render sphere --size 100000x100000 -o x.png"),
+                     "--size must be between 1x1 and 8192x8192, got 100000x100000");
+  expectOneLineError(runGlint(folder, "render sphere --size 99999999999x2 -o x.png"), "between 1x1 and 8192x8192");
+  expectOneLineError(runGlint(folder, "render sphere --size 12 -o x.png"), "--size must look like 512x512");
+  EXPECT_FALSE(std::filesystem::exists(folder / "x.png"));
+}
+
 TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
   const auto folder = temporaryFolder("dict_determinism");
   ASSERT_EQ(runGlint(folder, "dict --seed 7 --threads 1 -o one.gdict").exitCode, 0);

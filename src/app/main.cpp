@@ -1,9 +1,53 @@
 // `glint`: one command, git-style subcommands (docs/cli.md).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "error.h"
+
+namespace {
+
+// Levenshtein distance, for the nearest command name to a mistyped one.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// A first argument that is neither an option nor a command: one line naming it, the commands and
+// the nearest one (CLI11 would say only that a subcommand is required).
+void requireKnownCommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return;
+  const std::string given = argv[1];
+  std::string names;
+  std::string nearest;
+  std::size_t nearestDistance = 3;  // suggest only names at most two edits away
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_name() == given) return;
+    names += (names.empty() ? "" : ", ") + command->get_name();
+    const std::size_t distance = editDistance(given, command->get_name());
+    if (distance < nearestDistance) {
+      nearestDistance = distance;
+      nearest = command->get_name();
+    }
+  }
+  throw glint::Error("unknown command '" + given + "' (commands: " + names + ")" +
+                     (nearest.empty() ? "" : "; did you mean '" + nearest + "'?"));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"glint: procedural physically based glints (Chermain et al. 2020)", "glint"};
@@ -19,6 +63,7 @@ int main(int argc, char** argv) {
   glint::app::registerExportCommand(app);
   glint::app::registerAaErrorCommand(app);
   try {
+    requireKnownCommand(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -87,11 +87,13 @@ Dictionary SceneOptions::loadDictionary() const {
 }
 
 std::pair<int, int> parseImageSize(const std::string& text) {
-  static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
+  static const std::regex pattern(R"((\d+)x(\d+))");
   std::smatch match;
   if (!std::regex_match(text, match, pattern)) throw Error("--size must look like 512x512, got '" + text + "'");
-  const int w = std::stoi(match[1]);
-  const int h = std::stoi(match[2]);
+  // More than five digits is past the range whatever they say (and past an int's).
+  const auto side = [](const std::string& digits) { return digits.size() > 5 ? 100000 : std::stoi(digits); };
+  const int w = side(match[1]);
+  const int h = side(match[2]);
   if (w < 1 || h < 1 || w > 8192 || h > 8192) throw Error("--size must be between 1x1 and 8192x8192, got " + text);
   return {w, h};
 }
