@@ -698,27 +698,79 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
 }
 
 // The same check on the JSON chunk of a binary glTF.
+// A .glb of `document` and the binary chunk `binary` (glTF 2.0, "GLB File Format Specification").
+void writeGlb(const fs::path& path, const json& document, std::string binary) {
+  std::string text = document.dump();
+  text.resize((text.size() + 3) / 4 * 4, ' ');      // chunks are 4-byte aligned; JSON pads with spaces
+  binary.resize((binary.size() + 3) / 4 * 4, '\0');  // and the binary chunk with zeros
+  std::string out = "glTF";
+  auto append32 = [&](std::size_t value) {
+    for (int i = 0; i < 4; ++i) out += static_cast<char>((value >> (8 * i)) & 0xFFu);
+  };
+  append32(2);
+  append32(12 + 8 + text.size() + 8 + binary.size());
+  append32(text.size());
+  append32(0x4E4F534Au);  // "JSON"
+  out += text;
+  append32(binary.size());
+  append32(0x004E4942u);  // "BIN"
+  out += binary;
+  std::ofstream(path, std::ios::binary) << out;
+}
+
+// One triangle's positions, the binary chunk of the hand-made .glb files below.
+std::string trianglePositions() {
+  const float positions[9] = {-1, 0, 0, 1, 0, 0, 0, 1, 0};
+  return std::string(reinterpret_cast<const char*>(positions), sizeof positions);
+}
+
+TEST(GltfErrors, ImageViewsPastTheirBufferAndUnsupportedRequiredExtensions) {
+  // An image's buffer view that runs past the end of its buffer: tinygltf would hand stb_image the
+  // unchecked range (it read past the data and, with a large enough length, crashed). And files
+  // that require Draco, meshopt or Basis: refused naming the extension, where tinygltf's own
+  // message was about an accessor.
+  const fs::path folder = test::temporaryFolder("gltf_image_views");
+  const std::string png = test::slurp(fs::path(GLINT_SOURCE_DIR) / "docs" / "images" / "alpha-0.1.png");
+  ASSERT_FALSE(png.empty());
+  const std::string binary = trianglePositions() + png;
+  json document = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", (binary.size() + 3) / 4 * 4}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}, {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", png.size()}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+                      {"min", {-1, 0, 0}}, {"max", {1, 1, 0}}}}},
+      {"images", {{{"bufferView", 1}, {"mimeType", "image/png"}}}},
+      {"textures", {{{"source", 0}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 0}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+  };
+  writeGlb(folder / "good.glb", document, binary);
+  EXPECT_EQ(loadGltf(folder / "good.glb").textures.size(), 1u);
+  document["bufferViews"][1]["byteLength"] = 2000000000;
+  writeGlb(folder / "past.glb", document, binary);
+  expectLoadError(folder / "past.glb", "bufferViews[1]: bytes 36 to 2000000036 run past the end of buffer 0");
+  document["bufferViews"][1]["byteLength"] = png.size();
+  document["bufferViews"][1]["buffer"] = 3;
+  writeGlb(folder / "nobuffer.glb", document, binary);
+  expectLoadError(folder / "nobuffer.glb", "bufferViews[1]: buffer 3 does not exist");
+  document["bufferViews"][1]["buffer"] = 0;
+  for (const char* extension : {"KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_texture_basisu"}) {
+    document["extensionsUsed"] = {extension};
+    document["extensionsRequired"] = {extension};
+    writeGlb(folder / "required.glb", document, binary);
+    expectLoadError(folder / "required.glb", std::string("requires extension ") + extension + ", which glint does not support");
+  }
+  // A required extension glint reads is fine.
+  document["extensionsUsed"] = {"KHR_lights_punctual"};
+  document["extensionsRequired"] = {"KHR_lights_punctual"};
+  writeGlb(folder / "lights.glb", document, binary);
+  EXPECT_EQ(loadGltf(folder / "lights.glb").textures.size(), 1u);
+}
+
 TEST(GltfErrors, MistypedPropertiesInABinaryGltf) {
   const fs::path folder = test::temporaryFolder("gltf_mistyped_glb");
-  const float positions[9] = {-1, 0, 0, 1, 0, 0, 0, 1, 0};
-  auto writeGlb = [&](const fs::path& path, const json& document) {
-    std::string text = document.dump();
-    text.resize((text.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned; JSON pads with spaces
-    const std::string binary(reinterpret_cast<const char*>(positions), sizeof positions);
-    std::string out = "glTF";
-    auto append32 = [&](std::size_t value) {
-      for (int i = 0; i < 4; ++i) out += static_cast<char>((value >> (8 * i)) & 0xFFu);
-    };
-    append32(2);
-    append32(12 + 8 + text.size() + 8 + binary.size());
-    append32(text.size());
-    append32(0x4E4F534Au);  // "JSON"
-    out += text;
-    append32(binary.size());
-    append32(0x004E4942u);  // "BIN"
-    out += binary;
-    std::ofstream(path, std::ios::binary) << out;
-  };
+  auto writeGlb = [&](const fs::path& path, const json& document) { glint::scene::writeGlb(path, document, trianglePositions()); };
   json document = {
       {"asset", {{"version", "2.0"}}},
       {"buffers", {{{"byteLength", 36}}}},

@@ -23,6 +23,7 @@
 #include "glint/error.h"
 #include "scene/geometry.h"
 #include "scene/gltf_field_types.h"
+#include "scene/gltf_precheck.h"
 
 namespace glint::scene {
 
@@ -331,7 +332,6 @@ class GltfReader {
   explicit GltfReader(const tinygltf::Model& model) : model_(model) {}
 
   Scene read(const std::string& name) {
-    checkExtensions();
     scene_.name = name;
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
       const tinygltf::Material& source = model_.materials[i];
@@ -356,16 +356,6 @@ class GltfReader {
   }
 
  private:
-  void checkExtensions() const {
-    // Quantised attributes are plain normalised or integer accessors, which readAccessor handles,
-    // and emissive strengths and texture transforms are read; any other required extension changes
-    // what the data means.
-    for (const std::string& extension : model_.extensionsRequired) {
-      if (extension != "KHR_mesh_quantization" && extension != "KHR_materials_emissive_strength" &&
-          extension != "KHR_texture_transform") throw error("requires extension ", extension, ", which glint does not support");
-    }
-  }
-
   // What the file uses and glint does not render, so that the commands warn instead of showing a
   // different picture silently (docs/scenes.md, "Not read"): one line per kind, naming the first
   // place and counting the others.
@@ -1035,7 +1025,13 @@ Scene loadGltf(const fs::path& path) {
     std::error_code ignored;
     if (!fs::exists(path, ignored)) throw error("no such file");
     if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
-    if (const std::optional<nlohmann::json> document = readGltfJson(path)) checkGltfFieldTypes(*document);
+    // On the file's own JSON, before tinygltf reads it (gltf_field_types.h, gltf_precheck.h); a file
+    // whose JSON does not parse is left to tinygltf's message.
+    if (const std::optional<nlohmann::json> document = readGltfJson(path)) {
+      checkGltfFieldTypes(*document);
+      checkRequiredExtensions(*document);
+      checkBufferViewRanges(*document);
+    }
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
     tinygltf::Model model;

@@ -1,0 +1,67 @@
+#include "scene/gltf_precheck.h"
+
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "glint/error.h"
+
+namespace glint::scene {
+
+namespace {
+
+// The required extensions glint honours: its lights are read, quantised attributes are plain
+// normalised or integer accessors, which the loader reads, and emissive strengths and texture
+// transforms are read (docs/scenes.md).
+constexpr std::array<std::string_view, 4> kSupportedRequiredExtensions = {
+    "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+
+// A non-negative integer member, or `fallback` when absent; the field-type check has already
+// refused members of the wrong type.
+double integerMember(const nlohmann::json& object, const char* name, double fallback) {
+  const auto it = object.find(name);
+  return it != object.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+}  // namespace
+
+void checkRequiredExtensions(const nlohmann::json& document) {
+  const auto required = document.find("extensionsRequired");
+  if (required == document.end() || !required->is_array()) return;
+  for (const nlohmann::json& extension : *required) {
+    if (!extension.is_string()) continue;
+    const std::string name = extension.get<std::string>();
+    bool supported = false;
+    for (std::string_view known : kSupportedRequiredExtensions) supported = supported || name == known;
+    if (!supported) throw Error("requires extension " + name + ", which glint does not support");
+  }
+}
+
+void checkBufferViewRanges(const nlohmann::json& document) {
+  const auto views = document.find("bufferViews");
+  const auto buffers = document.find("buffers");
+  if (views == document.end() || !views->is_array()) return;
+  for (std::size_t i = 0; i < views->size(); ++i) {
+    const nlohmann::json& view = (*views)[i];
+    if (!view.is_object()) continue;
+    const std::string where = "bufferViews[" + std::to_string(i) + "]";
+    const double buffer = integerMember(view, "buffer", -1.0);
+    if (buffers == document.end() || !buffers->is_array() || !(buffer >= 0.0) ||
+        buffer >= static_cast<double>(buffers->size())) {
+      throw Error(where + ": buffer " + std::to_string(static_cast<long long>(buffer)) + " does not exist");
+    }
+    const nlohmann::json& target = (*buffers)[static_cast<std::size_t>(buffer)];
+    const double bufferLength = target.is_object() ? integerMember(target, "byteLength", 0.0) : 0.0;
+    const double offset = integerMember(view, "byteOffset", 0.0);
+    const double length = integerMember(view, "byteLength", 0.0);
+    // In double: offsets and lengths up to 2^53 add exactly, far beyond any file.
+    if (offset + length > bufferLength) {
+      throw Error(where + ": bytes " + std::to_string(static_cast<long long>(offset)) + " to " +
+                  std::to_string(static_cast<long long>(offset + length)) + " run past the end of buffer " +
+                  std::to_string(static_cast<long long>(buffer)) + " (" +
+                  std::to_string(static_cast<long long>(bufferLength)) + " bytes)");
+    }
+  }
+}
+
+}  // namespace glint::scene
