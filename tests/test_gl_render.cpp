@@ -376,7 +376,7 @@ struct Sheet {
 // `edit` changes the scene before it is drawn.
 ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
                        const std::function<void(scene::Scene&)>& edit = nullptr,
-                       gl::BrdfModel brdf = gl::BrdfModel::Glint) {
+                       gl::BrdfModel brdf = gl::BrdfModel::Glint, std::vector<std::string>* warnings = nullptr) {
   useGlContext();
   scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");  // for its lights and sky
   scene.meshes.clear();
@@ -393,6 +393,7 @@ ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
   }
   if (edit) edit(scene);
   gl::Renderer renderer(scene, defaultDictionary());
+  if (warnings) *warnings = renderer.warnings();
   gl::FrameSettings frame;
   frame.width = 64;
   frame.height = 64;
@@ -502,6 +503,40 @@ TEST(RenderGl, AlphaMaskCutsOutWhereAlphaIsBelowTheCutoff) {
 // KHR_texture_transform in the rasteriser: an emissive sheet whose texture is red for u < 0.5 and
 // green above (u runs along +y on the sheet, makeQuad's halfU) glows red in its lower half; with
 // the texture's uv offset by (0.5, 0), the same sheet glows red in its upper half.
+TEST(RenderGl, TexturesBeyondTheSizeLimitAreDrawnDownscaledNotBlack) {
+  // An emissive texture wider than GL_MAX_TEXTURE_SIZE (16384 on llvmpipe): left half red, right
+  // half green. It was drawn black; it must be drawn downscaled, with one warning, the halves in
+  // place.
+  GLint limit = 0;
+  useGlContext();
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limit);
+  const int width = limit + 4000;
+  std::vector<std::string> warnings;
+  const ImageRgbF image = renderSheets({{0.0f, glm::vec3(100.0f), false}}, 3.0f, [&](scene::Scene& scene) {
+    scene::Texture wide{"wide", width, 2, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * 2 * 4, 0), true};
+    for (int y = 0; y < 2; ++y) {
+      for (int x = 0; x < width; ++x) {
+        std::uint8_t* texel = &wide.rgba[4 * (static_cast<std::size_t>(y) * width + x)];
+        texel[x < width / 2 ? 0 : 1] = 255;
+        texel[3] = 255;
+      }
+    }
+    scene.textures.push_back(std::move(wide));
+    scene.materials[0].emissiveTexture = static_cast<int>(scene.textures.size()) - 1;
+  }, gl::BrdfModel::Glint, &warnings);
+  int red = 0, green = 0;
+  for (const glm::vec3& p : image.pixels) {
+    red += p.r > 50.0f && p.g < 5.0f;
+    green += p.g > 50.0f && p.r < 5.0f;
+  }
+  EXPECT_GT(red, 300);
+  EXPECT_GT(green, 300);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("texture 'wide' (" + std::to_string(width) + "x2) exceeds this OpenGL's limit"),
+            std::string::npos)
+      << warnings[0];
+}
+
 TEST(RenderGl, TextureTransformMovesTheTexture) {
   const glm::vec3 white(100.0f);
   auto render = [&](scene::UvTransform transform) {

@@ -71,6 +71,7 @@ struct ModeResult {
 nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& dictionary, const AaErrorOptions& options,
                             int width, int height) {
   gl::Renderer renderer(scene, dictionary);
+  printWarnings(renderer.warnings());
   gl::FrameSettings frame;
   frame.width = width;
   frame.height = height;

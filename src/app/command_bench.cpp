@@ -85,6 +85,7 @@ void runBench(const BenchOptions& options) {
     const scene::Scene& scene = scenes[s];
     warnAboutUndrawnLights(scene);
     gl::Renderer renderer(scene, dictionary);
+    printWarnings(renderer.warnings());
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;

@@ -52,6 +52,7 @@ void runRender(const RenderOptions& options) {
   gl::HeadlessContext context;
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
+  printWarnings(renderer.warnings());
   gl::FrameSettings frame;
   frame.width = width;
   frame.height = height;

@@ -110,6 +110,7 @@ void runView(const ViewOptions& options) {
   const gl::ContextInfo info = gl::currentContextInfo();
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
+  printWarnings(renderer.warnings());
   gl::ShaderProgram display({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}});
   GLuint emptyVertexArray = 0;
   glCreateVertexArrays(1, &emptyVertexArray);

@@ -98,6 +98,10 @@ std::pair<int, int> parseImageSize(const std::string& text) {
   return {w, h};
 }
 
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::fprintf(stderr, "glint: warning: %s\n", warning.c_str());
+}
+
 void warnAboutUndrawnLights(const scene::Scene& scene) {
   if (scene.lights.size() > static_cast<std::size_t>(gl::kMaxLights)) {
     std::fprintf(stderr, "glint: warning: scene '%s' has %zu lights; the rasteriser draws the first %d\n",

@@ -41,6 +41,9 @@ struct SceneOptions {
 // Says on stderr, in one line, when the scene has more lights than the rasteriser draws.
 void warnAboutUndrawnLights(const scene::Scene& scene);
 
+// Says on stderr, one line each, what a renderer draws otherwise than the scene says.
+void printWarnings(const std::vector<std::string>& warnings);
+
 // `--size WxH` of the commands that write images: each side in [1, 8192]; throws Error with one line.
 std::pair<int, int> parseImageSize(const std::string& text);
 

@@ -14,6 +14,7 @@
 #include "gl/environment.h"
 #include "gl/shader.h"
 #include "glint/error.h"
+#include "glint/image_io.h"
 #include "scene/normal_map_moments.h"
 
 namespace glint::gl {
@@ -50,6 +51,36 @@ GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, 
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_T, repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   return texture;
+}
+
+// Half the texture along each side longer than `limit` (a 2-texel box; the last texel repeats for
+// odd sizes), colour textures averaged in linear light as OpenGL filters sRGB textures.
+scene::Texture halvedBeyond(const scene::Texture& t, int limit) {
+  const int fx = t.width > limit ? 2 : 1;
+  const int fy = t.height > limit ? 2 : 1;
+  scene::Texture half = t;
+  half.width = std::max(1, t.width / fx);
+  half.height = std::max(1, t.height / fy);
+  half.rgba.assign(static_cast<std::size_t>(half.width) * half.height * 4, 0);
+  for (int y = 0; y < half.height; ++y) {
+    for (int x = 0; x < half.width; ++x) {
+      for (int c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (int dy = 0; dy < fy; ++dy) {
+          for (int dx = 0; dx < fx; ++dx) {
+            const int sx = std::min(x * fx + dx, t.width - 1);
+            const int sy = std::min(y * fy + dy, t.height - 1);
+            const float v = t.rgba[4 * (static_cast<std::size_t>(sy) * t.width + sx) + static_cast<std::size_t>(c)] / 255.0f;
+            sum += t.srgb && c < 3 ? srgbToLinear(v) : v;
+          }
+        }
+        const float mean = sum / static_cast<float>(fx * fy);
+        half.rgba[4 * (static_cast<std::size_t>(y) * half.width + x) + static_cast<std::size_t>(c)] =
+            t.srgb && c < 3 ? linearToSrgb8(mean) : static_cast<std::uint8_t>(std::lround(mean * 255.0f));
+      }
+    }
+  }
+  return half;
 }
 
 }  // namespace
@@ -266,9 +297,25 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
   const float flat[4] = {0.5f, 0.5f, 1.0f, 1.0f};
   g.white = makeTexture(1, 1, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, white, false, true);
   g.flatNormal = makeTexture(1, 1, GL_RGBA32F, GL_RGBA, GL_FLOAT, flat, false, true);
-  for (const scene::Texture& t : scene.textures) {
-    g.textures.push_back(makeTexture(t.width, t.height, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_RGBA,
-                                     GL_UNSIGNED_BYTE, t.rgba.data(), true, true));
+  GLint maxTextureSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+  for (const scene::Texture& source : scene.textures) {
+    // A texture beyond this OpenGL's size limit would draw black: it is halved until it fits, and
+    // said once (the path tracer keeps it whole).
+    scene::Texture fitted;
+    const scene::Texture* t = &source;
+    while (t->width > maxTextureSize || t->height > maxTextureSize) {
+      fitted = halvedBeyond(*t, maxTextureSize);
+      t = &fitted;
+    }
+    if (t != &source) {
+      warnings_.push_back("texture '" + source.name + "' (" + std::to_string(source.width) + "x" +
+                          std::to_string(source.height) + ") exceeds this OpenGL's limit of " +
+                          std::to_string(maxTextureSize) + " texels a side; the rasteriser draws it at " +
+                          std::to_string(t->width) + "x" + std::to_string(t->height));
+    }
+    g.textures.push_back(makeTexture(t->width, t->height, t->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_RGBA,
+                                     GL_UNSIGNED_BYTE, t->rgba.data(), true, true));
   }
   const scene::Environment& env = scene.environment;
   if (env.pixels.empty()) {

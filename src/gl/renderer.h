@@ -64,6 +64,10 @@ class Renderer {
   std::vector<float> readRadiance() const;
   GLuint radianceTexture() const;
 
+  // What the renderer draws otherwise than the scene says, one line each, for the commands to warn
+  // about (a texture larger than this OpenGL's limit, drawn downscaled).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
   // Materials and lights as drawn; the viewer edits them between frames.
   std::vector<scene::Material>& materials() { return materials_; }
   std::vector<scene::Light>& lights() { return lights_; }
@@ -73,6 +77,7 @@ class Renderer {
   const scene::Scene& scene_;
   std::vector<scene::Material> materials_;
   std::vector<scene::Light> lights_;
+  std::vector<std::string> warnings_;
   std::unique_ptr<Gpu> gpu_;
 };
 
