@@ -66,6 +66,19 @@ TEST(DictCli, BadArgumentsGiveOneLineErrors) {
   EXPECT_FALSE(std::filesystem::exists(folder / "plot.png"));
 }
 
+TEST(DictCli, NegativeSeedsAndThreadCountsAndHugeFolderNumbersAreRefused) {
+  const auto folder = temporaryFolder("dict_numbers");
+  expectOneLineError(runGlint(folder, "dict --seed -1 -o d.gdict"), "must be a non-negative integer");
+  expectOneLineError(runGlint(folder, "dict --threads -3 -o d.gdict"), "--threads");
+  std::filesystem::create_directories(folder / "dict_99999999999_192_64_0p5_0p02");
+  expectOneLineError(runGlint(folder, "dict --from dict_99999999999_192_64_0p5_0p02 -o d.gdict"),
+                     "dict_99999999999_192_64_0p5_0p02: dictionary parameter levels must be in");
+  std::filesystem::create_directories(folder / "dict_16_192_64_0p5_99999999999p0");
+  expectOneLineError(runGlint(folder, "dict --from dict_16_192_64_0p5_99999999999p0 -o d.gdict"),
+                     "not an EXR dictionary folder");
+  EXPECT_FALSE(std::filesystem::exists(folder / "d.gdict"));
+}
+
 TEST(DictCli, DamagedDictionaryFilesGiveOneLineErrors) {
   const auto folder = temporaryFolder("dict_damaged");
   ASSERT_EQ(runGlint(folder, "dict -o good.gdict").exitCode, 0);
@@ -117,6 +130,21 @@ TEST(EvalCli, AnswersOneJsonLinePerInputLine) {
   EXPECT_EQ(outputs[1], outputs[2]);
   EXPECT_NE(outputs[0], outputs[1]);
   EXPECT_EQ(outputs[3].find("\"f\":0.0"), outputs[3].find("\"f\":")) << outputs[3];  // wi below the surface
+}
+
+TEST(EvalCli, PatternSeedsAreExactToThirtyTwoBits) {
+  // Seeds above 2^24 went through a float: 4294967295 became 0 (2^32 wrapped), 16777217 became
+  // 16777216. Each must give the pattern of its own seed, which differs from its neighbours'.
+  const auto folder = temporaryFolder("eval_seeds");
+  auto p22 = [&](const std::string& seed) {
+    const RunResult result = runGlint(folder, "eval", "{\"uv\":[0.3,0.7],\"wo\":[0.1,0.2,1],\"wi\":[-0.1,0,1],"
+                                                      "\"log_density\":14,\"pattern_seed\":" + seed + "}\n");
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    return result.out;
+  };
+  EXPECT_NE(p22("4294967295"), p22("0"));
+  EXPECT_NE(p22("16777217"), p22("16777216"));
+  expectOneLineError(runGlint(folder, "eval", "{\"pattern_seed\":4294967296}\n"), "pattern_seed");
 }
 
 TEST(EvalCli, BadLinesGiveOneLineErrorsWithTheLineNumber) {

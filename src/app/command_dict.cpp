@@ -97,11 +97,17 @@ void registerDictCommand(CLI::App& app) {
   command->add_option("--texels", p.texelsPerDistribution, "R: texels per distribution")->capture_default_str();
   command->add_option("--alpha", p.alpha, "alpha_d: the dictionary's Beckmann roughness")->capture_default_str();
   command->add_option("--lobe-std", p.lobeStd, "s: standard deviation of each lobe")->capture_default_str();
-  command->add_option("--seed", p.seed, "Seed of the PCG32 streams; same seed, same bytes")->capture_default_str();
+  // CLI11 would wrap a negative seed around to a large unsigned one: refused on the text.
+  command->add_option("--seed", p.seed, "Seed of the PCG32 streams, an integer in [0, 2^64); same seed, same bytes")
+      ->check([](const std::string& text) {
+        return !text.empty() && text.front() == '-' ? std::string("must be a non-negative integer") : std::string();
+      })
+      ->capture_default_str();
   command->add_option("--placement", options->placement,
                       "Lobe means: 'stratified' (unbiased mean at every level) or 'independent' (the paper's)")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores); the output does not depend on it")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   command->add_option("--plot", options->plot, "Draw chosen distributions at several levels to this PNG");
   command->add_option("--plot-distributions", options->plotDistributions, "Distributions to draw")

@@ -70,8 +70,10 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   parameters.relativeArea = readNumber(input, "relative_area", parameters.relativeArea);
   parameters.densityRandomisation = readNumber(input, "density_randomisation", parameters.densityRandomisation);
   parameters.maxAnisotropy = readNumber(input, "max_anisotropy", parameters.maxAnisotropy);
-  const float seed = readNumber(input, "pattern_seed", 0.0f);
-  if (!(seed >= 0.0f && seed <= 4294967295.0f && seed == std::floor(seed))) {
+  // In double, which holds every 32-bit seed exactly (a float rounds those above 2^24).
+  const auto seedField = input.find("pattern_seed");
+  const double seed = seedField == input.end() ? 0.0 : seedField->is_number() ? seedField->get<double>() : -1.0;
+  if (!(seed >= 0.0 && seed <= 4294967295.0 && seed == std::floor(seed))) {
     throw Error("field 'pattern_seed' must be an integer in [0, 2^32)");
   }
   parameters.patternSeed = static_cast<std::uint32_t>(seed);

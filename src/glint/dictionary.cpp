@@ -312,19 +312,21 @@ Dictionary Dictionary::loadAuthorsExr(const std::filesystem::path& folder) {
   const std::string name = std::filesystem::path(folder).lexically_normal().filename().string().empty()
                                ? folder.lexically_normal().parent_path().filename().string()
                                : folder.lexically_normal().filename().string();
-  const std::regex pattern(R"(dict_(\d+)_(\d+)_(\d+)_(\d+p\d+)_(\d+p\d+))");
+  const std::regex pattern(R"(dict_(\d+)_(\d+)_(\d+)_(\d{1,9}p\d{1,9})_(\d{1,9}p\d{1,9}))");
   std::smatch match;
   if (!std::regex_match(name, match, pattern)) {
     throw Error(folder.string() + ": not an EXR dictionary folder (expected a name like dict_16_192_64_0p5_0p02)");
   }
   auto decimal = [](std::string text) {
     text[text.find('p')] = '.';
-    return std::stof(text);
+    return std::stof(text);  // at most 9 digits a side (the pattern): within float's range
   };
+  // More digits than an int holds is out of every range the parameters accept: validate() says so.
+  auto whole = [](const std::string& digits) { return digits.size() > 9 ? 1000000000 : std::stoi(digits); };
   DictionaryParameters parameters;
-  parameters.numLevels = std::stoi(match[1]);
-  parameters.numDistributions = std::stoi(match[2]);
-  parameters.texelsPerDistribution = std::stoi(match[3]);
+  parameters.numLevels = whole(match[1]);
+  parameters.numDistributions = whole(match[2]);
+  parameters.texelsPerDistribution = whole(match[3]);
   parameters.alpha = decimal(match[4]);
   parameters.lobeStd = decimal(match[5]);
   parameters.seed = 0;
