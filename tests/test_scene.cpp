@@ -466,6 +466,10 @@ TEST(GltfErrors, BadPunctualLightsAndCameras) {
                     d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = -3.0;
                   }),
                   "light 1: intensity -3 is not a finite number >= 0");
+  expectLoadError(writeLitTriangle("gltf_light_overflow", [](json& d) {
+                    d["extensions"]["KHR_lights_punctual"]["lights"][1]["intensity"] = 1e308;
+                  }),
+                  "light 1: intensity 1e+308 times color 1 is beyond a float's range");
   expectLoadError(writeLitTriangle("gltf_light_range", [](json& d) {
                     d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = -2.0;
                   }),
@@ -768,6 +772,30 @@ TEST(GltfErrors, ImageViewsPastTheirBufferAndUnsupportedRequiredExtensions) {
   EXPECT_EQ(loadGltf(folder / "lights.glb").textures.size(), 1u);
 }
 
+TEST(GltfErrors, TextureCoordinatesBeyondAMillionAreRefused) {
+  // Finite in double and in float, but 3e38 overflowed as soon as a uv scale or transform touched
+  // it: the renders came out black with exit 0.
+  const fs::path folder = test::temporaryFolder("gltf_huge_uvs");
+  auto write = [&](float u) {
+    const float uvs[6] = {0.0f, 0.0f, u, 0.0f, 0.0f, 1.0f};
+    const std::string binary = trianglePositions() + std::string(reinterpret_cast<const char*>(uvs), sizeof uvs);
+    const json document = {
+        {"asset", {{"version", "2.0"}}},
+        {"buffers", {{{"byteLength", binary.size()}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteLength", 36}}, {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+        {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
+                        {"min", {-1, 0, 0}}, {"max", {1, 1, 0}}},
+                       {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}}}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+    };
+    writeGlb(folder / "uvs.glb", document, binary);
+    return folder / "uvs.glb";
+  };
+  EXPECT_EQ(triangleCount(loadGltf(write(1e6f))), 1u);
+  expectLoadError(write(3e38f), "TEXCOORD_0 1 (3e+38, 0) is beyond +-1e6");
+}
+
 TEST(GltfErrors, MistypedPropertiesInABinaryGltf) {
   const fs::path folder = test::temporaryFolder("gltf_mistyped_glb");
   auto writeGlb = [&](const fs::path& path, const json& document) { glint::scene::writeGlb(path, document, trianglePositions()); };
@@ -938,10 +966,18 @@ TEST(GltfErrors, BadGlintExtras) {
   expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
   withGlint({{"rho", "0.5"}});
   expectLoadError(path, "rho must be a number");
+  withGlint({{"log_density", 1e300}});
+  expectLoadError(path, "log_density 1e+300 is beyond a float's range");
   withGlint({{"alpah", 0.2}});
   expectLoadError(path, "unknown field 'alpah'");
   withGlint(json::array({1, 2}));
   expectLoadError(path, "extras.glint: must be an object");
+  // Last: it edits the material itself.
+  editJson(path, [&](json& d) {
+    d["materials"][0].erase("extras");
+    d["materials"][0]["normalTexture"]["scale"] = 1e30;
+  });
+  expectLoadError(path, "normalTexture.scale 1e+30 is not within +-1e4");
 }
 
 // ---- applyGlint -------------------------------------------------------------------------------

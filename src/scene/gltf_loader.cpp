@@ -289,6 +289,9 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
 
 // ---- Glint extras -----------------------------------------------------------------------------
 
+// Texture coordinates glint accepts, in magnitude.
+constexpr float kLargestUv = 1e6f;
+
 const std::array<const char*, 13> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
                                                   "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
                                                   "roughness_texture", "log_density_texture", "log_density_range",
@@ -296,7 +299,9 @@ const std::array<const char*, 13> kGlintFields = {"alpha", "rho", "log_density",
 
 float numberField(const nlohmann::json& value, const std::string& field) {
   if (!value.is_number()) throw error(field, " must be a number");
-  return value.get<float>();
+  const float number = value.get<float>();
+  if (!std::isfinite(number)) throw error(field, " ", value.get<double>(), " is beyond a float's range");
+  return number;
 }
 
 glm::vec2 pairField(const nlohmann::json& value, const std::string& field) {
@@ -578,6 +583,11 @@ class GltfReader {
     }
     Light light;
     light.intensity = glm::vec3(colour * (source.intensity / kLumensPerWatt));
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(light.intensity[c])) {
+        throw error(label, ": intensity ", source.intensity, " times color ", colour[c], " is beyond a float's range");
+      }
+    }
     if (source.type != "point" && source.type != "spot" && source.type != "directional") {
       throw error(label, ": unknown type '", source.type, "'");
     }
@@ -747,6 +757,10 @@ class GltfReader {
         throw error("POSITION ", i, " is not finite after the node transforms");
       }
       v.uv = uvs.empty() ? glm::vec2(0.0f) : glm::vec2(glm::make_vec2(&uvs[2 * i]));
+      // Beyond 1e6 a float uv has no texel left to resolve, and scaled it overflows.
+      if (!(std::abs(v.uv.x) <= kLargestUv && std::abs(v.uv.y) <= kLargestUv)) {
+        throw error("TEXCOORD_0 ", i, " (", uvs[2 * i], ", ", uvs[2 * i + 1], ") is beyond +-1e6");
+      }
       if (!colours.values.empty()) {
         const double* rgba = &colours.values[static_cast<std::size_t>(colours.components) * i];
         v.colour = glm::vec4(glm::vec3(glm::make_vec3(rgba)), colours.components == 4 ? static_cast<float>(rgba[3]) : 1.0f);
@@ -900,7 +914,11 @@ class GltfReader {
     m.occlusionUv = uvTransform(source.occlusionTexture.extensions, "occlusionTexture");
     m.emissiveUv = uvTransform(source.emissiveTexture.extensions, "emissiveTexture");
     m.normalScale = static_cast<float>(source.normalTexture.scale);
-    if (!std::isfinite(m.normalScale)) throw error("normalTexture.scale is not finite");
+    // Beyond 1e4 the perturbed normals' slopes, and their squares in the normal-map moments,
+    // overflow a float.
+    if (!(std::abs(m.normalScale) <= 1e4f)) {
+      throw error("normalTexture.scale ", source.normalTexture.scale, " is not within +-1e4");
+    }
     m.occlusionStrength = unitFactor(source.occlusionTexture.strength, "occlusionTexture.strength");
     m.occlusionTexture = optionalTexture(source.occlusionTexture.index, false, "occlusionTexture");
     if (source.emissiveFactor.size() == 3) {
