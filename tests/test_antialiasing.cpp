@@ -407,6 +407,20 @@ TEST(GlintAntiAliasingStat, FilterApproachesThePixelAverage) {
   EXPECT_LT(errorFiltered, 0.5 * errorNone);
 }
 
+TEST(GlintFootprint, HugeFootprintsAreTheSmoothLimitNotZero) {
+  // A footprint of 1e20 uv units: its length squared overflows a float, which made the ellipse's
+  // axes NaN and the P-SDF 0. Any footprint that large holds so many microfacets that every cell
+  // is in the smooth limit: the Beckmann P22.
+  const kernel::DictionaryView dict = dictionaryView();
+  const GlintParameters p = correlated(glm::vec2(0.3f), 0.0f, 20.0f);
+  const glm::vec2 slope(0.05f, -0.1f);
+  const float beckmann = kernel::beckmannP22(slope, p.alpha, p.rho);
+  for (glm::vec2 duvdx : {glm::vec2(1e20f, 0.0f), glm::vec2(3e38f, -3e38f), glm::vec2(2e6f, 1.0f)}) {
+    const float value = kernel::glintP22(dict, p, glm::vec2(0.3f, 0.7f), duvdx, glm::vec2(0.0f, 1e-3f), slope);
+    EXPECT_NEAR(value, beckmann, 1e-5f * beckmann) << duvdx.x;
+  }
+}
+
 TEST(GlintAntiAliasing, NoNanOrInfinityAtTheLimits) {
   const kernel::DictionaryView dict = dictionaryView();
   Pcg32 rng(18, 4);

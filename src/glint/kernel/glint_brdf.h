@@ -56,8 +56,13 @@ GLINT_FN float glintFootprintPeriod(int numLevels) {
 // dictionary and the cost stays bounded, while the number of microfacets seen is unchanged.
 GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotropy, float logDensity,
                                        int numLevels) {
-  vec2 major = duvdx;
-  vec2 minor = duvdy;
+  // Derivatives beyond 1e6 uv units (the pattern's period is 2) are scaled down together, so that
+  // their lengths stay finite in float (1e20 squared is not); such a footprint is in the smooth
+  // limit either way. Below that, the scale is exactly 1.
+  float longest = max(max(abs(duvdx.x), abs(duvdx.y)), max(abs(duvdy.x), abs(duvdy.y)));
+  float fit = longest > 1e6f ? 1e6f / longest : 1.0f;
+  vec2 major = duvdx * fit;
+  vec2 minor = duvdy * fit;
   if (dot(major, major) < dot(minor, minor)) {
     major = duvdy;
     minor = duvdx;
