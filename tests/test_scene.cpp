@@ -851,7 +851,8 @@ TEST(GltfGlint, AlphaDefaultsToRoughnessSquared) {
     d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
     d["materials"][0]["extras"] = {{"glint", json::object()}, {"other_tool", "ignored"}};
   });
-  const GlintLayer& g = loadGltf(path).materials[0].glint;
+  // A copy: a reference into the temporary scene would dangle at the end of this statement.
+  const GlintLayer g = loadGltf(path).materials[0].glint;
   EXPECT_TRUE(g.enabled);
   EXPECT_NEAR(g.alpha.x, 0.36f, 1e-6f);
   EXPECT_NEAR(g.alpha.y, 0.36f, 1e-6f);
