@@ -419,6 +419,11 @@ TEST(GlintFootprint, HugeFootprintsAreTheSmoothLimitNotZero) {
     const float value = kernel::glintP22(dict, p, glm::vec2(0.3f, 0.7f), duvdx, glm::vec2(0.0f, 1e-3f), slope);
     EXPECT_NEAR(value, beckmann, 1e-5f * beckmann) << duvdx.x;
   }
+  // And with the huge derivative second, which the ellipse swaps to be its major axis.
+  for (glm::vec2 duvdy : {glm::vec2(1e20f, 0.0f), glm::vec2(3e38f, -3e38f)}) {
+    const float value = kernel::glintP22(dict, p, glm::vec2(0.3f, 0.7f), glm::vec2(0.0f, 1e-3f), duvdy, slope);
+    EXPECT_NEAR(value, beckmann, 1e-5f * beckmann) << duvdy.x;
+  }
 }
 
 TEST(GlintAntiAliasing, NoNanOrInfinityAtTheLimits) {

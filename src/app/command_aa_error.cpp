@@ -84,22 +84,21 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   frame.normalMapFinestLevel = true;
   frame.filterScale = options.aaKernel;
   Frame reference(static_cast<std::size_t>(width) * height * 3, 0.0);
-  Frame referenceRadiance(reference.size(), 0.0);
+  Frame referenceLayer(reference.size(), 0.0);
   for (int k = 0; k < options.reference; ++k) {
     frame.jitter = gl::supersampleJitter(k);
     const Frame radiance = renderFrame(renderer, frame);
     const Frame layer = glintLayer(renderer, frame, radiance);
     for (std::size_t i = 0; i < reference.size(); ++i) {
-      reference[i] += layer[i] / options.reference;
-      referenceRadiance[i] += radiance[i] / options.reference;
+      reference[i] += radiance[i] / options.reference;
+      referenceLayer[i] += layer[i] / options.reference;
     }
   }
   // Errors are relative to the reference's mean radiance where its glint layer shows.
-  const std::vector<std::size_t> values = glintValues(reference);
-  reference = referenceRadiance;
+  const std::vector<std::size_t> values = glintValues(referenceLayer);
   if (values.empty()) throw Error("scene '" + scene.name + "' shows no glint layer from camera '" + options.camera + "'");
   double referenceMean = 0.0;
-  for (std::size_t i : values) referenceMean += referenceRadiance[i] / static_cast<double>(values.size());
+  for (std::size_t i : values) referenceMean += reference[i] / static_cast<double>(values.size());
 
   nlohmann::json entry = {{"scene", scene.name},
                           {"reference_mean", referenceMean},

@@ -372,10 +372,7 @@ class GltfReader {
       it->second.push_back(where);
     };
     for (const std::string& extension : model_.extensionsUsed) {
-      if (extension != "KHR_lights_punctual" && extension != "KHR_mesh_quantization" &&
-          extension != "KHR_materials_emissive_strength" && extension != "KHR_texture_transform") {
-        note("extension " + extension + " is not read", "");
-      }
+      if (!glintReadsExtension(extension)) note("extension " + extension + " is not read", "");
     }
     for (std::size_t i = 0; i < model_.meshes.size(); ++i) {
       const tinygltf::Mesh& mesh = model_.meshes[i];

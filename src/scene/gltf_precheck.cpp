@@ -10,10 +10,10 @@ namespace glint::scene {
 
 namespace {
 
-// The required extensions glint honours: its lights are read, quantised attributes are plain
-// normalised or integer accessors, which the loader reads, and emissive strengths and texture
-// transforms are read (docs/scenes.md).
-constexpr std::array<std::string_view, 4> kSupportedRequiredExtensions = {
+// The extensions glint honours: its lights are read, quantised attributes are plain normalised or
+// integer accessors, which the loader reads, and emissive strengths and texture transforms are
+// read (docs/scenes.md).
+constexpr std::array<std::string_view, 4> kReadExtensions = {
     "KHR_lights_punctual", "KHR_mesh_quantization", "KHR_materials_emissive_strength", "KHR_texture_transform"};
 
 // A non-negative integer member, or `fallback` when absent; the field-type check has already
@@ -25,15 +25,20 @@ double integerMember(const nlohmann::json& object, const char* name, double fall
 
 }  // namespace
 
+bool glintReadsExtension(const std::string& name) {
+  for (std::string_view known : kReadExtensions) {
+    if (name == known) return true;
+  }
+  return false;
+}
+
 void checkRequiredExtensions(const nlohmann::json& document) {
   const auto required = document.find("extensionsRequired");
   if (required == document.end() || !required->is_array()) return;
   for (const nlohmann::json& extension : *required) {
     if (!extension.is_string()) continue;
     const std::string name = extension.get<std::string>();
-    bool supported = false;
-    for (std::string_view known : kSupportedRequiredExtensions) supported = supported || name == known;
-    if (!supported) throw Error("requires extension " + name + ", which glint does not support");
+    if (!glintReadsExtension(name)) throw Error("requires extension " + name + ", which glint does not support");
   }
 }
 

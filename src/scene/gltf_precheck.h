@@ -4,9 +4,15 @@
 // unchecked).
 #pragma once
 
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 namespace glint::scene {
+
+// Whether glint reads this extension (docs/scenes.md): the ones a file may require, and the ones a
+// file that merely uses is not warned about.
+bool glintReadsExtension(const std::string& name);
 
 // Throws glint::Error "requires extension NAME, which glint does not support" for the first
 // required extension glint cannot honour (KHR_draco_mesh_compression, EXT_meshopt_compression,

@@ -106,13 +106,28 @@ glm::vec3 SceneMaterials::texture(int index, glm::vec2 uv, const UvDerivatives& 
   return textures_[static_cast<std::size_t>(index)].sample(uv, footprint.duvdx, footprint.duvdy);
 }
 
+namespace {
+
+// A lookup through a glTF KHR_texture_transform: the uv and its footprint, transformed.
+struct TransformedLookup {
+  glm::vec2 uv;
+  UvDerivatives footprint;
+};
+
+TransformedLookup transformedLookup(const scene::UvTransform& transform, glm::vec2 uv, const UvDerivatives& footprint) {
+  // Without a transform the sine and cosine are skipped: every lookup of every hit comes through here.
+  if (transform.identity()) return {uv, footprint};
+  const glm::mat2 linear = transform.linear();
+  return {linear * uv + transform.offset, UvDerivatives{linear * footprint.duvdx, linear * footprint.duvdy}};
+}
+
+}  // namespace
+
 glm::vec3 SceneMaterials::texture(int index, const scene::UvTransform& transform, glm::vec2 uv,
                                   const UvDerivatives& footprint) const {
-  // Every lookup of every hit comes through here: a material without a texture, or without a
-  // transform, skips the sine and cosine.
-  if (index < 0 || transform.identity()) return texture(index, uv, footprint);
-  const glm::mat2 linear = transform.linear();
-  return texture(index, linear * uv + transform.offset, UvDerivatives{linear * footprint.duvdx, linear * footprint.duvdy});
+  if (index < 0) return texture(index, uv, footprint);  // no texture: no transform to compute
+  const TransformedLookup lookup = transformedLookup(transform, uv, footprint);
+  return texture(index, lookup.uv, lookup.footprint);
 }
 
 ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
@@ -147,12 +162,11 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   if (moments) {
     // Normal-map filtering, as forward.frag's GLINT_LEAN: the moments at the footprint, through the
     // normal texture's transform.
-    const glm::mat2 linear = m.normalUv.linear();
-    const glm::vec2 at = m.normalUv.identity() ? uv : linear * uv + m.normalUv.offset;
-    const glm::vec2 dx = m.normalUv.identity() ? footprint.duvdx : linear * footprint.duvdx;
-    const glm::vec2 dy = m.normalUv.identity() ? footprint.duvdy : linear * footprint.duvdy;
-    const glm::vec3 first = moments->first.sample(at, dx, dy);
-    const glm::vec3 second = moments->second.sample(at, dx, dy);
+    const TransformedLookup at = transformedLookup(m.normalUv, uv, footprint);
+    const glm::vec2 dx = at.footprint.duvdx;
+    const glm::vec2 dy = at.footprint.duvdy;
+    const glm::vec3 first = moments->first.sample(at.uv, dx, dy);
+    const glm::vec3 second = moments->second.sample(at.uv, dx, dy);
     leanCovariance = kernel::leanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
     const glm::vec3 mapped = kernel::leanMeanNormal(first);
     n = glm::normalize(t * mapped.x + b * mapped.y + n * mapped.z);

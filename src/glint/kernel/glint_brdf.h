@@ -64,8 +64,9 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   vec2 major = duvdx * fit;
   vec2 minor = duvdy * fit;
   if (dot(major, major) < dot(minor, minor)) {
-    major = duvdy;
-    minor = duvdx;
+    vec2 longer = minor;
+    minor = major;
+    major = longer;
   }
   float majorLength = length(major);
   float minorLength = length(minor);
@@ -414,10 +415,10 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // would be); when all are, the cells' rotations and texel reads are skipped.
   bool inSupport[GLINT_SLOPE_COUNT];
   bool anyInSupport = false;
-  // The anti-aliasing kernel of each slope, in slope space (for the smooth cells) and in the
-  // unscaled space (for the dictionary cells, which rotate it onto their axes).
+  // The anti-aliasing kernel of each slope: its covariance in slope space (for the smooth cells)
+  // and, from its covariance in the unscaled space, the level of detail of the dictionary cells'
+  // filtered lookups.
   vec3 slopeKernel[GLINT_SLOPE_COUNT];
-  vec3 unscaledKernel[GLINT_SLOPE_COUNT];
   float kernelLod[GLINT_SLOPE_COUNT];
   bool anyDerivative = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
@@ -430,8 +431,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
     slopeKernel[k] = glintKernelCovariance(d);
     vec2 ux = glintUnscaledSlope(dict, params, vec2(d.x, d.y));
     vec2 uy = glintUnscaledSlope(dict, params, vec2(d.z, d.w));
-    unscaledKernel[k] = glintKernelCovariance(vec4(ux, uy));
-    kernelLod[k] = glintMarginalLod(dict, glintKernelVariance(unscaledKernel[k]));
+    kernelLod[k] = glintMarginalLod(dict, glintKernelVariance(glintKernelCovariance(vec4(ux, uy))));
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
