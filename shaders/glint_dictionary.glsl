@@ -25,8 +25,8 @@ layout(binding = 0) uniform samplerBuffer uGlintDictionary;
 uniform ivec3 uGlintDictionaryShape;  // L, N, R
 uniform float uGlintDictionaryAlpha;  // alpha_d
 #if GLINT_FILTERED
-// The mip chain: RGBA16F texels (p_m[k], p_m[k+1], p_m+1[k / 2], p_m+1[k / 2 + 1]), row after row
-// as the C++ DictionaryView's filteredTexels.
+// The mip chain: RGBA16F texels (p_m[k], p_m[k+1], q_m[k], q_m[k+1]), q_m the next level at level
+// m's positions, row after row as the C++ DictionaryView's filteredTexels.
 layout(binding = 10) uniform samplerBuffer uGlintFilteredDictionary;
 uniform ivec2 uGlintDictionaryMips;  // numMips, mipRowLength
 #endif
@@ -57,15 +57,14 @@ int glintMipOffset(int texelsPerDistribution, int mip) {
 }
 
 #if GLINT_FILTERED
-vec4 glintDictionaryFilteredTexels(DictionaryView dict, int mip, int level, int distribution, int texel) {
-  return texelFetch(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength +
-                                                  glintMipOffset(dict.texelsPerDistribution, mip) + texel);
+vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
+  return texelFetch(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength + index);
 }
 #else
 // Unfiltered programs never read the mip chain; the kernel's filtered lookup, compiled but not
 // called there, reads mip 0's pair.
-vec4 glintDictionaryFilteredTexels(DictionaryView dict, int mip, int level, int distribution, int texel) {
-  return vec4(glintDictionaryTexelPair(dict, level, distribution, texel), 0.0f, 0.0f);
+vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
+  return vec4(glintDictionaryTexelPair(dict, level, distribution, index), 0.0f, 0.0f);
 }
 #endif
 

@@ -151,6 +151,11 @@ TEST(SlopeCorrelation, OutOfRangeIsRejectedByName) {
 
 // ---- The mip chain ----------------------------------------------------------------------------
 
+// The filtered marginal at a level of detail, as the walk reads it.
+float filteredMarginal(const kernel::DictionaryView& dict, int level, int distribution, float absSlope, float lod) {
+  return kernel::glintFilteredMarginal(dict, kernel::glintMarginalFilter(dict, lod), level, distribution, absSlope);
+}
+
 // The integral over [-4 sigma_d, 4 sigma_d] of a level of the chain under the texel convention's
 // interpolation: spacing (f_0 + 2 sum_k>0 f_k).
 double mipIntegral(const Dictionary& d, int mip, int level, int distribution) {
@@ -235,7 +240,7 @@ TEST(MipChain, LevelMWidensTheMarginalsByAQuarterOfItsSpacingSquared) {
       for (int distribution = 0; distribution < dict.numDistributions; ++distribution) {
         const auto at = [&](int lod) {
           return [&, lod](double x) {
-            return static_cast<double>(kernel::glintFilteredMarginal(dict, level, distribution, static_cast<float>(x),
+            return static_cast<double>(filteredMarginal(dict, level, distribution, static_cast<float>(x),
                                                                      static_cast<float>(lod)));
           };
         };
@@ -258,13 +263,44 @@ TEST(FilteredMarginal, AtLodZeroIsThe2020LookupBitForBit) {
     const int level = static_cast<int>(rng.nextBelow(16));
     const int distribution = static_cast<int>(rng.nextBelow(192));
     const float x = uniform(rng, 0.0f, domain * 0.99999f);
-    ASSERT_EQ(kernel::glintFilteredMarginal(dict, level, distribution, x, 0.0f),
+    ASSERT_EQ(filteredMarginal(dict, level, distribution, x, 0.0f),
               kernel::glintMarginal(dict, level, distribution, x))
         << "level " << level << " distribution " << distribution << " slope " << x;
   }
   // No kernel is level of detail 0, one far below a texel next to it.
   EXPECT_EQ(kernel::glintMarginalLod(dict, 0.0f), 0.0f);
   EXPECT_LT(kernel::glintMarginalLod(dict, 1e-12f), 1e-8f);
+}
+
+TEST(FilteredMarginal, BlendsTwoLevelsEachReadAtItsOwnSpacing) {
+  // Between levels m and m + 1 the lookup is the blend of the two levels' own interpolations,
+  // computed here from their texels alone (Dictionary::mipTexel; 0 from 4 sigma_d on). The texels
+  // hold the next level interpolated at this level's positions, rounded to binary16: 2e-3.
+  const Dictionary& d = defaultDictionary();
+  const kernel::DictionaryView dict = dictionaryView();
+  const double spacing = d.parameters().texelSpacing();
+  const auto interpolated = [&](int mip, int level, int distribution, double x) {
+    const int texels = d.parameters().texelsPerDistribution >> mip;
+    const double at = x / (spacing * (1 << mip));
+    const int k = std::min(static_cast<int>(at), texels - 1);
+    const double f = at - k;
+    const double a = d.mipTexel(mip, level, distribution, k);
+    const double b = k + 1 < texels ? d.mipTexel(mip, level, distribution, k + 1) : 0.0;
+    return a + f * (b - a);
+  };
+  Pcg32 rng(29, 3);
+  for (int i = 0; i < 20000; ++i) {
+    const int level = static_cast<int>(rng.nextBelow(16));
+    const int distribution = static_cast<int>(rng.nextBelow(192));
+    const float x = uniform(rng, 0.0f, kernel::glintDictionaryDomain(dict) * 0.99999f);
+    const float lod = uniform(rng, 0.0f, dict.numMips - 1.0f);
+    const int mip = static_cast<int>(lod);
+    const double blend = lod - mip;
+    const double expected = (1.0 - blend) * interpolated(mip, level, distribution, x) +
+                            (blend > 0.0 ? blend * interpolated(mip + 1, level, distribution, x) : 0.0);
+    ASSERT_NEAR(filteredMarginal(dict, level, distribution, x, lod), expected, 2e-3 * expected + 1e-4)
+        << "level " << level << " distribution " << distribution << " slope " << x << " lod " << lod;
+  }
 }
 
 TEST(FilteredMarginal, IntegratesToOneAtEveryLevelOfDetail) {
@@ -276,7 +312,7 @@ TEST(FilteredMarginal, IntegratesToOneAtEveryLevelOfDetail) {
         constexpr int kSamples = 20000;
         double sum = 0.0;
         for (int s = 0; s < kSamples; ++s) {
-          sum += kernel::glintFilteredMarginal(dict, level, distribution, static_cast<float>((s + 0.5) * domain / kSamples), lod);
+          sum += filteredMarginal(dict, level, distribution, static_cast<float>((s + 0.5) * domain / kSamples), lod);
         }
         EXPECT_NEAR(2.0 * sum * domain / kSamples, 1.0, 5e-3) << "lod " << lod << " level " << level;
       }
@@ -310,7 +346,7 @@ TEST(FilteredMarginal, WiderKernelsWidenTheMarginalsByTheirVariance) {
       for (int distribution = 0; distribution < 192; ++distribution) {
         variance += halfVariance(
             [&](double x) {
-              return static_cast<double>(kernel::glintFilteredMarginal(dict, level, distribution, static_cast<float>(x), lod));
+              return static_cast<double>(filteredMarginal(dict, level, distribution, static_cast<float>(x), lod));
             },
             domain);
       }

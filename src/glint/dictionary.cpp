@@ -171,6 +171,14 @@ void Dictionary::buildMipChain() {
         f[static_cast<std::size_t>(count - 1)] += (count == 1 ? 2.0 : 1.0) * rest / width;
       }
     }
+    // Level m + 1 interpolated at level m's texel j, 2^m h j: its texels lie at even j, so an odd j
+    // is the mean of its two neighbours. Within a texel of level m both levels are then linear, and
+    // one fraction serves both.
+    auto nextAt = [&](int m, int j) {
+      const std::vector<double>& next = mips[static_cast<std::size_t>(m) + 1];
+      const auto half = static_cast<std::size_t>(j / 2);
+      return j % 2 == 0 ? next[half] : 0.5 * (next[half] + next[half + 1]);
+    };
     for (int m = 0; m < numMips_; ++m) {
       const std::vector<double>& fine = mips[static_cast<std::size_t>(m)];
       const bool last = m + 1 == numMips_;
@@ -178,8 +186,7 @@ void Dictionary::buildMipChain() {
         const std::size_t at =
             4 * (row * static_cast<std::size_t>(mipRowLength_) + static_cast<std::size_t>(kernel::glintMipOffset(texels, m) + k));
         const double quad[4] = {fine[static_cast<std::size_t>(k)], fine[static_cast<std::size_t>(k) + 1],
-                                last ? 0.0 : mips[static_cast<std::size_t>(m) + 1][static_cast<std::size_t>(k / 2)],
-                                last ? 0.0 : mips[static_cast<std::size_t>(m) + 1][static_cast<std::size_t>(k / 2) + 1]};
+                                last ? 0.0 : nextAt(m, k), last ? 0.0 : nextAt(m, k + 1)};
         for (int c = 0; c < 4; ++c) {
           // Level 0's own values are halves already; the others are rounded as the GPU holds them.
           filteredHalves_[at + static_cast<std::size_t>(c)] = floatToHalf(static_cast<float>(quad[c]));
@@ -191,7 +198,9 @@ void Dictionary::buildMipChain() {
 }
 
 float Dictionary::mipTexel(int mip, int level, int distribution, int texel) const {
-  return kernel::glintDictionaryFilteredTexels(view(), mip, level, distribution, texel).x;
+  return kernel::glintDictionaryFilteredTexels(view(), level, distribution,
+                                               kernel::glintMipOffset(parameters_.texelsPerDistribution, mip) + texel)
+      .x;
 }
 
 kernel::DictionaryView Dictionary::view() const {

@@ -109,21 +109,39 @@ GLINT_FN float glintMarginalLod(DictionaryView dict, float variance) {
   return v < 1.0f ? v : min(lod, float(dict.numMips - 1));
 }
 
-// A marginal at |slope| (< 4 sigma_d) filtered at a level of detail in [0, numMips - 1]: the mip
-// level floor(lod) blended with the next, each read with the texel convention's linear
-// interpolation at its own spacing. One fetch: a mip texel holds its own pair and the next level's.
-// At lod 0 it is glintMarginal exactly (the blend adds an exact zero).
-GLINT_FN float glintFilteredMarginal(DictionaryView dict, int level, int distribution, float absSlope, float lod) {
+// What a filtered lookup needs of its level of detail lod in [0, numMips - 1], the same for every
+// cell of a pixel: the mip level floor(lod), its texel spacing, where it starts in a row, and the
+// blend towards the next level.
+struct GlintMarginalFilter {
+  float texelsPerSlope;  // R / (4 sigma_d) / 2^mip
+  int lastTexel;         // R / 2^mip - 1
+  int mipOffset;         // glintMipOffset(R, mip)
+  float blend;           // lod - mip
+};
+
+GLINT_FN GlintMarginalFilter glintMarginalFilter(DictionaryView dict, float lod) {
   int mip = int(lod);
-  float blend = lod - float(mip);
-  float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict)) * (1.0f / float(1 << mip));
-  int k = min(int(x), (dict.texelsPerDistribution >> mip) - 1);
+  GlintMarginalFilter marginalFilter;
+  marginalFilter.texelsPerSlope = (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict)) * (1.0f / float(1 << mip));
+  marginalFilter.lastTexel = (dict.texelsPerDistribution >> mip) - 1;
+  marginalFilter.mipOffset = glintMipOffset(dict.texelsPerDistribution, mip);
+  marginalFilter.blend = lod - float(mip);
+  return marginalFilter;
+}
+
+// A marginal at |slope| (< 4 sigma_d) filtered by a kernel: the mip level floor(lod) blended with
+// the next, each read with the texel convention's linear interpolation at its own spacing. One
+// fetch: a mip texel holds its own pair and the next level's interpolation at the same two
+// positions (docs/dictionary.md, "Mip chain"), so both levels share the texel's fraction and the
+// blend is of the pairs. At lod 0 it is glintMarginal exactly (the blend adds exact zeros).
+GLINT_FN float glintFilteredMarginal(DictionaryView dict, GlintMarginalFilter marginalFilter, int level, int distribution,
+                                     float absSlope) {
+  float x = absSlope * marginalFilter.texelsPerSlope;
+  int k = min(int(x), marginalFilter.lastTexel);
   float f = x - float(k);
-  vec4 t = glintDictionaryFilteredTexels(dict, mip, level, distribution, k);
-  float fine = t.x + f * (t.y - t.x);
-  float fNext = (float(k & 1) + f) * 0.5f;  // the position within the next level's texel k / 2
-  float coarse = t.z + fNext * (t.w - t.z);
-  return fine + blend * (coarse - fine);
+  vec4 t = glintDictionaryFilteredTexels(dict, level, distribution, marginalFilter.mipOffset + k);
+  vec2 pair = vec2(t.x, t.y) + marginalFilter.blend * (vec2(t.z, t.w) - vec2(t.x, t.y));
+  return pair.x + f * (pair.y - pair.x);
 }
 
 // ---- 3. The smooth lobe ----------------------------------------------------------------------

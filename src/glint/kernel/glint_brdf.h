@@ -287,16 +287,16 @@ GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec
 }
 
 // The same product with both marginals filtered by the anti-aliasing kernel (glint_antialiasing.h)
-// at the level of detail `lod` of its variance (glintKernelVariance, glintMarginalLod).
+// at the level of detail of its variance (glintKernelVariance, glintMarginalLod, glintMarginalFilter).
 GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions,
-                                          vec2 rotation, vec2 unscaled, float lod) {
+                                          vec2 rotation, vec2 unscaled, GlintMarginalFilter marginalFilter) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return 0.0f;
   }
-  return glintFilteredMarginal(dict, dictionaryLevel, distributions.x, abs(local.x), lod) *
-         glintFilteredMarginal(dict, dictionaryLevel, distributions.y, abs(local.y), lod);
+  return glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.x, abs(local.x)) *
+         glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.y, abs(local.y));
 }
 
 // The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
@@ -419,7 +419,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // and, from its covariance in the unscaled space, the level of detail of the dictionary cells'
   // filtered lookups.
   vec3 slopeKernel[GLINT_SLOPE_COUNT];
-  float kernelLod[GLINT_SLOPE_COUNT];
+  GlintMarginalFilter kernelFilter[GLINT_SLOPE_COUNT];
   bool anyDerivative = false;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
@@ -431,7 +431,8 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
     slopeKernel[k] = glintKernelCovariance(d);
     vec2 ux = glintUnscaledSlope(dict, params, vec2(d.x, d.y));
     vec2 uy = glintUnscaledSlope(dict, params, vec2(d.z, d.w));
-    kernelLod[k] = glintMarginalLod(dict, glintKernelVariance(glintKernelCovariance(vec4(ux, uy))));
+    kernelFilter[k] =
+        glintMarginalFilter(dict, glintMarginalLod(dict, glintKernelVariance(glintKernelCovariance(vec4(ux, uy)))));
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
@@ -467,7 +468,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
           float p = 0.0f;
           if (inSupport[k]) {
             p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
-                                                       unscaled[k], kernelLod[k])
+                                                       unscaled[k], kernelFilter[k])
                           : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
           }
           dictionarySum[k] += weight * p;

@@ -43,7 +43,8 @@ struct DictionaryView {
   float alpha;  // alpha_d, the dictionary's roughness
   // The mip chain (docs/dictionary.md, "Mip chain"): numMips levels of each distribution, level m
   // of R / 2^m texels, one after the other in a row of mipRowLength texels per distribution; each
-  // texel four floats, (p_m[k], p_m[k+1], p_m+1[k / 2], p_m+1[k / 2 + 1]), binary16 values.
+  // texel four floats, (p_m[k], p_m[k+1], q_m[k], q_m[k+1]), binary16 values, q_m the next level
+  // interpolated at level m's texel positions.
   const float* filteredTexels;
   int numMips;
   int mipRowLength;
@@ -63,10 +64,10 @@ GLINT_FN int glintMipOffset(int texelsPerDistribution, int mip) {
   return 2 * texelsPerDistribution - ((2 * texelsPerDistribution) >> mip);
 }
 
-GLINT_FN vec4 glintDictionaryFilteredTexels(DictionaryView dict, int mip, int level, int distribution, int texel) {
-  const float* t = dict.filteredTexels +
-                   4 * ((level * dict.numDistributions + distribution) * dict.mipRowLength +
-                        glintMipOffset(dict.texelsPerDistribution, mip) + texel);
+// Texel `index` of a distribution's row of the mip chain: glintMipOffset(R, m) + k for texel k of
+// level m.
+GLINT_FN vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
+  const float* t = dict.filteredTexels + 4 * ((level * dict.numDistributions + distribution) * dict.mipRowLength + index);
   return vec4(t[0], t[1], t[2], t[3]);
 }
 
