@@ -23,7 +23,7 @@ using Spectrum = glm::vec3;
 using GlintParameters = kernel::GlintParameters;
 using ZirrKaplanyanParameters = kernel::ZirrKaplanyanParameters;
 
-// The reference defaults of model.md section 2.
+// The reference defaults of method.md section 2.
 GlintParameters defaultGlintParameters();
 // Throws Error naming the first parameter out of range (ranges in docs/conventions.md).
 void validateGlintParameters(const GlintParameters& parameters);
@@ -90,7 +90,7 @@ class CookTorranceBsdf {
   Spectrum reflectance_;
 };
 
-// The glint BRDF (model.md sections 2-3) at one shading point. Holds a reference to the
+// The glint BRDF (method.md sections 2-3) at one shading point. Holds a reference to the
 // dictionary, which must outlive it.
 class GlintBsdf {
  public:

@@ -1,4 +1,4 @@
-// The dictionary of multi-level 1D slope distributions (model.md section 1, docs/dictionary.md):
+// The dictionary of multi-level 1D slope distributions (method.md section 1, docs/dictionary.md):
 // L levels x N distributions x R texels, each texel a binary16 value of an even density over the
 // slope domain [-4 sigma_d, 4 sigma_d], of which only [0, 4 sigma_d) is stored.
 #pragma once
@@ -85,7 +85,7 @@ class Dictionary {
   void buildMipChain();
 };
 
-// Generates a dictionary (model.md section 1) in parallel with oneTBB. The result depends only on
+// Generates a dictionary (method.md section 1) in parallel with oneTBB. The result depends only on
 // the parameters, never on the number of threads.
 Dictionary generateDictionary(const DictionaryParameters& parameters);
 

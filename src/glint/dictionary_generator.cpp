@@ -1,4 +1,4 @@
-// Dictionary generation (model.md section 1; docs/dictionary.md). Two stages:
+// Dictionary generation (method.md section 1; docs/dictionary.md). Two stages:
 //   1. lobe means, drawn sequentially from one PCG32 stream per placement rule (cheap);
 //   2. tabulation and normalisation, one oneTBB task per distribution (the costly part).
 // Every output value depends only on the parameters: each distribution is tabulated by one task
@@ -146,7 +146,7 @@ Dictionary generateDictionary(const DictionaryParameters& parameters) {
   std::vector<float> values(static_cast<std::size_t>(L) * N * R);
 
   tbb::parallel_for(0, N, [&](int n) {
-    // p_l(x) = 1 / (2 * 2^l) * sum_{k < 2^l} [g(x; mu_k, s) + g(-x; mu_k, s)]  (model.md 1).
+    // p_l(x) = 1 / (2 * 2^l) * sum_{k < 2^l} [g(x; mu_k, s) + g(-x; mu_k, s)]  (method.md 1).
     std::vector<double> sum(static_cast<std::size_t>(R), 0.0);
     std::size_t added = 0;
     for (int level = 0; level < L; ++level) {

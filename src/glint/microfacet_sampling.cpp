@@ -65,7 +65,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   const kernel::GlintFootprint footprint =
       kernel::glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
   if (footprint.degenerate) return sampleBeckmannSlope(params.alpha, params.rho, u);
-  // P22_P = (1 - w) P22_il + w P22_il+1 (model.md 2.3): level il + 1 with probability w.
+  // P22_P = (1 - w) P22_il + w P22_il+1 (method.md 2.3): level il + 1 with probability w.
   int level = kernel::glintLodLevel(footprint);
   const float blend = kernel::glintLodBlend(footprint);
   if (blend > 0.0f) {
@@ -76,7 +76,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
       uChoice = remapUniform(uChoice, blend, 1.0f - blend);
     }
   }
-  // P22_level = sum_c w_c P22_c / sum_c w_c (model.md 2.4): cell c with probability w_c / sum w.
+  // P22_level = sum_c w_c P22_c / sum_c w_c (method.md 2.4): cell c with probability w_c / sum w.
   // Same walk, same weights, same float sum as glintLevelP22, twice: the sum, then the choice.
   const kernel::GlintCellGrid grid =
       kernel::glintCellGrid(footprint, kernel::glintWrapUv(uv, dict.numLevels), dict.numLevels, level);
@@ -120,7 +120,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   const glm::uvec4 hash = drawn.hash;
   const int dictLevel = drawn.dictionaryLevel;
   const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
-  // Tensor product: x' and y' independent, each from its marginal (model.md 2.5).
+  // Tensor product: x' and y' independent, each from its marginal (method.md 2.5).
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
   const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
   // Back from the dictionary's space: slope = M R(theta) (x', y'), the inverse of

@@ -1,6 +1,6 @@
 // Importance sampling of microfacet normals, host only (docs/sampling.md): the glint P-SDF as the
 // finite mixture it is (Chermain, Cabral, Dischler, Dachsbacher 2021, "Importance Sampling of
-// Glittering BSDFs based on Finite Mixture Distributions", EGSR; model.md section 5), the
+// Glittering BSDFs based on Finite Mixture Distributions", EGSR; method.md section 5), the
 // Beckmann slope distribution, visible normals of the V-cavity model (Heitz & d'Eon 2014), and the
 // dielectric interface (Walter, Marschner, Li & Torrance 2007). The BSDF classes of bsdf.h build
 // their sample() and pdf() from these; the densities they sample are the kernel's (glint_brdf.h),
@@ -24,7 +24,7 @@ inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 // A uniform u that fell in [low, low + width) rescaled to [0, 1).
 float remapUniform(float u, float low, float width);
 
-// A microfacet normal from its slope: m = (-x, -y, 1) / sqrt(1 + x^2 + y^2) (model.md, notation).
+// A microfacet normal from its slope: m = (-x, -y, 1) / sqrt(1 + x^2 + y^2) (method.md, notation).
 glm::vec3 normalFromSlope(glm::vec2 slope);
 
 // A slope of the anisotropic Beckmann P22 with correlation rho (microfacet.h, beckmannP22): a
@@ -39,7 +39,7 @@ glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u);
 // x is monotonic in u (the inverse of the full CDF).
 float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u);
 
-// A slope of the P-SDF P22_P (model.md 2.3-2.5, section 5): the LOD il or il + 1 by the blend
+// A slope of the P-SDF P22_P (method.md 2.3-2.5, section 5): the LOD il or il + 1 by the blend
 // weight, a cell of that level by its normalised EWA weight (the cells glintLevelP22 visits, with
 // its weights), the cell's random properties regenerated with the kernel's own functions, then a
 // slope of that cell's P22: Beckmann in the smooth limit, else the tensor product of two marginals,

@@ -23,7 +23,7 @@ GLINT_CONST float kEwaFilterFloor = 0.13533528f;  // exp(-2)
 // (s | t << 16) collision-free over the whole period; see glintFootprintPeriod().
 GLINT_CONST uint kCellIndexMask = 0xFFFFu;
 
-// The material inputs of the model (model.md section 2), validated by the host.
+// The material inputs of the model (method.md section 2), validated by the host.
 struct GlintParameters {
   vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
   float rho;                   // its slope correlation, in (-1, 1) (glint_antialiasing.h)
@@ -49,7 +49,7 @@ GLINT_FN float glintFootprintPeriod(int numLevels) {
   return exp2(float(17 - numLevels));
 }
 
-// Footprint ellipse and continuous LOD (model.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the two
+// Footprint ellipse and continuous LOD (method.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the two
 // uv derivatives are the ellipse's axes; the minor axis is widened so that the anisotropy is at
 // most maxAnisotropy. Going past the paper, a footprint whose minor axis exceeds one uv unit is
 // shrunk to one and the area it loses is added to the density, so the LOD stays within the
@@ -101,11 +101,11 @@ GLINT_FN vec3 glintCellColour(uvec4 h) {
   return mix(vec3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
 }
 
-// The random properties of one cell (model.md 2.5), each drawn in exactly one place: the P-SDF
+// The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
 // below and the importance sampler of the host (src/glint/microfacet_sampling.cpp) both call these.
 //
 // Coherent index: the level-0 index of the cell's first child, so that a cell and its descendants
-// draw the same random numbers (model.md 2.5). Masked to the period, the pair is a collision-free
+// draw the same random numbers (method.md 2.5). Masked to the period, the pair is a collision-free
 // seed; pcg4d's four lanes are the cell's four draws.
 GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
   uint s = (uint(cellX) << uint(level)) & kCellIndexMask;
@@ -113,13 +113,13 @@ GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int l
   return pcg4d(uvec4(s, t, params.patternSeed, 0u));
 }
 
-// Microfacet relative area: the cell holds microfacets with probability MRA (model.md 2.5).
+// Microfacet relative area: the cell holds microfacets with probability MRA (method.md 2.5).
 GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
   return !(hashToUnitOpen(h.x) > params.relativeArea);
 }
 
 // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
-// log4(n) randomised by a normal of std zeta (model.md 2.5), rounded, and the top level L means "so
+// log4(n) randomised by a normal of std zeta (method.md 2.5), rounded, and the top level L means "so
 // many microfacets that the smooth Beckmann limit holds": round(log4(n) + zeta N) clamped to [0, L],
 // N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u.
 //
@@ -179,7 +179,7 @@ GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   return dictLevel;
 }
 
-// The cell's random rotation theta = 2 pi hash (model.md 2.5), as (cos theta, sin theta). The
+// The cell's random rotation theta = 2 pi hash (method.md 2.5), as (cos theta, sin theta). The
 // angle is reduced to [-pi/4, pi/4] in quarter turns, exactly (hash * 4 and its rounding are exact),
 // and cos and sin there are Cephes' single-precision minimax polynomials (cosf, sinf; error below
 // 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
@@ -204,7 +204,7 @@ GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
 
-// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (model.md 2.5), in two steps: undo
+// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5), in two steps: undo
 // the roughness scaling and correlation M (the same for every cell of a pixel; with rho = 0 the
 // 2020 model's S = alpha / alpha_d) ...
 GLINT_FN vec2 glintUnscaledSlope(DictionaryView dict, GlintParameters params, vec2 slope) {
@@ -223,7 +223,7 @@ GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
   return vec2(x, y);
 }
 
-// Jacobian of the scaling, det(M^-1) (model.md 2.5; with correlation, glintCorrelatedJacobian).
+// Jacobian of the scaling, det(M^-1) (method.md 2.5; with correlation, glintCorrelatedJacobian).
 GLINT_FN float glintScalingJacobian(DictionaryView dict, GlintParameters params) {
   return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
 }
@@ -245,7 +245,7 @@ GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params
   return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope));
 }
 
-// One cell's contribution to P22 (model.md 2.5), split so that what is the same for every cell of
+// One cell's contribution to P22 (method.md 2.5), split so that what is the same for every cell of
 // the footprint is computed once per footprint (glintLevelP22), not once per cell, and what is the
 // same for every slope once per cell: a cell is empty, in the smooth limit (its P22 is the Beckmann
 // P22 at the slope), or reads the dictionary (its P22 is the tensor product of two marginals at its
@@ -330,7 +330,7 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
   return slopes;
 }
 
-// The cells of one footprint level (model.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
+// The cells of one footprint level (method.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
 // pbrt-v3's EWA Gaussian over the footprint ellipse. The ellipse is walked line by line between its
 // two boundary crossings (glintCellRow), so only cells inside it are visited (no bounding-box
 // waste, no cap). Lines run along the ellipse's longer extent: a footprint long in v is walked in
@@ -388,7 +388,7 @@ GLINT_FN ivec2 glintCellAt(GlintCellGrid grid, int x, int y) {
   return grid.transposed ? ivec2(y, x) : ivec2(x, y);
 }
 
-// The EWA weight of the cell at walk coordinates (s, t) (model.md 2.4): exp(-2 r^2) - exp(-2) for
+// The EWA weight of the cell at walk coordinates (s, t) (method.md 2.4): exp(-2 r^2) - exp(-2) for
 // r^2 < 1, else 0. The quadratic form is symmetric in the transposition, so the weights are the
 // cells'. Each cell takes its own exp: stepping the Gaussian along a line by forward differencing
 // needs two exps at the start of every line, which the single-loop walk of glintLevelP22 would pay
@@ -400,7 +400,7 @@ GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   return max(exp(-2.0f * r2) - kEwaFilterFloor, 0.0f);
 }
 
-// P22 over the footprint at one level (model.md 2.4), at each slope of the set: the EWA-weighted
+// P22 over the footprint at one level (method.md 2.4), at each slope of the set: the EWA-weighted
 // mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
 // Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
 // once. Uncoloured cells are white, so their .rgb is .w: only coloured ones sum colours.
@@ -502,7 +502,7 @@ GLINT_FN vec2 glintWrapUv(vec2 uv, int numLevels) {
   return uv - period * floor(uv / period);
 }
 
-// The continuous LOD's two levels (model.md 2.3): floor(lod), blended with the next one by
+// The continuous LOD's two levels (method.md 2.3): floor(lod), blended with the next one by
 // glintLodBlend.
 GLINT_FN int glintLodLevel(GlintFootprint footprint) {
   return int(floor(footprint.lod));
@@ -512,7 +512,7 @@ GLINT_FN float glintLodBlend(GlintFootprint footprint) {
   return footprint.lod - float(glintLodLevel(footprint));
 }
 
-// The P-SDF: P22 over the pixel footprint, blended between two levels (model.md 2.3), at each
+// The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
 // slope of the set, in .w; .rgb weighted by the cells' colours (equal to .w unless
 // params.colouredCells).
 GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,

@@ -9,7 +9,7 @@ GLINT_KERNEL_BEGIN
 
 GLINT_CONST float kPi = 3.14159265358979f;
 
-// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (model.md, notation).
+// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (method.md, notation).
 GLINT_FN vec2 slopeFromNormal(vec3 m) {
   return vec2(-m.x / m.z, -m.y / m.z);
 }
@@ -56,7 +56,7 @@ GLINT_FN float vcavityG1(vec3 w, vec3 m) {
 }
 
 // The Cook-Torrance frame around any normal distribution value D(wh), Fresnel excluded:
-// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (model.md, section 3). Zero below either horizon and for
+// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (method.md, section 3). Zero below either horizon and for
 // back-facing microfacets. Without the cosine (docs/conventions.md).
 GLINT_FN float microfacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
   if (wo.z <= 0.0f || wi.z <= 0.0f || wh.z <= 0.0f || dot(wo, wh) <= 0.0f || dot(wi, wh) <= 0.0f) {
