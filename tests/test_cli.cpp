@@ -147,6 +147,23 @@ TEST(EvalCli, PatternSeedsAreExactToThirtyTwoBits) {
   expectOneLineError(runGlint(folder, "eval", "{\"pattern_seed\":4294967296}\n"), "pattern_seed");
 }
 
+TEST(EvalCli, DirectionsAtAnyScaleAreTheirDirection) {
+  // A direction is normalised on input: [1e30, 0, 1e30] squared overflowed a float (a zero
+  // direction), [1e-30, 0, 1e-30] underflowed (refused as zero). Each must answer as the same
+  // direction at unit scale does, exactly.
+  const auto folder = temporaryFolder("eval_scales");
+  auto answer = [&](const std::string& scale) {
+    const std::string line = "{\"uv\":[0.3,0.7],\"log_density\":14,\"wo\":[" + scale + ",0," + scale + "],\"wi\":[0,0," +
+                             scale + "]}\n";
+    const RunResult result = runGlint(folder, "eval", line);
+    EXPECT_EQ(result.exitCode, 0) << scale << ": " << result.err;
+    return result.out;
+  };
+  const std::string unit = answer("1");
+  EXPECT_NE(unit.find("\"f\":"), std::string::npos) << unit;
+  for (const char* scale : {"1e30", "1e-30", "1e-7", "1e300", "1e-300"}) EXPECT_EQ(answer(scale), unit) << scale;
+}
+
 TEST(EvalCli, BadLinesGiveOneLineErrorsWithTheLineNumber) {
   const auto folder = temporaryFolder("eval_errors");
   ASSERT_EQ(runGlint(folder, "dict -o d.gdict").exitCode, 0);

@@ -23,20 +23,21 @@ const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy", 
                                        "log_density", "relative_area", "density_randomisation",
                                        "max_anisotropy", "pattern_seed"};
 
-template <int N>
-glm::vec<N, float> readVector(const json& object, const char* field, glm::vec<N, float> fallback) {
+// An array of N finite numbers, read as T (a float value must be finite as a float).
+template <int N, typename T = float>
+glm::vec<N, T> readVector(const json& object, const char* field, glm::vec<N, T> fallback) {
   const auto it = object.find(field);
   if (it == object.end()) return fallback;
   if (!it->is_array() || it->size() != N) {
     throw Error(std::string("field '") + field + "' must be an array of " + std::to_string(N) + " numbers");
   }
-  glm::vec<N, float> value(0.0f);
+  glm::vec<N, T> value(T(0));
   for (int i = 0; i < N; ++i) {
     const json& element = (*it)[static_cast<std::size_t>(i)];
     if (!element.is_number()) {
       throw Error(std::string("field '") + field + "' must be an array of " + std::to_string(N) + " numbers");
     }
-    value[i] = element.get<float>();
+    value[i] = element.get<T>();
     if (!std::isfinite(value[i])) throw Error(std::string("field '") + field + "' must be finite");
   }
   return value;
@@ -51,11 +52,14 @@ float readNumber(const json& object, const char* field, float fallback) {
   return value;
 }
 
+// A direction at any scale: read in double and divided by its largest component before it is
+// normalised, so that neither [1e30, 0, 1e30] (whose squares overflow a float) nor [1e-30, 0, 1e-30]
+// (whose squares underflow) loses its direction; only the zero vector has none.
 glm::vec3 readDirection(const json& object, const char* field) {
-  const glm::vec3 w = readVector<3>(object, field, glm::vec3(0.0f, 0.0f, 1.0f));
-  const float length = glm::length(w);
-  if (!(length > 1e-6f)) throw Error(std::string("field '") + field + "' must be a non-zero direction");
-  return w / length;
+  const glm::dvec3 w = readVector<3, double>(object, field, glm::dvec3(0.0, 0.0, 1.0));
+  const double largest = std::max({std::abs(w.x), std::abs(w.y), std::abs(w.z)});
+  if (!(largest > 0.0)) throw Error(std::string("field '") + field + "' must be a non-zero direction");
+  return glm::vec3(glm::normalize(w / largest));
 }
 
 json evaluate(const json& input, const Dictionary& dictionary) {
