@@ -276,6 +276,51 @@ TEST(ViewCli, OpensAndRendersUnderXvfb) {
   expectPlausibleImage(folder / "shot.png", 320, 240);
   const RunResult noDisplay = runGlint(folder, "view sphere --frames 1");  // runGlint keeps DISPLAY as is
   if (std::getenv("DISPLAY") == nullptr) expectOneLineError(noDisplay, "no window");
+  expectOneLineError(runGlint(folder, "view sphere --width 10 --frames 1"), "--width and --height must be in [64, 8192], got 10x720");
+  expectOneLineError(runGlint(folder, "view sphere --screenshot shot.png"), "--screenshot needs --frames N");
+}
+
+// The viewer opens on exactly what `glint render` draws: for every built-in scene (and a camera
+// other than the default), its first frame with the panel hidden equals render's PNG of the same
+// scene, camera and size, pixel for pixel (both go through kernel/tonemap.h's display transform and
+// its rounding to 8 bits). One virtual X server runs all the viewers.
+TEST(ViewCli, FirstFrameEqualsRenderForEveryBuiltinScene) {
+  ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0) << "xvfb-run is missing (scripts/deps installs it)";
+  const auto folder = temporaryFolder("view_equals_render");
+  std::vector<std::pair<std::string, std::string>> cases;  // scene, camera
+  for (const std::string& name : scene::builtinSceneNames()) cases.emplace_back(name, "default");
+  cases.emplace_back("arctic", "ornament");
+  std::string views;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [name, camera] = cases[i];
+    const std::string shot = std::to_string(i) + ".png";
+    const RunResult render = runGlint(folder, "render " + name + " --camera " + camera + " --size 128x96 -o render" + shot);
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    views += std::string(views.empty() ? "" : " && ") + "'" GLINT_EXECUTABLE "' view " + name + " --camera " + camera +
+             " --width 128 --height 96 --frames 1 --hide-panel --screenshot view" + shot;
+  }
+  const std::string command = "cd '" + folder.string() + "' && xvfb-run -a -s '-screen 0 640x480x24' sh -c \"" + views +
+                              "\" 2> stderr.txt";
+  ASSERT_EQ(std::system(command.c_str()), 0) << slurp(folder / "stderr.txt");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string label = cases[i].first + " --camera " + cases[i].second;
+    const ImageRgbF rendered = readImage(folder / ("render" + std::to_string(i) + ".png"));
+    const ImageRgbF viewed = readImage(folder / ("view" + std::to_string(i) + ".png"));
+    ASSERT_EQ(viewed.width, rendered.width) << label;
+    ASSERT_EQ(viewed.height, rendered.height) << label;
+    int differing = 0;
+    int maxLevels = 0;
+    for (std::size_t p = 0; p < rendered.pixels.size(); ++p) {
+      int levels = 0;
+      for (int c = 0; c < 3; ++c) {
+        levels = std::max(levels, std::abs(linearToSrgb8(viewed.pixels[p][c]) - linearToSrgb8(rendered.pixels[p][c])));
+      }
+      differing += levels > 0;
+      maxLevels = std::max(maxLevels, levels);
+    }
+    EXPECT_EQ(differing, 0) << label << ": " << differing << " of " << rendered.pixels.size()
+                            << " pixels differ, by up to " << maxLevels << " levels of 255";
+  }
 }
 
 }  // namespace

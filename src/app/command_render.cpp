@@ -7,6 +7,7 @@
 #include "app/commands.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
+#include "gl/display.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
 #include "glint/image_io.h"
@@ -69,7 +70,8 @@ void runRender(const RenderOptions& options) {
   if (extension == ".exr") {
     writeExr(options.output, image);
   } else {
-    writePng(options.output, displayEncode(image, scene.exposure * options.exposure));
+    // The display pass of the viewer's window, so that `glint view` shows these very bytes.
+    writePng(options.output, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",

@@ -1,6 +1,8 @@
-// `glint view`: the renderer in a window, with Dear ImGui sliders for the glint parameters, the
-// BRDF, the light and the camera preset, the mouse to orbit, pan and zoom, and the frame time
-// (docs/cli.md).
+// `glint view`: the renderer in a window, with Dear ImGui sliders for one chosen glint material's
+// parameters and one chosen light's direction and intensity (scene/view_controls.h), the BRDF,
+// anti-aliasing, exposure and camera preset, the mouse to orbit, pan and zoom, and the frame time
+// (docs/cli.md). It opens on the scene as `glint render` draws it: nothing is changed until a
+// slider moves.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,12 +17,13 @@
 #include "app/commands.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
+#include "gl/display.h"
 #include "gl/frame_timer.h"
 #include "gl/renderer.h"
-#include "gl/shader.h"
 #include "glint/error.h"
 #include "glint/image.h"
 #include "scene/camera_moves.h"
+#include "scene/view_controls.h"
 
 namespace glint::app {
 
@@ -33,20 +36,15 @@ struct ViewOptions {
   int frames = 0;          // 0: until the window closes
   std::string screenshot;  // written after the last frame
   std::string antiAliasing = "ggaa+lean";
+  bool hidePanel = false;  // start without the panel (H shows it)
 };
 
-// The parameters the sliders edit, applied to every glint layer of the scene.
-struct Controls {
-  glm::vec2 alpha{0.5f};
-  float rho = 0.0f;
-  float logDensity = 27.0f;
-  float relativeArea = 1.0f;
-  int brdf = 0;  // index into gl::allBrdfModels()
+// What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
+// frame is drawn and shown.
+struct FrameControls {
+  int brdf = 0;          // index into gl::allBrdfModels()
   int antiAliasing = 2;  // index into gl::allAntiAliasingModes()
-  float lightAzimuth = 0.6f;
-  float lightElevation = 0.9f;
-  float lightScale = 1.0f;
-  float exposure = 1.0f;
+  float exposure = 1.0f;  // times the scene's exposure
   int camera = 0;
 };
 
@@ -66,20 +64,6 @@ class ImGuiSession {
   }
 };
 
-void writeScreenshot(const std::string& path, int width, int height) {
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-  ImageRgb8 image(width, height, {0, 0, 0});
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const std::uint8_t* p = &rgb[(static_cast<std::size_t>(height - 1 - y) * width + x) * 3];
-      image.at(x, y) = {p[0], p[1], p[2]};
-    }
-  }
-  writePng(path, image);
-}
-
 // Mouse moves of the next frame's camera (scene/camera_moves.h), unless the mouse is on the panel:
 // a left drag orbits the target (a drag over the window's height turns the camera half a turn), a
 // right or middle drag pans with the cursor, the wheel zooms by 10% a notch.
@@ -96,9 +80,134 @@ void moveCameraWithTheMouse(scene::Camera& camera, int framebufferHeight) {
   if (io.MouseWheel != 0.0f) camera = scene::zoomCamera(camera, std::pow(0.9f, io.MouseWheel));
 }
 
+// Shows `text` while the mouse is on the last item: every control says its range and meaning.
+void tooltip(const std::string& text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text.c_str());
+}
+
+void combo(const char* label, int& choice, const std::vector<std::string>& items) {
+  std::vector<const char*> names;
+  for (const std::string& item : items) names.push_back(item.c_str());
+  ImGui::Combo(label, &choice, names.data(), static_cast<int>(names.size()));
+}
+
+// Sliders write their value only when the user moves them: an untouched control stays bit for bit
+// what the scene gave (scene/view_controls.h relies on it). SliderAngle would write back its
+// degrees converted to radians every frame, so the angles go through a copy.
+void angleSlider(const char* label, float& radians, float minDegrees, float maxDegrees) {
+  float value = radians;
+  if (ImGui::SliderAngle(label, &value, minDegrees, maxDegrees, "%.1f deg", ImGuiSliderFlags_AlwaysClamp)) {
+    radians = value;
+  }
+}
+
+// One axis of the glint layer's roughness: Beckmann alpha, shown with the glTF roughness it
+// corresponds to (alpha = roughness^2, so roughness = sqrt(alpha); above 1 for alpha above 1).
+void alphaSlider(const char* label, float& alpha, const char* axis) {
+  // ImGui's format is a printf format for the value; the roughness goes into it as text.
+  char format[64];
+  std::snprintf(format, sizeof format, "%%.3f (roughness %.3f)", std::sqrt(alpha));
+  ImGui::SliderFloat(label, &alpha, kMinRoughnessAlpha, kMaxRoughnessAlpha, format,
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "Beckmann roughness alpha_%s (along the %s), %.3g..%.3g, logarithmic. The glTF roughness in "
+                "brackets is sqrt(alpha). A roughness texture multiplies it per texel.",
+                axis, axis[0] == 'x' ? "tangent" : "bitangent", kMinRoughnessAlpha, kMaxRoughnessAlpha);
+  tooltip(text);
+}
+
+const char* lightTypeName(scene::Light::Type type) {
+  switch (type) {
+    case scene::Light::Type::Point: return "point";
+    case scene::Light::Type::Directional: return "directional";
+    case scene::Light::Type::Spot: return "spot";
+  }
+  return "light";
+}
+
+// The combo labels: the glint materials by name, the lights the rasteriser draws by number and type.
+struct Choices {
+  std::vector<std::size_t> glintMaterials;  // indices into the scene's materials
+  std::vector<std::string> materialNames;
+  std::vector<std::string> lightNames;
+  int material = 0;  // index into glintMaterials
+  int light = 0;     // index into the scene's lights
+};
+
+Choices choicesOf(const scene::Scene& scene) {
+  Choices choices;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const scene::Material& m = scene.materials[i];
+    if (!m.glint.enabled) continue;
+    choices.glintMaterials.push_back(i);
+    choices.materialNames.push_back(m.name.empty() ? "material " + std::to_string(i) : m.name);
+  }
+  const std::size_t drawn = std::min(scene.lights.size(), static_cast<std::size_t>(gl::kMaxLights));
+  for (std::size_t i = 0; i < drawn; ++i) {
+    choices.lightNames.push_back("light " + std::to_string(i + 1) + " (" + lightTypeName(scene.lights[i].type) + ")");
+  }
+  return choices;
+}
+
+// The sliders of the chosen glint material.
+void materialSliders(Choices& choices, scene::ViewControls& controls) {
+  if (choices.glintMaterials.empty()) {
+    ImGui::TextDisabled("no glint material");
+    return;
+  }
+  combo("material", choices.material, choices.materialNames);
+  tooltip("The glint material the sliders below edit; the others keep their own parameters.");
+  scene::MaterialControls& m = controls.materials[choices.glintMaterials[static_cast<std::size_t>(choices.material)]];
+  alphaSlider("Beckmann alpha x", m.alpha.x, "x");
+  alphaSlider("Beckmann alpha y", m.alpha.y, "y");
+  ImGui::SliderFloat("slope correlation", &m.rho, -kMaxSlopeCorrelation, kMaxSlopeCorrelation, "%.2f",
+                     ImGuiSliderFlags_AlwaysClamp);
+  tooltip("rho, -0.99..0.99: the correlation of the Beckmann target's slopes; 0 is the 2020 model.");
+  ImGui::SliderFloat("log density", &m.logDensity, 0.0f, 50.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+  tooltip("ln(microfacets per unit glint-uv area), 0..50 (the paper's range is 15..40): higher gives more, fainter "
+          "glints, towards the smooth Beckmann lobe. A log density texture replaces it per texel.");
+  ImGui::SliderFloat("relative area", &m.relativeArea, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+  tooltip("The share of the surface's cells that hold microfacets, 0.01..1: below 1, some cells stay dark. A "
+          "relative area texture multiplies it per texel.");
+}
+
+// The sliders of the chosen light: its direction from the scene's centre and its strength.
+void lightSliders(const scene::Scene& scene, const scene::ViewControls& sceneControls, Choices& choices,
+                  scene::ViewControls& controls) {
+  if (choices.lightNames.empty()) {
+    ImGui::TextDisabled("no light");
+    return;
+  }
+  combo("light", choices.light, choices.lightNames);
+  tooltip("The light the sliders below move; the others stay where the scene puts them.");
+  const std::size_t index = static_cast<std::size_t>(choices.light);
+  scene::LightControls& l = controls.lights[index];
+  const bool positional = scene.lights[index].positional();
+  angleSlider("light azimuth", l.azimuth, -180.0f, 180.0f);
+  tooltip(std::string("-180..180 degrees about the vertical, 0 towards +z, 90 towards +x: where the light ") +
+          (positional ? "stands, seen from the scene's centre (its distance kept; a spot turns with it)."
+                      : "comes from."));
+  angleSlider("light elevation", l.elevation, -90.0f, 90.0f);
+  tooltip(std::string("-90..90 degrees above the horizontal: where the light ") +
+          (positional ? "stands, seen from the scene's centre." : "comes from."));
+  // Up to ten times the scene's own strength (a black light up to 100).
+  const float own = sceneControls.lights[index].strength;
+  const float maxStrength = own > 0.0f ? 10.0f * own : 100.0f;
+  ImGui::SliderFloat("light intensity", &l.strength, 0.0f, maxStrength, "%.3g",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "The largest component of the light's intensity, in %s, 0..%.3g (ten times the scene's); its colour "
+                "is kept.",
+                positional ? "W/sr" : "W/m^2", maxStrength);
+  tooltip(text);
+}
+
 void runView(const ViewOptions& options) {
   if (options.width < 64 || options.height < 64 || options.width > 8192 || options.height > 8192) {
-    throw Error("--size must be between 64x64 and 8192x8192");
+    throw Error("--width and --height must be in [64, 8192], got " + std::to_string(options.width) + "x" +
+                std::to_string(options.height));
   }
   if (options.frames < 0) throw Error("--frames must be 0 (until closed) or positive");
   if (!options.screenshot.empty() && options.frames == 0) {
@@ -111,63 +220,41 @@ void runView(const ViewOptions& options) {
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   printWarnings(renderer.warnings());
-  gl::ShaderProgram display({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "display.frag"}});
-  GLuint emptyVertexArray = 0;
-  glCreateVertexArrays(1, &emptyVertexArray);
+  const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
 
-  Controls controls;
+  // The materials and lights are drawn as the scene has them, with the controls applied every
+  // frame; the controls start as the scene's own, so that nothing changes until a slider moves.
+  const glm::vec3 pivot = scene::lightPivot(scene);
+  const scene::ViewControls sceneControls = scene::viewControls(scene, pivot);
+  scene::ViewControls controls = sceneControls;
+  Choices choices = choicesOf(scene);
+  FrameControls frameControls;
   const gl::AntiAliasing initialAntiAliasing = gl::antiAliasingFromString(options.antiAliasing);
   const std::vector<gl::AntiAliasing> antiAliasingModes = gl::allAntiAliasingModes();
-  controls.antiAliasing = static_cast<int>(
+  frameControls.antiAliasing = static_cast<int>(
       std::find(antiAliasingModes.begin(), antiAliasingModes.end(), initialAntiAliasing) - antiAliasingModes.begin());
-  for (const scene::Material& m : scene.materials) {
-    if (!m.glint.enabled) continue;
-    controls.alpha = m.glint.alpha;
-    controls.rho = m.glint.rho;
-    controls.logDensity = m.glint.logDensity;
-    controls.relativeArea = m.glint.relativeArea;
-    break;
-  }
+  std::vector<std::string> brdfNames;
+  for (gl::BrdfModel model : gl::allBrdfModels()) brdfNames.emplace_back(gl::toString(model));
+  std::vector<std::string> antiAliasingNames;
+  for (gl::AntiAliasing mode : antiAliasingModes) antiAliasingNames.emplace_back(gl::toString(mode));
   std::vector<std::string> cameraNames;
   for (const auto& [name, camera] : scene.cameras) {
-    if (name == options.scene.camera) controls.camera = static_cast<int>(cameraNames.size());
+    if (name == options.scene.camera) frameControls.camera = static_cast<int>(cameraNames.size());
     cameraNames.push_back(name);
   }
   // The camera the mouse moves, starting from the chosen preset and back to it when another is
   // chosen or "reset camera" is pressed.
-  scene::Camera viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
-  int viewCameraPreset = controls.camera;
-  const std::vector<scene::Light> originalLights = scene.lights;
-  const glm::vec3 centre = 0.5f * (scene.boundsMin() + scene.boundsMax());
+  scene::Camera viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(frameControls.camera)]);
+  int viewCameraPreset = frameControls.camera;
+  bool showPanel = !options.hidePanel;
   double frameMilliseconds = 0.0;
 
   for (int frameIndex = 0; !glfwWindowShouldClose(window.window()); ++frameIndex) {
     if (options.frames > 0 && frameIndex >= options.frames) break;
     glfwPollEvents();
-    for (scene::Material& m : renderer.materials()) {
-      if (!m.glint.enabled) continue;
-      m.glint.alpha = controls.alpha;
-      m.glint.rho = controls.rho;
-      m.glint.logDensity = controls.logDensity;
-      m.glint.relativeArea = controls.relativeArea;
-    }
-    // The first light is moved by the sliders around the scene's centre; all are scaled.
-    renderer.lights() = originalLights;
-    for (scene::Light& light : renderer.lights()) light.intensity *= controls.lightScale;
-    if (!renderer.lights().empty()) {
-      const glm::vec3 direction(std::cos(controls.lightElevation) * std::sin(controls.lightAzimuth),
-                                std::sin(controls.lightElevation),
-                                std::cos(controls.lightElevation) * std::cos(controls.lightAzimuth));
-      scene::Light& light = renderer.lights().front();
-      if (light.positional()) {
-        light.position = centre + direction * glm::length(originalLights.front().position - centre);
-        if (light.type == scene::Light::Type::Spot) light.direction = -direction;  // still aimed at the centre
-      } else {
-        light.direction = -direction;
-      }
-    }
+    scene::applyViewControls(scene, controls, pivot, renderer.materials(), renderer.lights());
     int width = 0;
     int height = 0;
     glfwGetFramebufferSize(window.window(), &width, &height);
@@ -176,76 +263,65 @@ void runView(const ViewOptions& options) {
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
-    frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(controls.brdf)];
-    frame.antiAliasing = gl::allAntiAliasingModes()[static_cast<std::size_t>(controls.antiAliasing)];
+    frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(frameControls.brdf)];
+    frame.antiAliasing = antiAliasingModes[static_cast<std::size_t>(frameControls.antiAliasing)];
     frame.camera = viewCamera;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(display.id());
-    glUniform1f(display.uniform("uExposure"), scene.exposure * controls.exposure);
-    glBindTextureUnit(0, renderer.radianceTexture());
-    glBindVertexArray(emptyVertexArray);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    display.draw(renderer.radianceTexture(), scene.exposure * frameControls.exposure, width, height);
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::Begin("glint");
-    std::vector<const char*> brdfNames;
-    for (gl::BrdfModel model : gl::allBrdfModels()) brdfNames.push_back(gl::toString(model));
-    ImGui::Combo("BRDF", &controls.brdf, brdfNames.data(), static_cast<int>(brdfNames.size()));
-    ImGui::SliderFloat("roughness x", &controls.alpha.x, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("roughness y", &controls.alpha.y, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("slope correlation", &controls.rho, -kMaxSlopeCorrelation, kMaxSlopeCorrelation, "%.2f");
-    if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip("rho in [-0.99, 0.99]: the Beckmann target's slope correlation; 0 is the 2020 model");
+    // H shows and hides the panel, unless a slider is taking typed text.
+    if (!ImGui::GetIO().WantCaptureKeyboard && ImGui::IsKeyPressed(GLFW_KEY_H, false)) showPanel = !showPanel;
+    bool resetCamera = false;
+    if (showPanel) {
+      ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+      ImGui::Begin("glint");
+      materialSliders(choices, controls);
+      ImGui::Separator();
+      lightSliders(scene, sceneControls, choices, controls);
+      ImGui::Separator();
+      combo("BRDF", frameControls.brdf, brdfNames);
+      tooltip("The specular model of the glint materials: glint (Chermain et al. 2020), cook-torrance (the "
+              "smooth lobe of the same roughness) or zirr-kaplanyan (Zirr & Kaplanyan 2016), as `glint render --brdf`.");
+      combo("anti-aliasing", frameControls.antiAliasing, antiAliasingNames);
+      tooltip("ggaa+lean: glints filtered by the half vector's variation over the pixel and by the normal map's "
+              "slope variance; ggaa: the first only; none: the 2020 model.");
+      ImGui::SliderFloat("exposure", &frameControls.exposure, 0.05f, 20.0f, "%.2f",
+                         ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+      tooltip("0.05..20, logarithmic: multiplies the scene's exposure before the tone curve, as `glint render "
+              "--exposure` does.");
+      combo("camera", frameControls.camera, cameraNames);
+      tooltip("The scene's camera presets; the mouse moves the camera from the chosen one.");
+      resetCamera = ImGui::Button("reset camera");
+      tooltip("Back to the chosen preset.");
+      ImGui::SameLine();
+      ImGui::TextDisabled("drag: orbit, right-drag: pan, wheel: zoom, H: hide");
+      ImGui::Separator();
+      ImGui::Text("%dx%d on %s", width, height, info.renderer.c_str());
+      if (timer.usesGpuQueries()) {
+        ImGui::Text("frame %.2f ms (GPU timer query)", frameMilliseconds);
+      } else {
+        ImGui::Text("frame %.1f ms (wall clock around glFinish;", frameMilliseconds);
+        ImGui::Text("GPU timer queries are meaningless on llvmpipe)");
+      }
+      ImGui::End();
     }
-    std::vector<const char*> antiAliasingNames;
-    for (gl::AntiAliasing mode : gl::allAntiAliasingModes()) antiAliasingNames.push_back(gl::toString(mode));
-    ImGui::Combo("anti-aliasing", &controls.antiAliasing, antiAliasingNames.data(),
-                 static_cast<int>(antiAliasingNames.size()));
-    if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip("ggaa+lean: glints filtered by the half vector's variation over the pixel and by the normal "
-                        "map's slope variance; ggaa: the first only; none: the 2020 model");
-    }
-    ImGui::SliderFloat("log density", &controls.logDensity, 10.0f, 45.0f, "%.1f");
-    ImGui::SliderFloat("relative area", &controls.relativeArea, 0.01f, 1.0f, "%.2f");
-    ImGui::SliderAngle("light azimuth", &controls.lightAzimuth, -180.0f, 180.0f);
-    ImGui::SliderAngle("light elevation", &controls.lightElevation, 5.0f, 90.0f);
-    ImGui::SliderFloat("light intensity", &controls.lightScale, 0.0f, 10.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("exposure", &controls.exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    std::vector<const char*> names;
-    for (const std::string& n : cameraNames) names.push_back(n.c_str());
-    ImGui::Combo("camera", &controls.camera, names.data(), static_cast<int>(names.size()));
-    const bool resetCamera = ImGui::Button("reset camera");
-    ImGui::SameLine();
-    ImGui::TextDisabled("drag: orbit, right-drag: pan, wheel: zoom");
-    if (resetCamera || controls.camera != viewCameraPreset) {
-      viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(controls.camera)]);
-      viewCameraPreset = controls.camera;
+    if (resetCamera || frameControls.camera != viewCameraPreset) {
+      viewCamera = scene.cameras.at(cameraNames[static_cast<std::size_t>(frameControls.camera)]);
+      viewCameraPreset = frameControls.camera;
     }
     moveCameraWithTheMouse(viewCamera, height);
-    ImGui::Separator();
-    ImGui::Text("%dx%d on %s", width, height, info.renderer.c_str());
-    if (timer.usesGpuQueries()) {
-      ImGui::Text("frame %.2f ms (GPU timer query)", frameMilliseconds);
-    } else {
-      ImGui::Text("frame %.1f ms (wall clock around glFinish;", frameMilliseconds);
-      ImGui::Text("GPU timer queries are meaningless on llvmpipe)");
-    }
-    ImGui::End();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (options.frames > 0 && frameIndex + 1 == options.frames && !options.screenshot.empty()) {
-      writeScreenshot(options.screenshot, width, height);
+      writePng(options.screenshot, gl::readFramebufferRgb8(width, height));
     }
     glfwSwapBuffers(window.window());
   }
-  glDeleteVertexArrays(1, &emptyVertexArray);
 }
 
 }  // namespace
@@ -260,7 +336,9 @@ void registerViewCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--aa", options->antiAliasing, "Glint anti-aliasing at start: ggaa+lean, ggaa or none")
       ->capture_default_str();
-  command->add_option("--screenshot", options->screenshot, "With --frames N: write frame N, sliders included, to a PNG");
+  command->add_option("--screenshot", options->screenshot,
+                      "With --frames N: write frame N as the window shows it (the panel too, unless hidden) to a PNG");
+  command->add_flag("--hide-panel", options->hidePanel, "Start with the panel hidden (H shows and hides it)");
   command->callback([options] { runView(*options); });
 }
 

@@ -43,8 +43,8 @@ GlintParameters defaultGlintParameters() {
 }
 
 void validateRoughness(glm::vec2 alpha) {
-  requireRange("alpha_x", alpha.x, 0.005f, 2.0f);
-  requireRange("alpha_y", alpha.y, 0.005f, 2.0f);
+  requireRange("alpha_x", alpha.x, kMinRoughnessAlpha, kMaxRoughnessAlpha);
+  requireRange("alpha_y", alpha.y, kMinRoughnessAlpha, kMaxRoughnessAlpha);
 }
 
 void validateSlopeCorrelation(float rho) {

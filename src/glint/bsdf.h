@@ -28,6 +28,9 @@ GlintParameters defaultGlintParameters();
 // Throws Error naming the first parameter out of range (ranges in docs/conventions.md).
 void validateGlintParameters(const GlintParameters& parameters);
 void validateRoughness(glm::vec2 alpha);
+// The roughness alpha accepted on each axis.
+inline constexpr float kMinRoughnessAlpha = 0.005f;
+inline constexpr float kMaxRoughnessAlpha = 2.0f;
 // The slope correlation: rho in (-1, 1), at most kMaxSlopeCorrelation in magnitude.
 void validateSlopeCorrelation(float rho);
 inline constexpr float kMaxSlopeCorrelation = 0.99f;

@@ -254,9 +254,9 @@ ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure) {
   ImageRgb8 display(radiance.width, radiance.height, {0, 0, 0});
   for (int y = 0; y < radiance.height; ++y) {
     for (int x = 0; x < radiance.width; ++x) {
-      const glm::vec3 encoded = kernel::displayEncode(radiance.at(x, y), exposure);
-      auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(v * 255.0f)); };
-      display.at(x, y) = {byte(encoded.r), byte(encoded.g), byte(encoded.b)};
+      const glm::vec3 code = kernel::displayCodeValues(radiance.at(x, y), exposure);
+      display.at(x, y) = {static_cast<std::uint8_t>(code.r), static_cast<std::uint8_t>(code.g),
+                          static_cast<std::uint8_t>(code.b)};
     }
   }
   return display;

@@ -48,11 +48,15 @@ void writeImage(const std::filesystem::path& path, const ImageRgbF& image);
 // The extension with its dot, lower-cased ("" when there is none): how files are told apart by name.
 std::string lowercaseExtension(const std::filesystem::path& path);
 
+// The display transform of kernel/tonemap.h (exposure, ACES fit, sRGB, rounding) to 8 bits per
+// channel, on the CPU. The rasteriser's images and window use the same transform on the GPU
+// (gl/display.h), whose pow may differ in the last bits: a value on a rounding boundary can land
+// one level apart.
+ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure);
+
 // GL readback: `rgba` holds width * height RGBA pixels; `bottomUp` when rows come bottom row first,
 // as glReadPixels returns them. Alpha is ignored. The 8-bit form decodes sRGB to linear (an
 // GL_SRGB8_ALPHA8 framebuffer); the float form takes values as linear.
-// The display transform of kernel/tonemap.h (exposure, ACES fit, sRGB) to 8 bits per channel.
-ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure);
 
 ImageRgbF fromRgba8Srgb(int width, int height, const std::uint8_t* rgba, bool bottomUp);
 ImageRgbF fromRgbaFloat(int width, int height, const float* rgba, bool bottomUp);

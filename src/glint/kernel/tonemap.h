@@ -1,5 +1,6 @@
-// Display transform shared by the CPU (images written by `glint render`) and the GPU (the
-// viewer's window): exposure, a filmic curve, then the sRGB encoding.
+// Display transform shared by the CPU (images written by `glint trace`) and the GPU (the display
+// pass of `glint render`'s images and the viewer's window, gl/display.h): exposure, a filmic
+// curve, the sRGB encoding, then the rounding to 8 bits.
 #ifndef GLINT_KERNEL_TONEMAP_H
 #define GLINT_KERNEL_TONEMAP_H
 
@@ -21,6 +22,13 @@ GLINT_FN float srgbEncode(float linear) {
 GLINT_FN vec3 displayEncode(vec3 radiance, float exposure) {
   vec3 mapped = tonemapAcesFit(max(radiance * exposure, vec3(0.0f)));
   return vec3(srgbEncode(mapped.x), srgbEncode(mapped.y), srgbEncode(mapped.z));
+}
+
+// The display values as 8-bit code values (whole numbers 0..255 in floats), rounded to nearest:
+// the one rounding of the CPU's images and of the GPU's display pass, where OpenGL leaves the
+// rounding of a fraction to an 8-bit framebuffer to the implementation.
+GLINT_FN vec3 displayCodeValues(vec3 radiance, float exposure) {
+  return floor(displayEncode(radiance, exposure) * 255.0f + 0.5f);
 }
 
 GLINT_KERNEL_END
