@@ -14,6 +14,7 @@
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/geometry.h"
+#include "scene/gltf_writer.h"
 #include "test_support.h"
 #include "trace/path_tracer.h"
 #include "trace/sampling.h"
@@ -694,6 +695,36 @@ TEST(TraceCli, BadOptionsAndScenesGiveOneLineAndNoFile) {
   const RunResult png = runGlint(folder, "trace sphere -o out.png --size 16x16");
   expectOneLineError(png, "must end in .exr");
   EXPECT_FALSE(std::filesystem::exists(folder / "out.png"));
+}
+
+TEST(TraceCli, ScenesBeyondTheRayRangeAreRefused) {
+  // Embree aborts (its ray validity assertion, release builds too) on ray origins beyond about
+  // 1.8e18. The sphere scaled so that it and its camera lie near 1e18 must be refused in one line;
+  // scaled to 1e12 it traces.
+  const auto folder = temporaryFolder("trace_range");
+  for (const float scale : {1e18f, 1e12f}) {
+    scene::Scene scaled = scene::makeBuiltinScene("sphere");
+    for (scene::Mesh& mesh : scaled.meshes) {
+      for (scene::Vertex& vertex : mesh.vertices) vertex.position *= scale;
+    }
+    for (auto& [name, camera] : scaled.cameras) {
+      camera.position *= scale;
+      camera.target *= scale;
+    }
+    for (scene::Light& light : scaled.lights) light.position *= scale;
+    const std::string file = scale > 1e15f ? "huge.glb" : "large.glb";
+    scene::writeGltf(folder / file, scaled);
+    const RunResult result = runGlint(folder, "trace " + file + " -o out.exr --size 16x16 --spp 1");
+    if (scale > 1e15f) {
+      expectOneLineError(result, "beyond the path tracer's range");
+      EXPECT_NE(result.err.find("huge.glb"), std::string::npos) << result.err;
+      EXPECT_FALSE(std::filesystem::exists(folder / "out.exr"));
+    } else {
+      EXPECT_EQ(result.exitCode, 0) << result.err;
+      std::filesystem::remove(folder / "out.exr");
+      std::filesystem::remove(folder / "out.png");
+    }
+  }
 }
 
 }  // namespace

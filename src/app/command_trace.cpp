@@ -111,7 +111,14 @@ void runTrace(const TraceOptions& options) {
   settings.camera = options.scene.findCamera(scene);
   const Dictionary dictionary = options.scene.loadDictionary();
   const auto start = std::chrono::steady_clock::now();
-  const trace::PathTracer tracer(scene, dictionary, settings);
+  // What the tracer refuses of the scene (coordinates beyond its rays' range) names the scene.
+  const trace::PathTracer tracer = [&] {
+    try {
+      return trace::PathTracer(scene, dictionary, settings);
+    } catch (const Error& e) {
+      throw Error(options.scene.scene + ": " + e.what());
+    }
+  }();
   ProgressBar progress(isatty(STDERR_FILENO) != 0);
   const ImageRgbF image = tracer.render([&](double fraction) { progress.update(fraction); });
   progress.finish();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -21,8 +22,38 @@ constexpr int kRouletteDepth = 3;  // Russian roulette on rays leaving vertices 
 
 bool isBlack(glm::vec3 c) { return !(c.x > 0.0f || c.y > 0.0f || c.z > 0.0f); }
 
-const TraceSettings& validated(const TraceSettings& settings) {
+// Embree traces rays whose origins lie within about +-1.8e18 (its ray validity check aborts
+// beyond); every origin is the camera (and, for an orthographic one, its film) or a point of the
+// scene, so a scene and camera within kMaxCoordinate leave a margin of 1e3 for the offsets and
+// rounding on the way. The rasteriser has no such limit.
+constexpr double kMaxCoordinate = 1e15;
+
+void checkRayRange(const scene::Scene& scene, const scene::Camera& camera, int width, int height) {
+  double largest = 0.0;
+  const auto include = [&](glm::vec3 p) {
+    for (int i = 0; i < 3; ++i) largest = std::max(largest, std::abs(static_cast<double>(p[i])));
+  };
+  if (!scene.meshes.empty()) {
+    include(scene.boundsMin());
+    include(scene.boundsMax());
+  }
+  include(camera.position);
+  double film = 0.0;  // the orthographic film's half diagonal
+  if (camera.projection == scene::Camera::Projection::Orthographic) {
+    const double halfHeight = std::abs(static_cast<double>(camera.orthographicHalfHeight));
+    film = halfHeight * std::hypot(1.0, static_cast<double>(width) / height);
+  }
+  if (!(largest + film <= kMaxCoordinate)) {
+    char reach[32];
+    std::snprintf(reach, sizeof reach, "%.3g", largest + film);
+    throw Error(std::string("the scene and its camera reach coordinates of ") + reach +
+                ", beyond the path tracer's range of 1e15 (Embree's rays); scale the scene down");
+  }
+}
+
+const TraceSettings& validated(const scene::Scene& scene, const TraceSettings& settings) {
   validateTraceSettings(settings);
+  checkRayRange(scene, settings.camera, settings.width, settings.height);
   return settings;
 }
 
@@ -55,7 +86,7 @@ void validateTraceSettings(const TraceSettings& s) {
 
 PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, const TraceSettings& settings)
     : scene_(scene),
-      settings_(validated(settings)),
+      settings_(validated(scene, settings)),
       camera_(settings.camera, settings.width, settings.height),
       geometry_(scene),
       materials_(scene, dictionary, settings.brdf, settings.sampler, settings.normalMapFiltering),
