@@ -872,6 +872,36 @@ TEST(GltfErrors, MissingFileAndBadJson) {
   expectLoadError(empty, "");
 }
 
+TEST(GltfErrors, Gltf1IsNamed) {
+  // glTF 1.0 keys its objects by name where 2.0 has arrays: refused by version, not for its
+  // first such property ("meshes must be an array").
+  const fs::path folder = test::temporaryFolder("gltf_version_1");
+  std::ofstream(folder / "old.gltf") << R"({"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}}})";
+  expectLoadError(folder / "old.gltf", "glTF 1.0 is not supported (glint reads glTF 2.0)");
+  // The glTF 1.0 binary container (KHR_binary_glTF): version 1 in the header, content format 0.
+  const std::string content = R"({"asset": {"version": "1.0"}})";
+  std::string glb = "glTF";
+  for (const std::uint32_t word : {1u, static_cast<std::uint32_t>(20 + content.size()),
+                                   static_cast<std::uint32_t>(content.size()), 0u}) {
+    for (int b = 0; b < 4; ++b) glb += static_cast<char>((word >> (8 * b)) & 0xFF);
+  }
+  std::ofstream(folder / "old.glb", std::ios::binary) << glb + content;
+  expectLoadError(folder / "old.glb", "binary glTF 1.0 is not supported");
+}
+
+TEST(GltfLoader, ATextureWithoutASourceIsLeftOutWithANote) {
+  // glTF lets a texture leave its image to an extension (KHR_texture_basisu); a file that only
+  // uses such an extension is valid, and renders without the texture, saying so.
+  const fs::path path = copyTextured("gltf_texture_without_source");
+  const Scene before = loadGltf(path);
+  editJson(path, [](json& d) { d["textures"][0].erase("source"); });
+  const Scene after = loadGltf(path);
+  EXPECT_LT(after.textures.size(), before.textures.size());
+  bool noted = false;
+  for (const std::string& line : after.unreadFeatures) noted = noted || line.find("texture 0") != std::string::npos;
+  EXPECT_TRUE(noted) << "no note of the texture left out";
+}
+
 TEST(GltfErrors, MissingBufferFile) {
   const fs::path path = copyTextured("gltf_missing_bin");
   fs::remove(path.parent_path() / "textured.bin");

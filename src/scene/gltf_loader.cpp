@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -400,6 +401,12 @@ class GltfReader {
           {"emissiveTexture", texCoordOf(material.emissiveTexture.texCoord, material.emissiveTexture.extensions)}};
       for (const auto& [texture, texCoord] : texCoords) {
         if (texCoord != 0) note("textures on a texCoord other than 0 are mapped with TEXCOORD_0", where + " " + texture);
+      }
+    }
+    for (std::size_t i = 0; i < model_.textures.size(); ++i) {
+      if (model_.textures[i].source < 0) {
+        note("textures without a source image are left out, their materials drawn without them",
+             "texture " + std::to_string(i));
       }
     }
     if (!model_.skins.empty()) note("skins are not applied, the meshes are drawn unskinned", std::to_string(model_.skins.size()) + " skins");
@@ -838,7 +845,11 @@ class GltfReader {
       throw error("texture ", index, " does not exist (the file has ", model_.textures.size(), ")");
     }
     const int source = model_.textures[static_cast<std::size_t>(index)].source;
-    if (source < 0 || static_cast<std::size_t>(source) >= model_.images.size()) {
+    // A texture may leave its image to an extension (KHR_texture_basisu, EXT_texture_webp): glint
+    // reads none of those, so the material is drawn without it (noteUnreadFeatures says so). When
+    // such an extension is required the file is refused before this (gltf_precheck.h).
+    if (source < 0) return -1;
+    if (static_cast<std::size_t>(source) >= model_.images.size()) {
       throw error("texture ", index, " has no image it can read (source ", source, ")");
     }
     const auto key = std::make_pair(source, srgb);
@@ -1033,6 +1044,17 @@ bool isBinaryGltf(const fs::path& path) {
   return file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
 }
 
+// The container version of a binary glTF (the header's second word): 2 for glTF 2.0, 1 for the
+// glTF 1.0 KHR_binary_glTF container; 0 when the header is cut short (tinygltf says so).
+std::uint32_t binaryGltfVersion(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  unsigned char header[8] = {};
+  file.read(reinterpret_cast<char*>(header), 8);
+  if (file.gcount() != 8) return 0;
+  return static_cast<std::uint32_t>(header[4]) | static_cast<std::uint32_t>(header[5]) << 8 |
+         static_cast<std::uint32_t>(header[6]) << 16 | static_cast<std::uint32_t>(header[7]) << 24;
+}
+
 }  // namespace
 
 Scene loadGltf(const fs::path& path) {
@@ -1040,9 +1062,15 @@ Scene loadGltf(const fs::path& path) {
     std::error_code ignored;
     if (!fs::exists(path, ignored)) throw error("no such file");
     if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
+    if (isBinaryGltf(path)) {
+      const std::uint32_t version = binaryGltfVersion(path);
+      if (version == 1) throw error("binary glTF 1.0 is not supported (glint reads glTF 2.0)");
+      if (version > 2) throw error("binary glTF container version ", version, " is not supported (glint reads glTF 2.0)");
+    }
     // On the file's own JSON, before tinygltf reads it (gltf_field_types.h, gltf_precheck.h); a file
     // whose JSON does not parse is left to tinygltf's message.
     if (const std::optional<nlohmann::json> document = readGltfJson(path)) {
+      checkGltfVersion(*document);
       checkGltfFieldTypes(*document);
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);

@@ -25,6 +25,23 @@ double integerMember(const nlohmann::json& object, const char* name, double fall
 
 }  // namespace
 
+void checkGltfVersion(const nlohmann::json& document) {
+  if (!document.is_object()) return;
+  const auto asset = document.find("asset");
+  if (asset == document.end() || !asset->is_object()) return;
+  const auto version = asset->find("version");
+  if (version == asset->end() || !version->is_string()) return;  // tinygltf names what is missing
+  const std::string text = version->get<std::string>();
+  if (text.rfind("2.", 0) != 0) {
+    // The version as shown: printable and short, so that the message stays one harmless line.
+    std::string shown = text.substr(0, 16);
+    for (char& c : shown) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    }
+    throw Error("glTF " + shown + " is not supported (glint reads glTF 2.0)");
+  }
+}
+
 bool glintReadsExtension(const std::string& name) {
   for (std::string_view known : kReadExtensions) {
     if (name == known) return true;

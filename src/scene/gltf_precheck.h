@@ -10,6 +10,11 @@
 
 namespace glint::scene {
 
+// Throws glint::Error "glTF VERSION is not supported (glint reads glTF 2.0)" when asset.version
+// says another major version: a glTF 1.0 file's objects are keyed by name where 2.0 has arrays, and
+// would otherwise be refused for its first such property.
+void checkGltfVersion(const nlohmann::json& document);
+
 // Whether glint reads this extension (docs/scenes.md): the ones a file may require, and the ones a
 // file that merely uses is not warned about.
 bool glintReadsExtension(const std::string& name);
