@@ -245,5 +245,34 @@ TEST(Dictionary, BrokenExrFoldersNameTheFile) {
   EXPECT_THROW(Dictionary::loadAuthorsExr(temporaryFolder("dict_bad_name")), Error);
 }
 
+TEST(DictionaryErrors, MarginalsThatAreNotDensitiesAreRefused) {
+  // All-zero texels (every glint black) or values scaled by mistake: each marginal must integrate
+  // to 1 (within 1%) under the texel convention. The generated dictionary does (within 2e-4).
+  DictionaryParameters parameters;
+  parameters.numLevels = 2;
+  parameters.numDistributions = 3;
+  const Dictionary good = generateDictionary(parameters);
+  std::vector<float> values;
+  for (int level = 0; level < 2; ++level) {
+    for (int distribution = 0; distribution < 3; ++distribution) {
+      for (int k = 0; k < parameters.texelsPerDistribution; ++k) values.push_back(good.texel(level, distribution, k));
+    }
+  }
+  EXPECT_NO_THROW(Dictionary(parameters, values));
+  const auto messageOf = [&](const std::vector<float>& texels) {
+    try {
+      Dictionary(parameters, texels);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(messageOf(std::vector<float>(values.size(), 0.0f)),
+            "dictionary: distribution 0 of level 0 integrates to 0, expected 1 (each marginal is a density)");
+  std::vector<float> scaled = values;
+  for (std::size_t i = 4 * parameters.texelsPerDistribution; i < 5 * parameters.texelsPerDistribution; ++i) scaled[i] *= 1.1f;
+  EXPECT_NE(messageOf(scaled).find("distribution 1 of level 1 integrates to 1.09"), std::string::npos) << messageOf(scaled);
+}
+
 }  // namespace
 }  // namespace glint

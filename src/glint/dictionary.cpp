@@ -121,7 +121,31 @@ Dictionary::Dictionary(const DictionaryParameters& parameters, std::span<const f
     halves_[i] = floatToHalf(values[i]);
     values_[i] = halfToFloat(halves_[i]);
   }
+  checkNormalised();
   buildMipChain();
+}
+
+// Every marginal is a density: under the texel convention (docs/dictionary.md) it integrates to
+// h (p[0] + 2 sum_k>0 p[k]) over [-4 sigma_d, 4 sigma_d]. glint's and the authors' dictionaries
+// integrate to 1 within 2e-4 (binary16 rounding); a file of zeros, or of values scaled by mistake,
+// would render black or wrong without a word, so anything beyond 1% is refused.
+void Dictionary::checkNormalised() const {
+  const int texels = parameters_.texelsPerDistribution;
+  const double spacing = parameters_.texelSpacing();
+  for (int level = 0; level < parameters_.numLevels; ++level) {
+    for (int distribution = 0; distribution < parameters_.numDistributions; ++distribution) {
+      const float* v = values_.data() + (static_cast<std::size_t>(level) * parameters_.numDistributions + distribution) *
+                                            static_cast<std::size_t>(texels);
+      double sum = v[0];
+      for (int k = 1; k < texels; ++k) sum += 2.0 * v[k];
+      const double integral = sum * spacing;
+      if (!(std::abs(integral - 1.0) <= 0.01)) {
+        throw Error("dictionary: distribution " + std::to_string(distribution) + " of level " + std::to_string(level) +
+                    " integrates to " + formatFloat(static_cast<float>(integral)) +
+                    ", expected 1 (each marginal is a density)");
+      }
+    }
+  }
 }
 
 // Level m of the chain samples, at texel spacing 2^m h (h = 4 sigma_d / R), the box average of

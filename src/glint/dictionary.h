@@ -82,6 +82,7 @@ class Dictionary {
   std::vector<std::uint16_t> filteredHalves_;
   std::vector<float> filteredValues_;  // filteredHalves_ converted back
 
+  void checkNormalised() const;
   void buildMipChain();
 };
 
