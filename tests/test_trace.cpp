@@ -3,6 +3,7 @@
 // across thread counts, the cross-renderer check against the real-time renderer, and the command.
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -695,6 +696,31 @@ TEST(TraceCli, BadOptionsAndScenesGiveOneLineAndNoFile) {
   const RunResult png = runGlint(folder, "trace sphere -o out.png --size 16x16");
   expectOneLineError(png, "must end in .exr");
   EXPECT_FALSE(std::filesystem::exists(folder / "out.png"));
+}
+
+TEST(TraceCli, TheExrAndItsPreviewAreOneOutput) {
+  // The preview cannot be written (a folder has its name): the previous EXR must stay as it was,
+  // not be replaced by a new one beside a stale preview, and no temporary is left.
+  const auto folder = temporaryFolder("trace_pair");
+  std::ofstream(folder / "out.exr") << "previous";
+  std::filesystem::create_directory(folder / "out.png");
+  // A temporary left by a killed process (no such process) is cleaned up by the next write; one of
+  // a live process (pid 1) is not touched.
+  std::ofstream(folder / "out.exr.tmp999999999") << "stale";
+  std::ofstream(folder / "out.exr.tmp1") << "live";
+  expectOneLineError(runGlint(folder, "trace sphere -o out.exr --size 16x16 --spp 1"), "out.png: is a directory");
+  EXPECT_EQ(slurp(folder / "out.exr"), "previous");
+  std::filesystem::remove(folder / "out.png");
+  const RunResult written = runGlint(folder, "trace sphere -o out.exr --size 16x16 --spp 1");
+  ASSERT_EQ(written.exitCode, 0) << written.err;
+  EXPECT_NE(slurp(folder / "out.exr"), "previous");
+  EXPECT_TRUE(std::filesystem::is_regular_file(folder / "out.png"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "out.exr.tmp999999999"));
+  EXPECT_TRUE(std::filesystem::exists(folder / "out.exr.tmp1"));
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), name == "out.exr.tmp1" ? 7u : std::string::npos) << "left behind: " << name;
+  }
 }
 
 TEST(TraceCli, ScenesBeyondTheRayRangeAreRefused) {

@@ -15,6 +15,7 @@
 #include "app/scene_options.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "glint/image_io.h"
 #include "trace/path_tracer.h"
 
@@ -124,14 +125,10 @@ void runTrace(const TraceOptions& options) {
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  writeExr(exrPath, image);
-  try {
-    writePng(pngPath, displayEncode(image, scene.exposure * options.exposure));
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(exrPath, ignored);  // both files or neither
-    throw;
-  }
+  // The EXR and its preview are one output: both replace what was there, or neither does.
+  const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);
+  writeFilesAtomically({{exrPath, encodeExr(exrPath, image)},
+                        {pngPath, encodePng(preview.width(), preview.height(), 3, preview.data())}});
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp;
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
                                ? options.brdf + ", " + trace::glintSamplerName(settings.sampler) + " sampler"

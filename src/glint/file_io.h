@@ -15,4 +15,14 @@ std::vector<std::byte> readFile(const std::filesystem::path& path);
 // full, interrupted process) never leaves a partial file under the final name.
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
+// Several files as one output (an image and its preview): every one is written to its temporary
+// first, and only when all are complete are they renamed over their names, so that a failed write
+// (a full disk) leaves the previous files as they were, never a new one beside a stale one. Only a
+// failing rename, after every write succeeded, could leave the files before it renamed.
+struct FileContents {
+  std::filesystem::path path;
+  std::vector<std::byte> bytes;
+};
+void writeFilesAtomically(const std::vector<FileContents>& files);
+
 }  // namespace glint

@@ -276,7 +276,7 @@ ImageRgbF readImage(const std::filesystem::path& path) {
   throw Error(path.string() + ": not a PNG or EXR image (unrecognised content)");
 }
 
-void writeExr(const std::filesystem::path& path, const ImageRgbF& image) {
+std::vector<std::byte> encodeExr(const std::filesystem::path& path, const ImageRgbF& image) {
   if (image.width <= 0 || image.height <= 0) {
     throw Error(path.string() + ": cannot write a zero-size image (" + sizeText(image.width, image.height) + ")");
   }
@@ -331,7 +331,12 @@ void writeExr(const std::filesystem::path& path, const ImageRgbF& image) {
     throw Error(path.string() + ": EXR encoding failed (" + takeExrMessage(message, "unknown error") + ")");
   }
   FreeEXRErrorMessage(message);
-  writeFileAtomically(path, std::span<const std::byte>(reinterpret_cast<const std::byte*>(memory), size));
+  const auto* bytes = reinterpret_cast<const std::byte*>(memory);
+  return std::vector<std::byte>(bytes, bytes + size);
+}
+
+void writeExr(const std::filesystem::path& path, const ImageRgbF& image) {
+  writeFileAtomically(path, encodeExr(path, image));
 }
 
 void writePngSrgb(const std::filesystem::path& path, const ImageRgbF& image) {

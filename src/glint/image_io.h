@@ -2,6 +2,7 @@
 // error metrics and a false-colour difference picture (`glint diff`, docs/cli.md).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -41,6 +42,8 @@ ImageRgbF readImage(const std::filesystem::path& path);
 // Float32 RGB EXR, lossless (ZIP). Throws Error naming the file for a non-finite pixel (readImage
 // would refuse the file) or when it cannot be written; never leaves a partial file.
 void writeExr(const std::filesystem::path& path, const ImageRgbF& image);
+// The bytes writeExr writes (`path` only names the image in errors).
+std::vector<std::byte> encodeExr(const std::filesystem::path& path, const ImageRgbF& image);
 // 8-bit sRGB PNG: linear values encoded with linearToSrgb8 (clamped to [0, 1]).
 void writePngSrgb(const std::filesystem::path& path, const ImageRgbF& image);
 // By extension, case-insensitive: .png (writePngSrgb) or .exr (writeExr); otherwise Error.
