@@ -708,7 +708,7 @@ TEST(TraceCli, TheExrAndItsPreviewAreOneOutput) {
   // a live process (pid 1) is not touched.
   std::ofstream(folder / "out.exr.tmp999999999") << "stale";
   std::ofstream(folder / "out.exr.tmp1") << "live";
-  expectOneLineError(runGlint(folder, "trace sphere -o out.exr --size 16x16 --spp 1"), "out.png: is a directory");
+  expectOneLineError(runGlint(folder, "trace sphere -o out.exr --size 16x16 --spp 1"), "out.png: cannot write (is a directory)");
   EXPECT_EQ(slurp(folder / "out.exr"), "previous");
   std::filesystem::remove(folder / "out.png");
   const RunResult written = runGlint(folder, "trace sphere -o out.exr --size 16x16 --spp 1");

@@ -93,7 +93,7 @@ void writeFilesAtomically(const std::vector<FileContents>& files) {
     for (const FileContents& file : files) {
       // A folder in a file's place would fail its rename after the others': refused first.
       std::error_code ec;
-      if (std::filesystem::is_directory(file.path, ec)) throw Error(file.path.string() + ": is a directory");
+      if (std::filesystem::is_directory(file.path, ec)) throw Error(file.path.string() + ": cannot write (is a directory)");
       removeStaleTemporaries(file.path);
       temporaries.push_back(temporaryFor(file.path));
       writeTemporary(file.path, temporaries.back(), file.bytes);
