@@ -682,10 +682,10 @@ TEST(GltfErrors, MistypedPropertiesAreNamedNotTakenForAbsent) {
     SCOPED_TRACE(problem);
     expectLoadError(writeLitTriangle("gltf_mistyped_" + std::to_string(which++), edit), problem);
   }
-  // What tinygltf would misread rather than refuse: an index written as 36.0 (taken for absent) or
-  // beyond a 32-bit int (4294967297 read as 1).
-  expectLoadError(writeLitTriangle("gltf_float_index", [](json& d) { d["bufferViews"][0]["byteOffset"] = 36.0; }),
-                  "bufferViews[0].byteOffset must be an integer in [0, 2147483647], got 36.0");
+  // What tinygltf would misread rather than refuse: an index written as 36.5 (taken for absent) or
+  // beyond a 32-bit int (4294967297 read as 1). (36.0 is an integer: GltfLoader.WholeNumbers...)
+  expectLoadError(writeLitTriangle("gltf_float_index", [](json& d) { d["bufferViews"][0]["byteOffset"] = 36.5; }),
+                  "bufferViews[0].byteOffset must be an integer in [0, 2147483647], got 36.5");
   expectLoadError(writeLitTriangle("gltf_huge_index", [](json& d) { d["nodes"][0]["mesh"] = 4294967296LL; }),
                   "nodes[0].mesh must be an integer in [0, 2147483647], got 4294967296");
   // A member name with a newline and a terminal escape stays on one line (expectLoadError checks).
@@ -900,6 +900,61 @@ TEST(GltfLoader, ATextureWithoutASourceIsLeftOutWithANote) {
   bool noted = false;
   for (const std::string& line : after.unreadFeatures) noted = noted || line.find("texture 0") != std::string::npos;
   EXPECT_TRUE(noted) << "no note of the texture left out";
+}
+
+// Every integer property of a JSON document written as a floating-point number (3 as 3.0).
+void integersToFloats(json& value) {
+  if (value.is_number_integer()) {
+    value = static_cast<double>(value.get<std::int64_t>()) + 0.0;
+    return;
+  }
+  if (value.is_structured()) {
+    for (json& child : value) integersToFloats(child);
+  }
+}
+
+TEST(GltfLoader, WholeNumbersWrittenInFloatingPointAreIntegers) {
+  // JSON has one number type: "children": [1.0] is valid glTF (the Khronos validator accepts it),
+  // but tinygltf takes 1.0 for absent. Such a file loads as its integer twin does, .gltf and .glb.
+  const fs::path path = copyTextured("gltf_whole_numbers");
+  const Scene expected = loadGltf(path);
+  editJson(path, [](json& d) {
+    integersToFloats(d);
+    d["asset"]["version"] = "2.0";
+  });
+  const json document = json::parse(std::ifstream(path));
+  ASSERT_TRUE(document["accessors"][0]["count"].is_number_float()) << "the edit wrote no float index";
+  const Scene fromJson = loadGltf(path);
+  // The same document in a .glb: the JSON chunk (padded to 4 bytes) and the buffer as its BIN chunk.
+  json binaryDocument = document;
+  const std::string bin = test::slurp(path.parent_path() / "textured.bin");
+  binaryDocument["buffers"][0].erase("uri");
+  std::string text = binaryDocument.dump();
+  text.append((4 - text.size() % 4) % 4, ' ');
+  std::string padded = bin;
+  padded.append((4 - padded.size() % 4) % 4, '\0');
+  std::string glb = "glTF";
+  const auto put = [&](std::uint32_t word) {
+    for (int b = 0; b < 4; ++b) glb += static_cast<char>((word >> (8 * b)) & 0xFF);
+  };
+  put(2);
+  put(static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + padded.size()));
+  put(static_cast<std::uint32_t>(text.size()));
+  glb += "JSON" + text;
+  put(static_cast<std::uint32_t>(padded.size()));
+  glb += std::string("BIN\0", 4) + padded;
+  std::ofstream(path.parent_path() / "floats.glb", std::ios::binary) << glb;
+  const Scene fromGlb = loadGltf(path.parent_path() / "floats.glb");
+  for (const Scene* loaded : {&fromJson, &fromGlb}) {
+    ASSERT_EQ(loaded->meshes.size(), expected.meshes.size());
+    for (std::size_t m = 0; m < expected.meshes.size(); ++m) {
+      EXPECT_EQ(loaded->meshes[m].indices, expected.meshes[m].indices);
+      ASSERT_EQ(loaded->meshes[m].vertices.size(), expected.meshes[m].vertices.size());
+      EXPECT_EQ(loaded->meshes[m].vertices.front().position, expected.meshes[m].vertices.front().position);
+    }
+    EXPECT_EQ(loaded->textures.size(), expected.textures.size());
+    EXPECT_EQ(loaded->materials.size(), expected.materials.size());
+  }
 }
 
 TEST(GltfErrors, MissingBufferFile) {

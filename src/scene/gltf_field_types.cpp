@@ -1,6 +1,7 @@
 #include "scene/gltf_field_types.h"
 
 #include <array>
+#include <cmath>
 #include <algorithm>
 #include <limits>
 #include <utility>
@@ -203,6 +204,34 @@ void checkPath(const nlohmann::json& object, std::string_view path, JsonType typ
   for (std::size_t i = 0; i < found->size(); ++i) visit((*found)[i], at + "[" + std::to_string(i) + "]");
 }
 
+// The values at `path` (a FieldType's path, as checkPath walks it) inside `value` that are whole
+// numbers written in floating point, within an index's range, made integers.
+bool indicesToIntegers(nlohmann::json& value, std::string_view path) {
+  if (path.empty()) {
+    if (!value.is_number_float()) return false;
+    const double number = value.get<double>();
+    if (!(number >= 0.0 && number <= static_cast<double>(kLargestIndex) && number == std::floor(number))) return false;
+    value = static_cast<std::int64_t>(number);
+    return true;
+  }
+  if (!value.is_object()) return false;
+  const std::size_t dot = path.find('.');
+  const std::string_view segment = path.substr(0, dot);
+  const std::string_view rest = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
+  bool changed = false;
+  if (segment == "*") {
+    for (auto& member : value.items()) changed = indicesToIntegers(member.value(), rest) || changed;
+    return changed;
+  }
+  const bool array = segment.ends_with("[]");
+  const auto found = value.find(std::string(array ? segment.substr(0, segment.size() - 2) : segment));
+  if (found == value.end()) return false;
+  if (!array) return indicesToIntegers(*found, rest);
+  if (!found->is_array()) return false;
+  for (nlohmann::json& element : *found) changed = indicesToIntegers(element, rest) || changed;
+  return changed;
+}
+
 std::uint32_t littleEndian32(const unsigned char* bytes) {
   return static_cast<std::uint32_t>(bytes[0]) | static_cast<std::uint32_t>(bytes[1]) << 8 |
          static_cast<std::uint32_t>(bytes[2]) << 16 | static_cast<std::uint32_t>(bytes[3]) << 24;
@@ -237,6 +266,8 @@ std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path) {
   return document;
 }
 
+constexpr std::size_t kDeepest = 256;  // glTF itself nests about 8 levels; extras may add some
+
 // The deepest nesting of arrays and objects, walked without recursion: tinygltf parses extras and
 // extensions recursively, and a file nested a million levels deep overflows its stack.
 std::size_t nestingDepth(const nlohmann::json& document) {
@@ -252,9 +283,17 @@ std::size_t nestingDepth(const nlohmann::json& document) {
   return deepest;
 }
 
+bool wholeNumberIndicesToIntegers(nlohmann::json& document) {
+  if (!document.is_object() || nestingDepth(document) > kDeepest) return false;  // checkGltfFieldTypes refuses it
+  bool changed = false;
+  for (const FieldType& field : kFieldTypes) {
+    if (field.type == JsonType::Index) changed = indicesToIntegers(document, field.path) || changed;
+  }
+  return changed;
+}
+
 void checkGltfFieldTypes(const nlohmann::json& document) {
   if (!document.is_object()) throw Error("the JSON document must be an object, got " + described(document));
-  constexpr std::size_t kDeepest = 256;  // glTF itself nests about 8 levels; extras may add some
   if (nestingDepth(document) > kDeepest) {
     throw Error("the JSON nests arrays and objects more than " + std::to_string(kDeepest) + " levels deep");
   }

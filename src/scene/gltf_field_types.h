@@ -18,9 +18,16 @@ std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path);
 // Throws glint::Error "PATH must be TYPE, got VALUE" (e.g. "materials[2].doubleSided must be true
 // or false, got the string \"yes\"") for the first property glint reads whose JSON type is not the
 // one the glTF 2.0 schema (and KHR_lights_punctual's) gives it, or that tinygltf would misread (an
-// integer written as 3.0, or beyond a 32-bit int). Absent properties are fine. Also refuses JSON
+// integer written as 3.5, or beyond a 32-bit int; whole numbers such as 3.0 are made integers by
+// wholeNumberIndicesToIntegers first). Absent properties are fine. Also refuses JSON
 // nested more than 256 levels deep, which tinygltf's recursive parsing of extras cannot survive.
 void checkGltfFieldTypes(const nlohmann::json& document);
+
+// Rewrites the indices, counts and offsets glint reads that the file writes as whole numbers in
+// floating point ("children": [1.0], valid glTF: JSON has one number type) as integers, which is
+// how tinygltf must see them to read them at all; returns whether anything changed. Fractional or
+// out-of-range values are left for checkGltfFieldTypes to refuse.
+bool wholeNumberIndicesToIntegers(nlohmann::json& document);
 
 }  // namespace glint::scene
 

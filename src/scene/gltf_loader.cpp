@@ -7,6 +7,7 @@
 #include <cstring>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -1044,6 +1045,33 @@ bool isBinaryGltf(const fs::path& path) {
   return file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
 }
 
+// The file's bytes with its JSON replaced by `document`: the JSON itself for a .gltf; for a .glb
+// the JSON chunk, padded with spaces to 4 bytes as the container requires, and the header's
+// lengths rewritten, the chunks after it kept (readGltfJson has checked the header).
+std::string withJson(const fs::path& path, const nlohmann::json& document) {
+  std::string json = document.dump();
+  if (!isBinaryGltf(path)) return json;
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const auto word = [&](std::size_t at) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at])) |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 1])) << 8 |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 2])) << 16 |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 3])) << 24;
+  };
+  const std::size_t rest = 20 + word(12);
+  json.append((4 - json.size() % 4) % 4, ' ');
+  const auto put = [](std::string& out, std::uint32_t value) {
+    for (int b = 0; b < 4; ++b) out += static_cast<char>((value >> (8 * b)) & 0xFF);
+  };
+  std::string out = "glTF";
+  put(out, 2);
+  put(out, static_cast<std::uint32_t>(20 + json.size() + (bytes.size() - rest)));
+  put(out, static_cast<std::uint32_t>(json.size()));
+  out += "JSON";
+  return out + json + bytes.substr(rest);
+}
+
 // The container version of a binary glTF (the header's second word): 2 for glTF 2.0, 1 for the
 // glTF 1.0 KHR_binary_glTF container; 0 when the header is cut short (tinygltf says so).
 std::uint32_t binaryGltfVersion(const fs::path& path) {
@@ -1069,11 +1097,14 @@ Scene loadGltf(const fs::path& path) {
     }
     // On the file's own JSON, before tinygltf reads it (gltf_field_types.h, gltf_precheck.h); a file
     // whose JSON does not parse is left to tinygltf's message.
-    if (const std::optional<nlohmann::json> document = readGltfJson(path)) {
+    std::optional<std::string> rewritten;  // the file with its whole-number indices made integers
+    if (std::optional<nlohmann::json> document = readGltfJson(path)) {
       checkGltfVersion(*document);
+      const bool wholeNumbers = wholeNumberIndicesToIntegers(*document);
       checkGltfFieldTypes(*document);
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
+      if (wholeNumbers) rewritten = withJson(path, *document);
     }
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
@@ -1081,8 +1112,16 @@ Scene loadGltf(const fs::path& path) {
     std::string errors;
     std::string warnings;
     // The content decides, not the extension: a .gltf that is really binary still loads.
-    const bool loaded = isBinaryGltf(path) ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
-                                           : loader.LoadASCIIFromFile(&model, &errors, &warnings, path.string());
+    const bool binary = isBinaryGltf(path);
+    const std::string folder = path.parent_path().string();
+    const bool loaded =
+        rewritten ? (binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings,
+                                                          reinterpret_cast<const unsigned char*>(rewritten->data()),
+                                                          static_cast<unsigned int>(rewritten->size()), folder)
+                            : loader.LoadASCIIFromString(&model, &errors, &warnings, rewritten->data(),
+                                                         static_cast<unsigned int>(rewritten->size()), folder))
+                  : (binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
+                            : loader.LoadASCIIFromFile(&model, &errors, &warnings, path.string()));
     if (!loaded) {
       const std::string reason = oneLine(errors.empty() ? warnings : errors);
       throw Error(reason.empty() ? "cannot parse the file" : reason);
