@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <set>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -210,6 +211,44 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", worstWeightError);
   RecordProperty("worst_weight_error", text);
+}
+
+TEST(GlintBrdf, PoleFootprintGivesTheSamePSdfWhicheverWayTheScreenAxesTurn) {
+  // The built-in sphere's footprint next to its pole (Footprint.UvSpherePoleFootprintHas...): u's
+  // derivative 10.2 times v's. Its ellipse, and so its P-SDF, is the same whichever way the screen
+  // axes turn around the pole; with the shorter derivative taken as the minor axis, screen axes at
+  // 45 degrees chose cells 7.2 times too long along the meridian (other cells, other values). At
+  // 256 uv positions and a slope inside the lobe: each value within 1e-4 of the mean of the
+  // square-on ones (float rounding of the axes moves cells on the ellipse's rim, whose weight is
+  // near 0), and so the mean and the spread over positions alike.
+  const kernel::DictionaryView dict = defaultDictionary().view();
+  GlintParameters p = defaultGlintParameters();
+  p.alpha = glm::vec2(0.5f);
+  p.logDensity = 13.0f;  // the sphere's red glint
+  const glm::vec2 slope(0.1f, -0.05f);
+  const auto square = turnedDerivatives(0.0418f, 0.0041f, 0.0f, 0.0f);
+  Pcg32 rng(64, 128);
+  std::vector<glm::vec2> positions(256);
+  for (glm::vec2& uv : positions) uv = glm::vec2(uniform(rng, 0.0f, 2.0f), uniform(rng, 0.0f, 2.0f));
+  std::vector<double> squareOn;
+  double squareMean = 0.0;
+  for (glm::vec2 uv : positions) {
+    squareOn.push_back(kernel::glintP22(dict, p, uv, square.first, square.second, slope));
+    squareMean += squareOn.back() / double(positions.size());
+  }
+  double squareSpread = 0.0;
+  for (double v : squareOn) squareSpread += (v - squareMean) * (v - squareMean) / double(positions.size());
+  ASSERT_GT(squareSpread, 1e-4 * squareMean * squareMean);  // glints, not the smooth limit
+  for (float degrees : {22.5f, 45.0f, 60.0f}) {
+    const auto [duvdx, duvdy] = turnedDerivatives(0.0418f, 0.0041f, 0.0f, glm::radians(degrees));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const double value = kernel::glintP22(dict, p, positions[i], duvdx, duvdy, slope);
+      ASSERT_TRUE(std::isfinite(value)) << degrees;
+      worst = std::max(worst, std::abs(value - squareOn[i]));
+    }
+    EXPECT_LT(worst, 1e-4 * squareMean) << "screen axes turned " << degrees << " degrees";
+  }
 }
 
 TEST(GlintBrdf, CellRotationMatchesTheAngle) {

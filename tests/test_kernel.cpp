@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -268,6 +269,79 @@ TEST(Footprint, LargeFootprintsKeepTheirMicrofacetCount) {
   EXPECT_FLOAT_EQ(fp.lod, 15.0f);
   EXPECT_NEAR(fp.logDensity, 20.0f + std::log(16.0f), 1e-5f);
   EXPECT_FLOAT_EQ(glm::length(fp.minorAxis), 1.0f);
+}
+
+TEST(Footprint, AxesAreTheEllipsesWhicheverWayTheScreenAxesTurn) {
+  // The footprint ellipse duvdx cos t + duvdy sin t does not depend on which way the screen axes
+  // turn, so neither may its axes, their clamp or the LOD. Taking the shorter derivative as the
+  // minor axis (pbrt-v3) overestimated it by up to anisotropy / sqrt 2 at 45 degrees.
+  for (float anisotropy : {1.0f, 2.0f, 10.2f, 50.0f, 1e4f}) {
+    for (float uvAngle : {0.0f, 0.5f}) {
+      const float major = 0.02f;
+      const float minor = major / anisotropy;
+      const auto aligned = turnedDerivatives(major, minor, uvAngle, 0.0f);
+      const auto reference = kernel::glintFootprint(aligned.first, aligned.second, 8.0f, 27.0f, 16);
+      const float clampedMinor = std::max(minor, major / 8.0f);
+      for (float degrees : {10.0f, 22.5f, 45.0f, 67.5f, 80.0f, 135.0f}) {
+        const auto [duvdx, duvdy] = turnedDerivatives(major, minor, uvAngle, glm::radians(degrees));
+        const auto fp = kernel::glintFootprint(duvdx, duvdy, 8.0f, 27.0f, 16);
+        const std::string where = "anisotropy " + std::to_string(anisotropy) + ", screen turned " +
+                                  std::to_string(degrees) + " degrees";
+        EXPECT_NEAR(glm::length(fp.majorAxis), major, 1e-5f * major) << where;
+        EXPECT_NEAR(glm::length(fp.minorAxis), clampedMinor, 1e-4f * clampedMinor) << where;
+        EXPECT_NEAR(glm::dot(fp.majorAxis, fp.minorAxis), 0.0f, 1e-6f * major * clampedMinor) << where;
+        // The major axis lies along the uv direction uvAngle (either sign); a circle has none.
+        const glm::vec2 along(std::cos(uvAngle), std::sin(uvAngle));
+        if (anisotropy > 1.0f) EXPECT_NEAR(std::abs(glm::dot(fp.majorAxis, along)), major, 1e-5f * major) << where;
+        EXPECT_NEAR(fp.lod, reference.lod, 1e-4f) << where;
+        EXPECT_NEAR(fp.lod, 15.0f + std::log2(clampedMinor), 1e-4f) << where;
+        EXPECT_FALSE(fp.degenerate) << where;
+      }
+    }
+  }
+}
+
+TEST(Footprint, UvSpherePoleFootprintHasTheMinorAxisAcrossTheRing) {
+  // The built-in sphere's first ring of triangles around its pole (128 x 64 segments, uv =
+  // (phi / 2 pi, theta / pi) x 4), seen by `glint render sphere --camera top` at 1024x1024: u's
+  // derivative 0.0418 uv per pixel around the ring, 10.2 = 1 / (2 sin(pi / 64)) times v's,
+  // 0.0041, along the meridian (measured with the tracer's ray differentials). Where the meridian
+  // runs at 45 degrees to the screen axes, both derivatives are 0.0297 uv long; taking one as the
+  // minor axis chose cells 7.2 times longer than the pixel along the meridian (LOD 9.93 instead
+  // of 7.42): the starburst of radial streaks. The ellipse's own minor axis, clamped to 8:1, picks
+  // cells of about a pixel, and the walk stays as cheap as for the same ellipse seen square on.
+  const float around = 0.0418f;
+  const float along = 0.0041f;
+  const float clampedMinor = around / 8.0f;  // 0.0052 > 0.0041: the clamp widens it by 1.27
+  const auto square = turnedDerivatives(around, along, 0.0f, 0.0f);
+  const auto squareFootprint = kernel::glintFootprint(square.first, square.second, 8.0f, 13.0f, 16);
+  auto cellsWalked = [](const kernel::GlintFootprint& fp, int level) {
+    const kernel::GlintCellGrid grid = kernel::glintCellGrid(fp, glm::vec2(0.37f, 0.81f), 16, level);
+    int cells = 0;
+    for (int t = grid.t0; t <= grid.t1; ++t) {
+      const glm::ivec2 row = kernel::glintCellRow(grid, t);
+      for (int s = row.x; s <= row.y; ++s) cells += kernel::glintCellWeight(grid, s, t) > 0.0f ? 1 : 0;
+    }
+    return cells;
+  };
+  for (float degrees : {0.0f, 22.5f, 45.0f, 60.0f}) {
+    const auto [duvdx, duvdy] = turnedDerivatives(around, along, 0.0f, glm::radians(degrees));
+    const auto fp = kernel::glintFootprint(duvdx, duvdy, 8.0f, 13.0f, 16);
+    ASSERT_FALSE(fp.degenerate) << degrees;
+    const float majorLength = glm::length(fp.majorAxis);
+    const float minorLength = glm::length(fp.minorAxis);
+    EXPECT_TRUE(std::isfinite(majorLength) && std::isfinite(minorLength) && std::isfinite(fp.lod)) << degrees;
+    EXPECT_LE(majorLength / minorLength, 8.0f * 1.0001f) << degrees;
+    EXPECT_NEAR(fp.lod, 15.0f + std::log2(clampedMinor), 1e-4f) << degrees;  // 7.42
+    EXPECT_FLOAT_EQ(fp.logDensity, 13.0f) << degrees;
+    const int level = kernel::glintLodLevel(fp);
+    for (int l = level; l <= level + 1; ++l) {
+      const int cells = cellsWalked(fp, l);
+      const int squareCells = cellsWalked(squareFootprint, l);
+      EXPECT_LE(std::abs(cells - squareCells), 2) << degrees << " degrees, level " << l << ": " << cells << " cells";
+      EXPECT_LE(cells, 64) << degrees << " degrees, level " << l;
+    }
+  }
 }
 
 TEST(Footprint, ZeroAreaIsDegenerate) {

@@ -9,6 +9,8 @@
 
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
+#include "scene/geometry.h"
+#include "scene/gltf_writer.h"
 #include "scene_support.h"
 #include "test_support.h"
 
@@ -83,6 +85,82 @@ TEST(RenderCli, RendersAnExportedFileWithAndWithoutAddedGlints) {
   expectPlausibleImage(folder / "close.exr", 96, 64);
   EXPECT_GT(compareImages(readImage(folder / "glint.exr"), readImage(folder / "sparse.exr")).relmse, 1e-4)
       << "a glint layer on the floor changed nothing";
+}
+
+// A metal UV sphere of radius 1 without a glint layer, its uv (phi / 2 pi, theta / pi) times
+// `uvExtent` (1: 0.28 uv units per metre, about what a textured asset's atlas gives), a point light
+// beside the camera and the camera at 3.6 m, written as glTF by the repository's own writer.
+std::filesystem::path writePlainSphere(const std::filesystem::path& folder, const std::string& stem, float uvExtent) {
+  scene::Scene s;
+  s.name = stem;
+  scene::Material metal;
+  metal.name = "metal";
+  metal.baseColour = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
+  metal.metallic = 1.0f;
+  metal.roughness = 0.5f;  // alpha 0.25
+  s.materials.push_back(metal);
+  s.meshes.push_back(scene::makeUvSphere("ball", 0, glm::vec3(0.0f), 1.0f, 96, 48, glm::vec2(uvExtent)));
+  scene::Light light;
+  light.position = glm::vec3(0.8f, 0.8f, 4.0f);
+  light.intensity = glm::vec3(20.0f);
+  s.lights.push_back(light);
+  s.cameras = scene::standardCameras(s.boundsMin(), s.boundsMax());
+  s.cameras["default"].position = glm::vec3(0.0f, 0.0f, 3.6f);
+  const std::filesystem::path path = folder / (stem + ".glb");
+  scene::writeGltf(path, s);
+  return path;
+}
+
+// The glint layer's sparkle: the RMSE of glint against Cook-Torrance with the same roughness over
+// the sphere's pixels, relative to their mean (as RenderGl.DefaultDensityShowsGlints measures).
+double sparkle(const ImageRgbF& glint, const ImageRgbF& smooth) {
+  double squares = 0.0, sum = 0.0;
+  int pixels = 0;
+  for (std::size_t i = 0; i < glint.pixels.size(); ++i) {
+    const double c = (smooth.pixels[i].r + smooth.pixels[i].g + smooth.pixels[i].b) / 3.0;
+    if (!(c > 0.05)) continue;  // the background (0.02 ambient grey, lit by nothing) and the dark rim
+    const double g = (glint.pixels[i].r + glint.pixels[i].g + glint.pixels[i].b) / 3.0;
+    squares += (g - c) * (g - c);
+    sum += c;
+    ++pixels;
+  }
+  return pixels > 0 ? std::sqrt(squares / pixels) / (sum / pixels) : 0.0;
+}
+
+TEST(RenderCli, GlintMaterialShowsGlintsAtAnyUvScale) {
+  // `--glint-material '*'` on a material without glint parameters: the default log density follows
+  // the material's uv area per square metre (scene::visibleGlintDensity), so the layer sparkles
+  // whatever the uv scale, and the command says which density it used. The fixed 27 was smooth
+  // at an asset's usual uv scale and glinted only where the uv ran 1,000 times slower.
+  const auto folder = temporaryFolder("render_glint_material");
+  const std::string size = " --size 128x128 --aa none";
+  RunResult result;
+  for (float uvExtent : {1.0f, 1e-3f}) {
+    const std::string stem = uvExtent == 1.0f ? "atlas" : "slow";
+    SCOPED_TRACE(stem);
+    const std::string file = writePlainSphere(folder, stem, uvExtent).filename().string();
+    result = runGlint(folder, "render " + file + " -o smooth.exr --brdf cook-torrance --glint-material '*'" + size);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    result = runGlint(folder, "render " + file + " -o derived.exr --glint-material '*'" + size);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const std::regex said(R"(glint: log density of the new glint layers, about 100 microfacets per pixel at the default )"
+                          R"(camera \(512 pixels high\): 'metal' ([0-9.]+) \([0-9.e+-]+ uv units per metre\); )"
+                          R"(--log-density D sets another\n)");
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(result.err, match, said)) << result.err;
+    const scene::Scene loaded = scene::loadScene((folder / file).string());
+    EXPECT_FLOAT_EQ(std::stof(match[1].str()), scene::visibleGlintDensity(loaded, 0).logDensity);
+    result = runGlint(folder, "render " + file + " -o fixed.exr --glint-material '*' --log-density 27" + size);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(result.err.find("log density of the new"), std::string::npos) << "--log-density set it: " << result.err;
+    const ImageRgbF smooth = readImage(folder / "smooth.exr");
+    const double derived = sparkle(readImage(folder / "derived.exr"), smooth);
+    const double fixed = sparkle(readImage(folder / "fixed.exr"), smooth);
+    std::printf("%s (uv x %g): log density %s, sparkle %.3f; at 27, %.3f\n", stem.c_str(), uvExtent,
+                match[1].str().c_str(), derived, fixed);
+    EXPECT_GT(derived, 0.05);
+    if (uvExtent == 1.0f) EXPECT_LT(fixed, 0.05) << "27 was expected to look smooth at this uv scale";
+  }
 }
 
 // The round trip: an exported built-in scene renders as the built-in scene, under the same sky

@@ -1068,33 +1068,68 @@ TEST(GltfErrors, BadGlintExtras) {
 
 // ---- applyGlint -------------------------------------------------------------------------------
 
-TEST(SceneGlint, ApplyGlintToNamedMaterials) {
+TEST(SceneGlint, ApplyGlintPutsALayerOnNamedMaterialsWithoutOne) {
+  // carpaint: "car paint" has its own layer, "floor" none. A new layer takes the material's
+  // roughness and the density of visibleGlintDensity; a material's own layer stays as it was.
   Scene scene = makeBuiltinScene("carpaint");
-  GlintLayer layer;
-  layer.alpha = glm::vec2(0.25f);
-  layer.logDensity = 18.0f;
-  applyGlint(scene, {"floor"}, layer);
-  for (const Material& m : scene.materials) {
-    if (m.name == "floor") {
-      EXPECT_TRUE(m.glint.enabled);
-      EXPECT_EQ(m.glint.logDensity, 18.0f);
-    }
+  const Scene original = scene;
+  std::vector<std::size_t> layered = applyGlint(scene, {"floor"});
+  ASSERT_EQ(layered.size(), 1u);
+  const Material& floor = scene.materials[layered[0]];
+  EXPECT_EQ(floor.name, "floor");
+  EXPECT_TRUE(floor.glint.enabled);
+  EXPECT_EQ(floor.glint.alpha, glm::vec2(alphaFromRoughness(floor.roughness)));
+  EXPECT_EQ(floor.glint.logDensity, visibleGlintDensity(scene, static_cast<int>(layered[0])).logDensity);
+  EXPECT_EQ(floor.glint.uvScale, GlintLayer{}.uvScale);
+  layered = applyGlint(scene, {"*"});
+  EXPECT_TRUE(layered.empty());  // both have a layer now
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    if (scene.materials[i].name != "car paint") continue;
+    EXPECT_EQ(scene.materials[i].glint.logDensity, original.materials[i].glint.logDensity);
+    EXPECT_EQ(scene.materials[i].glint.alpha, original.materials[i].glint.alpha);
+    EXPECT_EQ(scene.materials[i].glint.uvScale, original.materials[i].glint.uvScale);
   }
-  applyGlint(scene, {"*"}, layer);
-  for (const Material& m : scene.materials) EXPECT_EQ(m.glint.alpha, glm::vec2(0.25f)) << m.name;
 }
 
-TEST(SceneGlint, UnknownMaterialOrBadLayerThrows) {
+TEST(SceneGlint, UnknownMaterialThrows) {
   Scene scene = makeBuiltinScene("carpaint");
-  const std::string message = errorOf([&] { applyGlint(scene, {"floor", "chrome"}, GlintLayer{}); });
+  const std::string message = errorOf([&] { applyGlint(scene, {"floor", "chrome"}); });
   EXPECT_NE(message.find("'chrome'"), std::string::npos) << message;
   EXPECT_NE(message.find("'car paint', 'floor'"), std::string::npos) << message;
-  GlintLayer bad;
-  bad.relativeArea = 0.0f;
-  EXPECT_NE(errorOf([&] { applyGlint(scene, {"floor"}, bad); }).find("relative_area"), std::string::npos);
-  bad = GlintLayer{};
-  bad.roughnessTexture = 3;
-  EXPECT_NE(errorOf([&] { applyGlint(scene, {"floor"}, bad); }).find("roughness_texture 3"), std::string::npos);
+}
+
+TEST(SceneGlint, DefaultDensityGivesAHundredMicrofacetsPerPixelAtTheDefaultCamera) {
+  // A 2 x 2 m quad (uv over [0, k]^2: k^2 / 4 uv units^2 per m^2) seen square on from 4 m with a
+  // 45 degree field of view: a pixel of a 512-pixel frame is 2 * 4 * tan(22.5 deg) / 512 m wide,
+  // and e^D * k^2 / 4 * pixel^2 = 100. Each factor of 10 in the uv takes ln 100 off D.
+  for (float k : {1.0f, 10.0f, 1000.0f}) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    scene.meshes.push_back(makeQuad("quad", 0, glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, glm::vec2(k)));
+    Camera camera;
+    camera.position = glm::vec3(0.0f, 0.0f, 4.0f);
+    scene.cameras["default"] = camera;
+    const VisibleGlintDensity d = visibleGlintDensity(scene, 0);
+    ASSERT_TRUE(d.hasUvArea);
+    EXPECT_NEAR(d.uvAreaPerSquareMetre, k * k / 4.0, 1e-9 * k * k);
+    const double pixel = 2.0 * 4.0 * std::tan(glm::radians(22.5)) / 512.0;
+    EXPECT_NEAR(d.pixelSide, pixel, 1e-6 * pixel);
+    EXPECT_NEAR(d.logDensity, std::log(100.0 / (k * k / 4.0 * pixel * pixel)), 0.05 + 1e-5) << k;
+    // Deterministic: the same scene, the same density.
+    EXPECT_EQ(visibleGlintDensity(scene, 0).logDensity, d.logDensity);
+  }
+  // No uv area (a mesh without TEXCOORD_0 reads uv 0): no glints can show; GlintLayer's default.
+  Scene flat;
+  flat.materials.push_back(Material{});
+  flat.meshes.push_back(makeQuad("quad", 0, glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, glm::vec2(0.0f)));
+  flat.cameras["default"] = Camera{};
+  EXPECT_FALSE(visibleGlintDensity(flat, 0).hasUvArea);
+  EXPECT_EQ(visibleGlintDensity(flat, 0).logDensity, GlintLayer{}.logDensity);
+  // A density beyond the accepted range is clamped to it: uv 1e-30 units across would need D = 148.
+  Scene tiny = flat;
+  tiny.meshes[0] = makeQuad("quad", 0, glm::vec3(0.0f), {1, 0, 0}, {0, 1, 0}, glm::vec2(1e-30f));
+  EXPECT_TRUE(visibleGlintDensity(tiny, 0).hasUvArea);
+  EXPECT_EQ(visibleGlintDensity(tiny, 0).logDensity, kMaxLogDensity);
 }
 
 // ---- Geometry ---------------------------------------------------------------------------------

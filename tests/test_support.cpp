@@ -82,6 +82,15 @@ SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength) {
   return footprint;
 }
 
+std::pair<glm::vec2, glm::vec2> turnedDerivatives(float major, float minor, float uvAngle, float screenAngle) {
+  const auto turn = [](float angle) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return glm::mat2(c, s, -s, c);
+  };
+  const glm::mat2 j = turn(uvAngle) * glm::mat2(major, 0.0f, 0.0f, minor) * turn(screenAngle);
+  return {j[0], j[1]};
+}
+
 glm::vec3 directionAt(float theta, float phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }

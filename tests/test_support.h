@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 
 #include <glm/glm.hpp>
 
@@ -42,6 +43,12 @@ float uniform(Pcg32& rng, float low, float high);
 // A random footprint: uv in [0, 1)^2, derivatives of log-uniform length in [minLength, maxLength]
 // with independent random directions (anisotropic, possibly sheared ellipses).
 SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength);
+// Uv derivatives whose footprint ellipse has principal semi-axes `major` (along the uv direction
+// at `uvAngle` radians) and `minor`, seen by screen axes turned by `screenAngle` from them: the
+// columns duvdx, duvdy of J = R(uvAngle) diag(major, minor) R(screenAngle). They are perpendicular
+// only when screenAngle is a multiple of 90 degrees; otherwise they are conjugate semi-diameters
+// of the same ellipse.
+std::pair<glm::vec2, glm::vec2> turnedDerivatives(float major, float minor, float uvAngle, float screenAngle);
 // A unit direction in the upper hemisphere with the given polar angle and a random azimuth.
 glm::vec3 directionAt(float thetaRadians, float phiRadians);
 

@@ -1,5 +1,6 @@
 #include "app/scene_options.h"
 
+#include <cmath>
 #include <cstdio>
 #include <regex>
 
@@ -30,18 +31,30 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
 }
 
+std::string describeDefaultGlintDensity(const scene::Scene& scene, const std::vector<std::size_t>& layered) {
+  std::string text = "log density of the new glint layers, about " +
+                     std::to_string(static_cast<int>(scene::kVisibleGlintMicrofacetsPerPixel)) +
+                     " microfacets per pixel at the default camera (" + std::to_string(scene::kVisibleGlintFrameSize) +
+                     " pixels high):";
+  char number[64];
+  for (std::size_t k = 0; k < layered.size(); ++k) {
+    const scene::Material& m = scene.materials[layered[k]];
+    const scene::VisibleGlintDensity d = scene::visibleGlintDensity(scene, static_cast<int>(layered[k]));
+    if (d.hasUvArea) {
+      std::snprintf(number, sizeof number, " %.1f (%.3g uv units per metre)", m.glint.logDensity,
+                    std::sqrt(d.uvAreaPerSquareMetre));
+    } else {
+      std::snprintf(number, sizeof number, " %.1f (no uv area: smooth)", m.glint.logDensity);
+    }
+    text += (k == 0 ? " '" : ", '") + m.name + "'" + number;
+  }
+  return text + "; --log-density D sets another";
+}
+
 scene::Scene SceneOptions::loadScene() const {
   scene::Scene s = scene::loadScene(scene);
-  if (!glintMaterials.empty()) {
-    std::vector<bool> hadLayer;
-    for (const scene::Material& m : s.materials) hadLayer.push_back(m.glint.enabled);
-    scene::applyGlint(s, glintMaterials, scene::GlintLayer{});
-    // A new layer takes the material's own roughness (alpha = roughness^2), not a fixed one.
-    for (std::size_t i = 0; i < s.materials.size(); ++i) {
-      scene::Material& m = s.materials[i];
-      if (m.glint.enabled && !hadLayer[i]) m.glint.alpha = glm::vec2(scene::alphaFromRoughness(m.roughness));
-    }
-  }
+  const std::vector<std::size_t> layered = glintMaterials.empty() ? std::vector<std::size_t>{}
+                                                                  : scene::applyGlint(s, glintMaterials);
   if (alpha.size() > 2) throw Error("--alpha takes one or two values");
   if (sky) {
     if (!(*sky >= 0.0f && *sky <= 100.0f)) throw Error("--sky must be in [0, 100]");
@@ -69,6 +82,9 @@ scene::Scene SceneOptions::loadScene() const {
     }
   }
   findCamera(s);
+  // Which density the new layers got, unless --log-density replaced it; only once nothing above
+  // failed, so that an error stays the one line on stderr.
+  if (!layered.empty() && !logDensity) std::fprintf(stderr, "glint: %s\n", describeDefaultGlintDensity(s, layered).c_str());
   return s;
 }
 

@@ -55,7 +55,7 @@ void validateSlopeCorrelation(float rho) {
 void validateGlintParameters(const GlintParameters& p) {
   validateRoughness(p.alpha);
   validateSlopeCorrelation(p.rho);
-  requireRange("log_density", p.logDensity, 0.0f, 100.0f);
+  requireRange("log_density", p.logDensity, kMinLogDensity, kMaxLogDensity);
   if (!(p.relativeArea > 0.0f && p.relativeArea <= 1.0f)) {
     std::ostringstream message;
     message << "relative_area must be in (0, 1], got " << p.relativeArea;

@@ -34,6 +34,9 @@ inline constexpr float kMaxRoughnessAlpha = 2.0f;
 // The slope correlation: rho in (-1, 1), at most kMaxSlopeCorrelation in magnitude.
 void validateSlopeCorrelation(float rho);
 inline constexpr float kMaxSlopeCorrelation = 0.99f;
+// The log density's accepted range, D = ln(microfacets per unit uv area).
+inline constexpr float kMinLogDensity = 0.0f;
+inline constexpr float kMaxLogDensity = 100.0f;
 
 // Fresnel reflectance at the microfacet: none (F = 1), Schlick, or an exact conductor.
 class Fresnel {

@@ -70,15 +70,56 @@ void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount) {
   }
 }
 
-void applyGlint(Scene& scene, const std::vector<std::string>& materialNames, const GlintLayer& layer) {
-  validateGlintLayer(layer, scene.textures.size());
-  GlintLayer enabled = layer;
-  enabled.enabled = true;
+VisibleGlintDensity visibleGlintDensity(const Scene& scene, int material) {
+  double uvArea = 0.0;
+  double worldArea = 0.0;
+  glm::dvec3 weightedCentre(0.0);
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.material != material) continue;
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+      const Vertex& a = mesh.vertices[mesh.indices[i]];
+      const Vertex& b = mesh.vertices[mesh.indices[i + 1]];
+      const Vertex& c = mesh.vertices[mesh.indices[i + 2]];
+      const glm::dvec3 ab = glm::dvec3(b.position) - glm::dvec3(a.position);
+      const glm::dvec3 ac = glm::dvec3(c.position) - glm::dvec3(a.position);
+      const double area = 0.5 * glm::length(glm::cross(ab, ac));
+      const glm::dvec2 uvAb = glm::dvec2(b.uv) - glm::dvec2(a.uv);
+      const glm::dvec2 uvAc = glm::dvec2(c.uv) - glm::dvec2(a.uv);
+      uvArea += 0.5 * std::abs(uvAb.x * uvAc.y - uvAb.y * uvAc.x);
+      worldArea += area;
+      weightedCentre += area * (glm::dvec3(a.position) + glm::dvec3(b.position) + glm::dvec3(c.position)) / 3.0;
+    }
+  }
+  VisibleGlintDensity density;
+  if (!(uvArea > 0.0 && worldArea > 0.0 && std::isfinite(uvArea) && std::isfinite(worldArea))) return density;
+  const auto found = scene.cameras.find("default");
+  const Camera camera = found != scene.cameras.end() ? found->second
+                                                     : standardCameras(scene.boundsMin(), scene.boundsMax()).at("default");
+  const double frame = static_cast<double>(kVisibleGlintFrameSize);
+  if (camera.projection == Camera::Projection::Orthographic) {
+    density.pixelSide = 2.0 * camera.orthographicHalfHeight / frame;
+  } else {
+    const double distance = glm::length(weightedCentre / worldArea - glm::dvec3(camera.position));
+    density.pixelSide = 2.0 * distance * std::tan(0.5 * glm::radians(double(camera.verticalFovDegrees))) / frame;
+  }
+  density.hasUvArea = true;
+  density.uvAreaPerSquareMetre = uvArea / worldArea;
+  const double uvAreaPerPixel = density.uvAreaPerSquareMetre * density.pixelSide * density.pixelSide;
+  // A camera at the material's centre sees no pixel there: the densest layer accepted.
+  const double logDensity = uvAreaPerPixel > 0.0 ? std::log(kVisibleGlintMicrofacetsPerPixel / uvAreaPerPixel)
+                                                 : double(kMaxLogDensity);
+  density.logDensity = static_cast<float>(
+      std::clamp(std::round(10.0 * logDensity) / 10.0, double(kMinLogDensity), double(kMaxLogDensity)));
+  return density;
+}
+
+std::vector<std::size_t> applyGlint(Scene& scene, const std::vector<std::string>& materialNames) {
+  std::vector<bool> named(scene.materials.size(), false);
   for (const std::string& name : materialNames) {
     bool found = false;
-    for (Material& material : scene.materials) {
-      if (name == "*" || material.name == name) {
-        material.glint = enabled;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+      if (name == "*" || scene.materials[i].name == name) {
+        named[i] = true;
         found = true;
       }
     }
@@ -93,6 +134,18 @@ void applyGlint(Scene& scene, const std::vector<std::string>& materialNames, con
       throw Error(message.str());
     }
   }
+  std::vector<std::size_t> layered;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    Material& material = scene.materials[i];
+    if (!named[i] || material.glint.enabled) continue;
+    GlintLayer layer;
+    layer.enabled = true;
+    layer.alpha = glm::vec2(alphaFromRoughness(material.roughness));
+    layer.logDensity = visibleGlintDensity(scene, static_cast<int>(i)).logDensity;
+    material.glint = layer;
+    layered.push_back(i);
+  }
+  return layered;
 }
 
 std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {

@@ -184,10 +184,35 @@ GlintParameters glintParameters(const GlintLayer& layer);
 // log_density_range within log_density's range, texture indices below textureCount (or -1).
 void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount);
 
-// Puts `layer` (enabled) on every material named in `materialNames`; "*" names them all. Throws
-// Error, listing the scene's material names, for a name that no material has, and for a layer
-// that validateGlintLayer rejects. Several materials with the same name all get the layer.
-void applyGlint(Scene& scene, const std::vector<std::string>& materialNames, const GlintLayer& layer);
+// The default log density of a glint layer that a material gets without parameters of its own
+// (applyGlint): the density at which the layer shows about kVisibleGlintMicrofacetsPerPixel
+// microfacets per pixel where its surface faces the scene's "default" camera, in a frame of
+// kVisibleGlintFrameSize pixels high (the commands' default size). Microfacets per pixel are
+// e^D * (uv area per square metre) * (pixel side in metres)^2, so
+//   D = ln(kVisibleGlintMicrofacetsPerPixel / (uvAreaPerSquareMetre * pixelSide^2)),
+// rounded to 0.1 (the printed value is the one used) and kept within the accepted range. The uv
+// area per square metre is that of the meshes using the material: the sum of their triangles'
+// uv areas over the sum of their world areas. The pixel side is 2 d tan(fov / 2) / 512 at the
+// distance d from the camera to the area-weighted centre of those triangles (2 h / 512 for an
+// orthographic camera of half height h). The 100 lies within the built-in scenes' own glint
+// layers, 4 to 25,000 at their default cameras (docs/scenes.md, "Default glint density").
+inline constexpr double kVisibleGlintMicrofacetsPerPixel = 100.0;
+inline constexpr int kVisibleGlintFrameSize = 512;
+struct VisibleGlintDensity {
+  bool hasUvArea = false;             // false: no triangle with uv area (and world area) uses it
+  double uvAreaPerSquareMetre = 0.0;  // mesh uv units^2 per m^2
+  double pixelSide = 0.0;             // metres, at the material's centre
+  float logDensity = GlintLayer{}.logDensity;  // GlintLayer's default where there is no uv area
+};
+VisibleGlintDensity visibleGlintDensity(const Scene& scene, int material);
+
+// Puts a glint layer on every material named in `materialNames` that has none ("*" names them
+// all): the material's roughness as alpha (alphaFromRoughness), the log density of
+// visibleGlintDensity, GlintLayer's defaults for the rest. A material that already has a layer
+// (extras.glint) keeps it: its own parameters win. Throws Error, listing the scene's material
+// names, for a name that no material has. Several materials with the same name all get the
+// layer. Returns the indices of the materials that got a new layer, in order.
+std::vector<std::size_t> applyGlint(Scene& scene, const std::vector<std::string>& materialNames);
 
 // Named views of the bounding box [low, high]: "default" and "front" look at its centre from +z,
 // far enough that the bounding sphere fits the 45 degree vertical field of view with a 10% margin;

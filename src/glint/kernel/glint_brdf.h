@@ -49,32 +49,55 @@ GLINT_FN float glintFootprintPeriod(int numLevels) {
   return exp2(float(17 - numLevels));
 }
 
-// Footprint ellipse and continuous LOD (method.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the two
-// uv derivatives are the ellipse's axes; the minor axis is widened so that the anisotropy is at
-// most maxAnisotropy. Going past the paper, a footprint whose minor axis exceeds one uv unit is
-// shrunk to one and the area it loses is added to the density, so the LOD stays within the
-// dictionary and the cost stays bounded, while the number of microfacets seen is unchanged.
+// Footprint ellipse and continuous LOD (method.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the
+// pixel's footprint is the ellipse duvdx cos t + duvdy sin t, its minor axis is widened so that
+// the anisotropy is at most maxAnisotropy, and the LOD is the (widened) minor axis in cells.
+// Going past the paper and pbrt-v3 in two ways:
+//   - The two derivatives are conjugate semi-diameters of the ellipse, not its axes: they are
+//     perpendicular only where the uv map is conformal along the screen axes. pbrt-v3 takes the
+//     shorter one as the minor axis; as conjugate semi-diameters satisfy |duvdx|^2 + |duvdy|^2 =
+//     major^2 + minor^2, the shorter can be up to sqrt((major^2 + minor^2) / 2), about the
+//     anisotropy / sqrt 2 times the minor axis. The LOD then picks cells that many times longer
+//     across the ellipse than the pixel, which neighbouring pixels share as streaks (at a UV
+//     sphere's pole u's derivative is ten times v's, and the screen axes turn around the pole:
+//     docs/renderer.md, "Footprint"). Here the axes are the ellipse's principal axes, from the
+//     singular value decomposition of J = [duvdx duvdy], whichever way the screen axes turn.
+//   - A footprint whose minor axis exceeds one uv unit is shrunk to one and the area it loses is
+//     added to the density, so the LOD stays within the dictionary and the cost stays bounded,
+//     while the number of microfacets seen is unchanged.
 GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotropy, float logDensity,
                                        int numLevels) {
   // Derivatives beyond 1e6 uv units (the pattern's period is 2) are scaled down together, so that
-  // their lengths stay finite in float (1e20 squared is not); such a footprint is in the smooth
+  // their squares stay finite in float (1e20 squared is not); such a footprint is in the smooth
   // limit either way. Below that, the scale is exactly 1.
   float longest = max(max(abs(duvdx.x), abs(duvdx.y)), max(abs(duvdy.x), abs(duvdy.y)));
   float fit = longest > 1e6f ? 1e6f / longest : 1.0f;
-  vec2 major = duvdx * fit;
-  vec2 minor = duvdy * fit;
-  if (dot(major, major) < dot(minor, minor)) {
-    vec2 longer = minor;
-    minor = major;
-    major = longer;
+  vec2 dx = duvdx * fit;
+  vec2 dy = duvdy * fit;
+  // J J^T = [[a, b], [b, c]]: its eigenvalues are the squared semi-axes. The larger one,
+  // (a + c) / 2 + sqrt(((a - c) / 2)^2 + b^2), is a sum of non-negative terms; the smaller is
+  // taken as det(J)^2 over it (|det J| = the product of the semi-axes), which does not cancel
+  // when the ellipse is thin.
+  float a = dx.x * dx.x + dy.x * dy.x;
+  float b = dx.x * dx.y + dy.x * dy.y;
+  float c = dx.y * dx.y + dy.y * dy.y;
+  float halfDifference = 0.5f * (a - c);
+  float root = sqrt(halfDifference * halfDifference + b * b);
+  float majorLength = sqrt(0.5f * (a + c) + root);
+  float minorLength = majorLength > 0.0f ? abs(dx.x * dy.y - dx.y * dy.x) / majorLength : 0.0f;
+  // The major axis's direction, the eigenvector of the larger eigenvalue: (lambda - c, b) or
+  // (b, lambda - a), whichever sums non-negative terms (lambda - c = halfDifference + root). A
+  // circle has no preferred direction: u.
+  vec2 direction = halfDifference >= 0.0f ? vec2(halfDifference + root, b) : vec2(b, root - halfDifference);
+  float directionLength = length(direction);
+  direction = directionLength > 0.0f ? direction / directionLength : vec2(1.0f, 0.0f);
+  // The anisotropy clamp: the minor axis at least majorLength / maxAnisotropy, set directly (a
+  // ratio of the two lengths overflows for a thin enough ellipse). No area stays no area.
+  if (minorLength > 0.0f) {
+    minorLength = max(minorLength, majorLength / maxAnisotropy);
   }
-  float majorLength = length(major);
-  float minorLength = length(minor);
-  if (minorLength * maxAnisotropy < majorLength && minorLength > 0.0f) {
-    float widen = majorLength / (minorLength * maxAnisotropy);
-    minor = minor * widen;
-    minorLength = minorLength * widen;
-  }
+  vec2 major = direction * majorLength;
+  vec2 minor = vec2(-direction.y, direction.x) * minorLength;
   GlintFootprint footprint;
   footprint.logDensity = logDensity;
   if (minorLength > 1.0f) {
