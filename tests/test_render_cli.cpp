@@ -62,6 +62,34 @@ TEST(RenderCli, RendersEveryBuiltinSceneAndTheDefault) {
   expectPlausibleImage(folder / "default.png", 64, 64);
 }
 
+// Without -o, render and trace name their output after the scene, in the current folder (not beside
+// a glTF file), and say in one line what they wrote.
+TEST(RenderCli, WithoutAnOutputTheImageIsNamedAfterTheScene) {
+  const auto folder = temporaryFolder("render_default_output");
+  RunResult result = runGlint(folder, "render sphere --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err.rfind("glint: wrote sphere.png (sphere, 32x32", 0), 0u) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  expectPlausibleImage(folder / "sphere.png", 32, 32);
+  result = runGlint(folder, "render --size 32x32 --brdf cook-torrance");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  expectPlausibleImage(folder / "showroom.png", 32, 32);  // the default scene
+  std::filesystem::create_directory(folder / "scene");
+  writeSeparateGltf(texturedTestScene(), folder / "scene", "textured");
+  result = runGlint(folder, "render scene/textured.gltf --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("glint: wrote textured.png ("), std::string::npos) << result.err;
+  expectPlausibleImage(folder / "textured.png", 32, 32);
+  EXPECT_FALSE(std::filesystem::exists(folder / "scene" / "textured.png"));
+
+  const auto traced = temporaryFolder("trace_default_output");
+  result = runGlint(traced, "trace parquet --size 16x16 --spp 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err.rfind("glint: wrote parquet.exr and parquet.png (parquet, 16x16", 0), 0u) << result.err;
+  expectPlausibleImage(traced / "parquet.exr", 16, 16);
+  expectPlausibleImage(traced / "parquet.png", 16, 16);
+}
+
 // An exported file, rendered plainly and with a glint layer put on its plain floor by the command
 // line (also from a camera preset): plausible, and the layer shows.
 TEST(RenderCli, RendersAnExportedFileWithAndWithoutAddedGlints) {
