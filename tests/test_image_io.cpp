@@ -15,6 +15,7 @@
 
 #include "error.h"
 #include "image_io.h"
+#include "kernel/tonemap.h"
 #include "pcg.h"
 #include "test_support.h"
 
@@ -297,6 +298,54 @@ TEST(ImageIoExr, NonFinitePixelsAreRefusedOnReadAndWrite) {
   const ImageRgbF infinite = image2x1(glm::vec3(0), glm::vec3(std::numeric_limits<float>::infinity()));
   expectError([&] { writeExr(folder / "inf.exr", infinite); }, {"inf.exr", "pixel (1, 0) is not finite"});
   EXPECT_FALSE(std::filesystem::exists(folder / "inf.exr"));
+}
+
+// --- Display encoding: what `glint render` writes as PNG ----------------------------------------
+
+// A smooth gradient, like a sky, about four codes across 512 columns: rounding alone turns it into
+// flat bands, each 8 x 8 tile off the exact values' mean by up to half a code; dithered, every
+// tile's mean code follows the exact mean to within 0.1 of a code. Black and white stay flat.
+TEST(ImageIoDisplay, SmoothGradientsAreDitheredNotBanded) {
+  constexpr int kWidth = 512;
+  constexpr int kTile = 8;
+  ImageRgbF radiance = ImageRgbF::filled(kWidth, kTile);
+  std::vector<double> exactCodes(kWidth);
+  for (int x = 0; x < kWidth; ++x) {
+    const float value = 0.05f + 0.005f * static_cast<float>(x) / static_cast<float>(kWidth - 1);
+    for (int y = 0; y < kTile; ++y) radiance.at(x, y) = glm::vec3(value);
+    exactCodes[static_cast<std::size_t>(x)] = 255.0 * kernel::displayEncode(glm::vec3(value), 1.0f).x;
+  }
+  ASSERT_GT(exactCodes.back() - exactCodes.front(), 3.0);  // the gradient crosses several codes
+  const ImageRgb8 encoded = displayEncode(radiance, 1.0f);
+  double worstDithered = 0.0;
+  double worstRounded = 0.0;
+  for (int tile = 0; tile < kWidth / kTile; ++tile) {
+    double exact = 0.0;
+    double dithered = 0.0;
+    double rounded = 0.0;
+    for (int x = tile * kTile; x < (tile + 1) * kTile; ++x) {
+      const double code = exactCodes[static_cast<std::size_t>(x)];
+      for (int y = 0; y < kTile; ++y) {
+        exact += code;
+        dithered += encoded.at(x, y).r;
+        rounded += std::round(code);
+        EXPECT_EQ(encoded.at(x, y).g, encoded.at(x, y).r);  // grey stays grey
+      }
+    }
+    const double pixels = kTile * kTile;
+    worstDithered = std::max(worstDithered, std::abs(dithered - exact) / pixels);
+    worstRounded = std::max(worstRounded, std::abs(rounded - exact) / pixels);
+  }
+  EXPECT_LE(worstDithered, 0.1);
+  EXPECT_GT(worstRounded, 0.3);  // the gradient is one that bands when rounded
+  const ImageRgb8 black = displayEncode(ImageRgbF::filled(16, 16), 1.0f);
+  const ImageRgb8 white = displayEncode(ImageRgbF::filled(16, 16, glm::vec3(1e6f)), 1.0f);
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      EXPECT_EQ(black.at(x, y).r, 0);
+      EXPECT_EQ(white.at(x, y).r, 255);
+    }
+  }
 }
 
 // --- Reading: content decides, and every failure is one line naming the file --------------------
