@@ -406,6 +406,25 @@ TEST(ImageIoWrite, ChoosesTheFormatByExtension) {
   EXPECT_FALSE(std::filesystem::exists(folder / "d"));
 }
 
+// A full disk, as /dev/full stands for it (every write fails with ENOSPC), reached through a link
+// with the image's extension: the error names the file and the system's reason, and nothing is
+// left behind (the link stays a link to the device).
+TEST(ImageIoWrite, AFullDiskGivesTheSystemsReasonAndTheFileName) {
+  if (!std::filesystem::is_character_file("/dev/full")) GTEST_SKIP() << "needs /dev/full (Linux)";
+  const auto folder = temporaryFolder("image_full_disk");
+  for (const char* name : {"full.png", "full.exr"}) std::filesystem::create_symlink("/dev/full", folder / name);
+  const ImageRgbF image = image2x1(glm::vec3(0.25f), glm::vec3(1.0f));
+  expectError([&] { writeImage(folder / "full.png", image); }, {"full.png: cannot write (No space left on device)"});
+  expectError([&] { writeExr(folder / "full.exr", image); }, {"full.exr: cannot write (No space left on device)"});
+  std::size_t entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_TRUE(entry.is_symlink()) << "left behind: " << entry.path();
+    ++entries;
+  }
+  EXPECT_EQ(entries, 2u);
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+}
+
 // --- Metrics -----------------------------------------------------------------------------------
 
 TEST(ImageIoMetrics, MatchHandComputedValues) {

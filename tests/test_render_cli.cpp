@@ -221,6 +221,21 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectOneLineError(wrongExtension, "out.jpg: the output must end in .png or .exr");
 }
 
+// A full disk (/dev/full, reached by a name with the image's extension) stops the command with one
+// line naming the file and the system's reason, a non-zero exit and no file left behind.
+TEST(RenderCli, AFullDiskSaysSoNamingTheFile) {
+  if (!std::filesystem::is_character_file("/dev/full")) GTEST_SKIP() << "needs /dev/full (Linux)";
+  const auto folder = temporaryFolder("render_full_disk");
+  for (const char* name : {"full.png", "full.exr"}) {
+    std::filesystem::create_symlink("/dev/full", folder / name);
+    expectOneLineError(runGlint(folder, std::string("render sphere --size 16x16 -o ") + name),
+                       std::string(name) + ": cannot write (No space left on device)");
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+  }
+}
+
 // A triangle lit by `lights` point lights of the file (KHR_lights_punctual).
 std::filesystem::path writeTriangleWithLights(const std::filesystem::path& folder, int lights) {
   const float positions[9] = {-1, -1, 0, 1, -1, 0, 0, 1, 0};
