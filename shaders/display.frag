@@ -1,6 +1,6 @@
 // The display pass (gl/display.h): the radiance of a frame, texel for pixel, through
-// kernel/tonemap.h's exposure, tone curve, sRGB encoding and rounding to 8 bits, for the viewer's
-// window and the PNG images of `glint render` alike.
+// kernel/tonemap.h's exposure, tone curve, sRGB encoding and dithered rounding to 8 bits, for the
+// viewer's window and the PNG images of `glint render` alike.
 #include "tonemap.h"
 
 layout(location = 0) out vec4 outColour;
@@ -9,6 +9,9 @@ uniform float uExposure;
 
 void main() {
   // A whole code value over 255 converts to exactly that value in an 8-bit framebuffer.
-  vec3 radiance = texelFetch(uRadiance, ivec2(gl_FragCoord.xy), 0).rgb;
-  outColour = vec4(displayCodeValues(radiance, uExposure) / 255.0f, 1.0f);
+  ivec2 texel = ivec2(gl_FragCoord.xy);
+  vec3 radiance = texelFetch(uRadiance, texel, 0).rgb;
+  // The dither is laid out from the image's top row, as the CPU's images are (rows here go up).
+  ivec2 pixel = ivec2(texel.x, textureSize(uRadiance, 0).y - 1 - texel.y);
+  outColour = vec4(displayCodeValues(radiance, uExposure, pixel) / 255.0f, 1.0f);
 }

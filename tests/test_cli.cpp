@@ -27,6 +27,15 @@ TEST(GlintCli, MistypedCommandsAndSizesSayWhatIsWrong) {
   EXPECT_FALSE(std::filesystem::exists(folder / "x.png"));
 }
 
+// What CLI11 refuses in a command's arguments points at that command's help, not the top level's.
+TEST(GlintCli, ArgumentErrorsPointAtTheirCommandsHelp) {
+  const auto folder = temporaryFolder("cli_help_pointer");
+  expectOneLineError(runGlint(folder, "render --bogus"), "--bogus (see glint render --help)");
+  expectOneLineError(runGlint(folder, "trace sphere --spp many"), "(see glint trace --help)");
+  expectOneLineError(runGlint(folder, "dict --levels"), "(see glint dict --help)");
+  expectOneLineError(runGlint(folder, "--bogus"), "(see glint --help)");
+}
+
 TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
   const auto folder = temporaryFolder("dict_determinism");
   ASSERT_EQ(runGlint(folder, "dict --seed 7 --threads 1 -o one.gdict").exitCode, 0);

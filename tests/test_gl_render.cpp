@@ -728,9 +728,9 @@ TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
 }
 
 // Golden images: each built-in scene at 256x256, one sample per pixel, as `glint render` writes
-// it (tone-mapped sRGB PNG). On the Mesa that made them the output is byte-identical (llvmpipe is
-// deterministic across runs and thread counts), so the tolerance only absorbs another llvmpipe
-// build's last-bit arithmetic: an RMSE of 0.003 in linear values, while a different glint pattern
+// it (tone-mapped, dithered sRGB PNG). On the Mesa that made them the output is byte-identical
+// (llvmpipe is deterministic across runs and thread counts, the dither a function of the pixel),
+// so the tolerance only absorbs another llvmpipe build's last-bit arithmetic: an RMSE of 0.003 in linear values, while a different glint pattern
 // (pattern_seed 1) moves it by more than 0.01 on every scene (checked below, so the bound can fail).
 // Set GLINT_UPDATE_GOLDEN=1 to rewrite them (tests/golden/README.md).
 TEST(RenderGl, BuiltinScenesMatchGoldenImages) {

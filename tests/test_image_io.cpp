@@ -15,6 +15,7 @@
 
 #include "error.h"
 #include "image_io.h"
+#include "kernel/tonemap.h"
 #include "pcg.h"
 #include "test_support.h"
 
@@ -299,6 +300,54 @@ TEST(ImageIoExr, NonFinitePixelsAreRefusedOnReadAndWrite) {
   EXPECT_FALSE(std::filesystem::exists(folder / "inf.exr"));
 }
 
+// --- Display encoding: what `glint render` writes as PNG ----------------------------------------
+
+// A smooth gradient, like a sky, about four codes across 512 columns: rounding alone turns it into
+// flat bands, each 8 x 8 tile off the exact values' mean by up to half a code; dithered, every
+// tile's mean code follows the exact mean to within 0.1 of a code. Black and white stay flat.
+TEST(ImageIoDisplay, SmoothGradientsAreDitheredNotBanded) {
+  constexpr int kWidth = 512;
+  constexpr int kTile = 8;
+  ImageRgbF radiance = ImageRgbF::filled(kWidth, kTile);
+  std::vector<double> exactCodes(kWidth);
+  for (int x = 0; x < kWidth; ++x) {
+    const float value = 0.05f + 0.005f * static_cast<float>(x) / static_cast<float>(kWidth - 1);
+    for (int y = 0; y < kTile; ++y) radiance.at(x, y) = glm::vec3(value);
+    exactCodes[static_cast<std::size_t>(x)] = 255.0 * kernel::displayEncode(glm::vec3(value), 1.0f).x;
+  }
+  ASSERT_GT(exactCodes.back() - exactCodes.front(), 3.0);  // the gradient crosses several codes
+  const ImageRgb8 encoded = displayEncode(radiance, 1.0f);
+  double worstDithered = 0.0;
+  double worstRounded = 0.0;
+  for (int tile = 0; tile < kWidth / kTile; ++tile) {
+    double exact = 0.0;
+    double dithered = 0.0;
+    double rounded = 0.0;
+    for (int x = tile * kTile; x < (tile + 1) * kTile; ++x) {
+      const double code = exactCodes[static_cast<std::size_t>(x)];
+      for (int y = 0; y < kTile; ++y) {
+        exact += code;
+        dithered += encoded.at(x, y).r;
+        rounded += std::round(code);
+        EXPECT_EQ(encoded.at(x, y).g, encoded.at(x, y).r);  // grey stays grey
+      }
+    }
+    const double pixels = kTile * kTile;
+    worstDithered = std::max(worstDithered, std::abs(dithered - exact) / pixels);
+    worstRounded = std::max(worstRounded, std::abs(rounded - exact) / pixels);
+  }
+  EXPECT_LE(worstDithered, 0.1);
+  EXPECT_GT(worstRounded, 0.3);  // the gradient is one that bands when rounded
+  const ImageRgb8 black = displayEncode(ImageRgbF::filled(16, 16), 1.0f);
+  const ImageRgb8 white = displayEncode(ImageRgbF::filled(16, 16, glm::vec3(1e6f)), 1.0f);
+  for (int y = 0; y < 16; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      EXPECT_EQ(black.at(x, y).r, 0);
+      EXPECT_EQ(white.at(x, y).r, 255);
+    }
+  }
+}
+
 // --- Reading: content decides, and every failure is one line naming the file --------------------
 
 TEST(ImageIoRead, FormatIsDecidedByContentNotName) {
@@ -355,6 +404,25 @@ TEST(ImageIoWrite, ChoosesTheFormatByExtension) {
   expectError([&] { writeImage(folder / "no" / "such" / "e.exr", image); }, {"e.exr: cannot create"});
   EXPECT_FALSE(std::filesystem::exists(folder / "c.jpg"));
   EXPECT_FALSE(std::filesystem::exists(folder / "d"));
+}
+
+// A full disk, as /dev/full stands for it (every write fails with ENOSPC), reached through a link
+// with the image's extension: the error names the file and the system's reason, and nothing is
+// left behind (the link stays a link to the device).
+TEST(ImageIoWrite, AFullDiskGivesTheSystemsReasonAndTheFileName) {
+  if (!std::filesystem::is_character_file("/dev/full")) GTEST_SKIP() << "needs /dev/full (Linux)";
+  const auto folder = temporaryFolder("image_full_disk");
+  for (const char* name : {"full.png", "full.exr"}) std::filesystem::create_symlink("/dev/full", folder / name);
+  const ImageRgbF image = image2x1(glm::vec3(0.25f), glm::vec3(1.0f));
+  expectError([&] { writeImage(folder / "full.png", image); }, {"full.png: cannot write (No space left on device)"});
+  expectError([&] { writeExr(folder / "full.exr", image); }, {"full.exr: cannot write (No space left on device)"});
+  std::size_t entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_TRUE(entry.is_symlink()) << "left behind: " << entry.path();
+    ++entries;
+  }
+  EXPECT_EQ(entries, 2u);
+  EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
 }
 
 // --- Metrics -----------------------------------------------------------------------------------

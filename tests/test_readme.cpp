@@ -53,7 +53,7 @@ TEST(ReadmeCli, EveryExampleRuns) {
     const int status = std::system(shell.c_str());
     EXPECT_EQ(status, 0) << slurp(folder / "err.txt");
   }
-  for (const char* written : {"showroom.glb", "showroom.png", "glitter.png", "difference.png", "traced.exr"}) {
+  for (const char* written : {"sphere.png", "showroom.glb", "showroom.png", "glitter.png", "difference.png", "traced.exr"}) {
     EXPECT_TRUE(std::filesystem::exists(folder / written)) << written;
   }
 }

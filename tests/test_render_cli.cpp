@@ -64,6 +64,34 @@ TEST(RenderCli, RendersEveryBuiltinSceneAndTheDefault) {
   expectPlausibleImage(folder / "default.png", 64, 64);
 }
 
+// Without -o, render and trace name their output after the scene, in the current folder (not beside
+// a glTF file), and say in one line what they wrote.
+TEST(RenderCli, WithoutAnOutputTheImageIsNamedAfterTheScene) {
+  const auto folder = temporaryFolder("render_default_output");
+  RunResult result = runGlint(folder, "render sphere --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err.rfind("glint: wrote sphere.png (sphere, 32x32", 0), 0u) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  expectPlausibleImage(folder / "sphere.png", 32, 32);
+  result = runGlint(folder, "render --size 32x32 --brdf cook-torrance");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  expectPlausibleImage(folder / "showroom.png", 32, 32);  // the default scene
+  std::filesystem::create_directory(folder / "scene");
+  writeSeparateGltf(texturedTestScene(), folder / "scene", "textured");
+  result = runGlint(folder, "render scene/textured.gltf --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("glint: wrote textured.png ("), std::string::npos) << result.err;
+  expectPlausibleImage(folder / "textured.png", 32, 32);
+  EXPECT_FALSE(std::filesystem::exists(folder / "scene" / "textured.png"));
+
+  const auto traced = temporaryFolder("trace_default_output");
+  result = runGlint(traced, "trace parquet --size 16x16 --spp 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err.rfind("glint: wrote parquet.exr and parquet.png (parquet, 16x16", 0), 0u) << result.err;
+  expectPlausibleImage(traced / "parquet.exr", 16, 16);
+  expectPlausibleImage(traced / "parquet.png", 16, 16);
+}
+
 // An exported file, rendered plainly and with a glint layer put on its plain floor by the command
 // line (also from a camera preset): plausible, and the layer shows.
 TEST(RenderCli, RendersAnExportedFileWithAndWithoutAddedGlints) {
@@ -269,6 +297,37 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectRenderFails(folder, "sphere --dict missing.gdict", "missing.gdict: cannot open");
   const RunResult wrongExtension = runGlint(folder, "render sphere -o out.jpg --size 32x32");
   expectOneLineError(wrongExtension, "out.jpg: the output must end in .png or .exr");
+}
+
+// A full disk (/dev/full, reached by a name with the image's extension) stops the command with one
+// line naming the file and the system's reason, a non-zero exit and no file left behind.
+TEST(RenderCli, AFullDiskSaysSoNamingTheFile) {
+  if (!std::filesystem::is_character_file("/dev/full")) GTEST_SKIP() << "needs /dev/full (Linux)";
+  const auto folder = temporaryFolder("render_full_disk");
+  for (const char* name : {"full.png", "full.exr"}) {
+    std::filesystem::create_symlink("/dev/full", folder / name);
+    expectOneLineError(runGlint(folder, std::string("render sphere --size 16x16 -o ") + name),
+                       std::string(name) + ": cannot write (No space left on device)");
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+  }
+}
+
+// A texture whose bytes are no image, in a file of its own or as a data URI: the error names the
+// glTF file, the image by index and file, and the decoder's reason.
+TEST(RenderCli, ATextureThatIsNotAnImageIsNamed) {
+  const auto inFile = brokenScene("garbage_texture", [](const auto& f) {
+    std::ofstream(f / "image0.png", std::ios::binary) << "these bytes are not a picture";
+  });
+  expectRenderFails(inFile, "scene/textured.gltf",
+                    "scene/textured.gltf: image 0 'image0.png': not an image glint can decode (unknown image type)");
+  const auto inDataUri = brokenScene("garbage_data_uri", [](const auto& f) {
+    editGltfJson(f / "textured.gltf", [](nlohmann::json& d) {
+      d["images"][1] = {{"uri", "data:image/png;base64,aGVsbG8gd29ybGQ="}};  // "hello world"
+    });
+  });
+  expectRenderFails(inDataUri, "scene/textured.gltf", "scene/textured.gltf: image 1: not an image glint can decode");
 }
 
 // A triangle lit by `lights` point lights of the file (KHR_lights_punctual).

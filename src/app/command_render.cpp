@@ -31,10 +31,9 @@ struct RenderOptions {
 void runRender(const RenderOptions& options) {
   const auto [width, height] = parseImageSize(options.size);
   const gl::BrdfModel brdf = gl::brdfModelFromString(options.brdf);
-  const std::string extension = lowercaseExtension(options.output);
-  if (extension != ".png" && extension != ".exr") {
-    throw Error(options.output + ": the output must end in .png or .exr");
-  }
+  const std::string output = options.output.empty() ? options.scene.outputNamedAfterScene(".png") : options.output;
+  const std::string extension = lowercaseExtension(output);
+  if (extension != ".png" && extension != ".exr") throw Error(output + ": the output must end in .png or .exr");
   if (options.spp < 1 || options.spp > 65536) throw Error("--spp must be in [1, 65536]");
   if (options.reference != 0 && (options.reference < 1 || options.reference > 65536)) {
     throw Error("--reference must be in [1, 65536]");
@@ -68,14 +67,14 @@ void runRender(const RenderOptions& options) {
   });
   if (progress) std::fprintf(stderr, "\n");
   if (extension == ".exr") {
-    writeExr(options.output, image);
+    writeExr(output, image);
   } else {
     // The display pass of the viewer's window, so that `glint view` shows these very bytes.
-    writePng(options.output, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
+    writePng(output, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",
-               options.output.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               output.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
                gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
 }
 
@@ -85,8 +84,9 @@ void registerRenderCommand(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* command = app.add_subcommand("render", "Render one frame headless (OpenGL 4.5 through EGL) to PNG or EXR");
   options->scene.addTo(*command);
-  command->add_option("-o,--output", options->output, "Output image: .png (tone-mapped sRGB) or .exr (linear radiance)")
-      ->required();
+  command->add_option("-o,--output", options->output,
+                      "Output image: .png (tone-mapped sRGB) or .exr (linear radiance); without it SCENE.png in the "
+                      "current folder (the built-in name or the glTF file's name)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
       ->capture_default_str();

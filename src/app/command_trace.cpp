@@ -96,9 +96,10 @@ void runTrace(const TraceOptions& options) {
   settings.pixelCentres = options.pixelCentres;
   settings.normalMapFiltering = !options.unfilteredNormalMaps;
   trace::validateTraceSettings(settings);
-  const std::filesystem::path exrPath = options.output;
+  const std::filesystem::path exrPath =
+      options.output.empty() ? options.scene.outputNamedAfterScene(".exr") : options.output;
   if (lowercaseExtension(exrPath) != ".exr") {
-    throw Error(options.output + ": the output must end in .exr (a .png preview is written beside it)");
+    throw Error(exrPath.string() + ": the output must end in .exr (a .png preview is written beside it)");
   }
   const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
@@ -152,8 +153,9 @@ void registerTraceCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "trace", "Path-trace a scene on the CPU (Embree, oneTBB) to a linear EXR and a PNG preview beside it");
   options->scene.addTo(*command);
-  command->add_option("-o,--output", options->output, "Output EXR (linear radiance); OUT.png is written beside it")
-      ->required();
+  command->add_option("-o,--output", options->output,
+                      "Output EXR (linear radiance); OUT.png is written beside it; without it SCENE.exr and "
+                      "SCENE.png in the current folder (the built-in name or the glTF file's name)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--spp", options->spp, "Samples per pixel")->capture_default_str();
   command->add_option("--max-depth", options->maxDepth, "Bounces: 1 is direct light (lights and environment) at the first hit")->capture_default_str();

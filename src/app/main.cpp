@@ -47,6 +47,17 @@ void requireKnownCommand(const CLI::App& app, int argc, char** argv) {
                      (nearest.empty() ? "" : "; did you mean '" + nearest + "'?"));
 }
 
+// The command whose arguments CLI11 refused, "glint" or "glint render", so that its error points at
+// that command's own --help (CLI11's message points at the top-level one).
+std::string refusingCommand(const CLI::App& app) {
+  std::string command = app.get_name();
+  for (const CLI::App* parsed = &app; !parsed->get_subcommands().empty();) {
+    parsed = parsed->get_subcommands().front();
+    command += " " + parsed->get_name();
+  }
+  return command;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,7 +83,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "glint: error: %s (see glint --help)\n", e.what());
+    std::fprintf(stderr, "glint: error: %s (see %s --help)\n", e.what(), refusingCommand(app).c_str());
     return 2;
   } catch (const glint::Error& e) {
     std::fprintf(stderr, "glint: error: %s\n", e.what());

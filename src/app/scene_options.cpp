@@ -102,6 +102,10 @@ Dictionary SceneOptions::loadDictionary() const {
   return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionary);
 }
 
+std::string SceneOptions::outputNamedAfterScene(const std::string& extension) const {
+  return scene::sceneName(scene) + extension;
+}
+
 std::pair<int, int> parseImageSize(const std::string& text) {
   static const std::regex pattern(R"((\d+)x(\d+))");
   std::smatch match;

@@ -36,6 +36,9 @@ struct SceneOptions {
   scene::Scene loadScene() const;
   const scene::Camera& findCamera(const scene::Scene& scene) const;
   Dictionary loadDictionary() const;
+  // The output of a command run without -o: the scene's name (scene::sceneName) with `extension`,
+  // in the current folder, as pbrt and Mitsuba name theirs.
+  std::string outputNamedAfterScene(const std::string& extension) const;
 };
 
 // The line --glint-material prints about the log density its new layers got

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <string>
 #include <signal.h>
@@ -59,20 +60,37 @@ void removeStaleTemporaries(const std::filesystem::path& path) {
   }
 }
 
-void writeTemporary(const std::filesystem::path& path, const std::filesystem::path& temporary,
-                    std::span<const std::byte> bytes) {
-  std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    throw Error(path.string() + ": cannot create (" + std::strerror(errno) + ")");
+// A device or a pipe (/dev/stdout, /dev/full), directly or through a symbolic link, is no file to
+// replace, and renaming a temporary over it would replace the device: it is written as it is.
+bool isDeviceOrPipe(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  return std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status);
+}
+
+// Writes all of `bytes` to `file` (opened with `flags`: a temporary, or a device itself), then
+// closes it; throws Error naming `path`, the name the user gave, with the system's reason ("No
+// space left on device"). POSIX calls rather than a stream, whose errno after a failed flush need
+// not be the write's.
+void writeAndClose(const std::filesystem::path& path, const std::filesystem::path& file, int flags,
+                   std::span<const std::byte> bytes) {
+  const int descriptor = ::open(file.c_str(), flags | O_WRONLY | O_CLOEXEC, 0666);
+  if (descriptor < 0) {
+    const char* what = (flags & O_CREAT) ? ": cannot create (" : ": cannot open (";
+    throw Error(path.string() + what + std::strerror(errno) + ")");
   }
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  out.flush();
-  if (!out) {
-    out.close();
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw Error(path.string() + ": write failed");
+  int failure = 0;
+  for (std::size_t written = 0; written < bytes.size() && failure == 0;) {
+    const ssize_t n = ::write(descriptor, bytes.data() + written, bytes.size() - written);
+    if (n >= 0) {
+      written += static_cast<std::size_t>(n);
+    } else if (errno != EINTR) {
+      failure = errno;
+    }
   }
+  // Some file systems report a full disk only when the file is closed.
+  if (::close(descriptor) != 0 && failure == 0) failure = errno;
+  if (failure != 0) throw Error(path.string() + ": cannot write (" + std::strerror(failure) + ")");
 }
 
 }  // namespace
@@ -83,6 +101,7 @@ void writeFileAtomically(const std::filesystem::path& path, std::span<const std:
 
 void writeFilesAtomically(const std::vector<FileContents>& files) {
   std::vector<std::filesystem::path> temporaries;
+  std::vector<const FileContents*> renamed;  // the files written through temporaries, in order
   const auto removeTemporaries = [&] {
     for (const std::filesystem::path& temporary : temporaries) {
       std::error_code ignored;
@@ -91,23 +110,29 @@ void writeFilesAtomically(const std::vector<FileContents>& files) {
   };
   try {
     for (const FileContents& file : files) {
+      if (isDeviceOrPipe(file.path)) continue;
       // A folder in a file's place would fail its rename after the others': refused first.
       std::error_code ec;
       if (std::filesystem::is_directory(file.path, ec)) throw Error(file.path.string() + ": cannot write (is a directory)");
       removeStaleTemporaries(file.path);
       temporaries.push_back(temporaryFor(file.path));
-      writeTemporary(file.path, temporaries.back(), file.bytes);
+      renamed.push_back(&file);
+      writeAndClose(file.path, temporaries.back(), O_CREAT | O_TRUNC, file.bytes);
+    }
+    // Devices last among the writes: a failure there still leaves the files as they were.
+    for (const FileContents& file : files) {
+      if (isDeviceOrPipe(file.path)) writeAndClose(file.path, file.path, 0, file.bytes);
     }
   } catch (...) {
     removeTemporaries();
     throw;
   }
-  for (std::size_t i = 0; i < files.size(); ++i) {
+  for (std::size_t i = 0; i < renamed.size(); ++i) {
     std::error_code ec;
-    std::filesystem::rename(temporaries[i], files[i].path, ec);
+    std::filesystem::rename(temporaries[i], renamed[i]->path, ec);
     if (ec) {
       removeTemporaries();
-      throw Error(files[i].path.string() + ": cannot write (" + ec.message() + ")");
+      throw Error(renamed[i]->path.string() + ": cannot write (" + ec.message() + ")");
     }
   }
 }

@@ -12,7 +12,9 @@ namespace glint {
 std::vector<std::byte> readFile(const std::filesystem::path& path);
 
 // Writes to a temporary file beside `path`, then renames it over `path`, so that a failure (disk
-// full, interrupted process) never leaves a partial file under the final name.
+// full, interrupted process) never leaves a partial file under the final name; a device or a pipe
+// is written directly. Throws Error naming the file and the system's reason ("<path>: cannot write
+// (No space left on device)").
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
 // Several files as one output (an image and its preview): every one is written to its temporary

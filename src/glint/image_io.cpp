@@ -254,7 +254,7 @@ ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure) {
   ImageRgb8 display(radiance.width, radiance.height, {0, 0, 0});
   for (int y = 0; y < radiance.height; ++y) {
     for (int x = 0; x < radiance.width; ++x) {
-      const glm::vec3 code = kernel::displayCodeValues(radiance.at(x, y), exposure);
+      const glm::vec3 code = kernel::displayCodeValues(radiance.at(x, y), exposure, glm::ivec2(x, y));
       display.at(x, y) = {static_cast<std::uint8_t>(code.r), static_cast<std::uint8_t>(code.g),
                           static_cast<std::uint8_t>(code.b)};
     }

@@ -51,8 +51,8 @@ void writeImage(const std::filesystem::path& path, const ImageRgbF& image);
 // The extension with its dot, lower-cased ("" when there is none): how files are told apart by name.
 std::string lowercaseExtension(const std::filesystem::path& path);
 
-// The display transform of kernel/tonemap.h (exposure, ACES fit, sRGB, rounding) to 8 bits per
-// channel, on the CPU. The rasteriser's images and window use the same transform on the GPU
+// The display transform of kernel/tonemap.h (exposure, ACES fit, sRGB, dithered rounding, so that
+// smooth gradients do not band) to 8 bits per channel, on the CPU. The rasteriser's images and window use the same transform on the GPU
 // (gl/display.h), whose pow may differ in the last bits: a value on a rounding boundary can land
 // one level apart.
 ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure);

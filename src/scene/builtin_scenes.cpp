@@ -700,4 +700,8 @@ Scene loadScene(const std::string& nameOrPath) {
   throw Error("unknown scene '" + nameOrPath + "' (built-in: " + joinedNames() + ") and no such file");
 }
 
+std::string sceneName(const std::string& nameOrPath) {
+  return isBuiltinScene(nameOrPath) ? nameOrPath : std::filesystem::path(nameOrPath).stem().string();
+}
+
 }  // namespace glint::scene

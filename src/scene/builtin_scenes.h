@@ -27,5 +27,8 @@ Environment skyEnvironment(float intensity);
 // A built-in name, else a glTF file (.gltf or .glb, loadGltf). Throws Error
 // "unknown scene 'x' (built-in: sphere, ...) and no such file" when it is neither.
 Scene loadScene(const std::string& nameOrPath);
+// The name loadScene gives that scene, without loading it: the built-in name, else the file's
+// name without its folder and extension (what `glint render` names its output after).
+std::string sceneName(const std::string& nameOrPath);
 
 }  // namespace glint::scene

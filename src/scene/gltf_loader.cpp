@@ -21,6 +21,7 @@
 // Debian's libtinygltf-dev ships the implementation compiled (libtinygltf.so): no
 // TINYGLTF_IMPLEMENTATION or STB_* macros here.
 #include <tiny_gltf.h>
+#include <stb_image.h>  // stbi_failure_reason: tinygltf decodes images with the system's stb_image
 
 #include "glint/error.h"
 #include "scene/geometry.h"
@@ -244,13 +245,40 @@ AccessorValues readAccessor(const tinygltf::Model& model, int index, int expecte
 
 // ---- Textures ---------------------------------------------------------------------------------
 
+// An image's file, or for an embedded one (buffer view, data URI) its name, "" when it has none: a
+// data URI is the image itself.
+std::string imageLabel(const tinygltf::Image& image) {
+  const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+  return external ? image.uri : image.name;
+}
+
+// How messages name an image: "image 2 'wood.png'", or "image 2" when it has no label.
+std::string describeImage(const tinygltf::Image& image, int imageIndex) {
+  const std::string label = imageLabel(image);
+  return "image " + std::to_string(imageIndex) + (label.empty() ? "" : " '" + label + "'");
+}
+
+// tinygltf's own image decoder (stb_image), whose message names an image by its index alone ("STB
+// cannot decode image data for image[0]"): glint's names its file too and gives stb_image's reason.
+bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* errors, std::string* warnings, int width,
+                 int height, const unsigned char* bytes, int size, void*) {
+  std::string tinygltfReason;
+  if (tinygltf::LoadImageData(image, imageIndex, &tinygltfReason, warnings, width, height, bytes, size, nullptr)) {
+    return true;
+  }
+  const char* decoderReason = stbi_failure_reason();
+  if (errors) {
+    *errors += describeImage(*image, imageIndex) + ": not an image glint can decode (" +
+               (decoderReason ? std::string(decoderReason) : oneLine(tinygltfReason)) + ")\n";
+  }
+  return false;
+}
+
 // An image decoded by tinygltf (1 to 4 channels, 8 or 16 bits) as RGBA8: grey spreads to RGB,
 // missing alpha is opaque, 16-bit values are rounded to 8 bits.
 Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
-  // Embedded images (buffer views, data URIs) are known by their name: a data URI is the image itself.
-  const bool external = !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
-  const std::string label = external ? image.uri : image.name;
-  return withContext("image " + std::to_string(imageIndex) + (label.empty() ? "" : " '" + label + "'") + ": ", [&] {
+  const std::string label = imageLabel(image);
+  return withContext(describeImage(image, imageIndex) + ": ", [&] {
     if (image.image.empty()) throw error("no image data (the file is missing or cannot be decoded)");
     const int channels = image.component;
     const int bytes = image.bits / 8;
@@ -1108,6 +1136,7 @@ Scene loadGltf(const fs::path& path) {
     }
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
+    loader.SetImageLoader(decodeImage, nullptr);
     tinygltf::Model model;
     std::string errors;
     std::string warnings;

@@ -1,6 +1,6 @@
 // Display transform shared by the CPU (images written by `glint trace`) and the GPU (the display
 // pass of `glint render`'s images and the viewer's window, gl/display.h): exposure, a filmic
-// curve, the sRGB encoding, then the rounding to 8 bits.
+// curve, the sRGB encoding, then the dithered rounding to 8 bits.
 #ifndef GLINT_KERNEL_TONEMAP_H
 #define GLINT_KERNEL_TONEMAP_H
 
@@ -24,11 +24,28 @@ GLINT_FN vec3 displayEncode(vec3 radiance, float exposure) {
   return vec3(srgbEncode(mapped.x), srgbEncode(mapped.y), srgbEncode(mapped.z));
 }
 
-// The display values as 8-bit code values (whole numbers 0..255 in floats), rounded to nearest:
-// the one rounding of the CPU's images and of the GPU's display pass, where OpenGL leaves the
-// rounding of a fraction to an 8-bit framebuffer to the implementation.
-GLINT_FN vec3 displayCodeValues(vec3 radiance, float exposure) {
-  return floor(displayEncode(radiance, exposure) * 255.0f + 0.5f);
+// The threshold of `pixel` in the 8 x 8 Bayer matrix of ordered dithering, in (0, 1): each 8 x 8
+// tile holds all 64 thresholds (k + 0.5) / 64, spread so that neighbours differ. Bayer's
+// recursion: each bit pair of the coordinates, lowest first, picks the quadrant of the next finer
+// level.
+GLINT_FN float orderedDitherThreshold(ivec2 pixel) {
+  int rank = 0;
+  for (int bit = 0; bit < 3; ++bit) {
+    rank = rank * 4 + 2 * (((pixel.x ^ pixel.y) >> bit) & 1) + ((pixel.y >> bit) & 1);
+  }
+  return (float(rank) + 0.5f) / 64.0f;
+}
+
+// The display values as 8-bit code values (whole numbers 0..255 in floats) of the image's pixel
+// `pixel` (x from the left, y from the top row): the one rounding of the CPU's images and of the
+// GPU's display pass, where OpenGL leaves the rounding of a fraction to an 8-bit framebuffer to
+// the implementation. Dithered: each value moves by up to half a code, by the pixel's Bayer
+// threshold, before it is rounded, so that a smooth gradient (a sky) shows no bands (an 8 x 8 tile
+// of one value averages to it within 1/64 of a code). It depends on the position alone, so every
+// run gives the same bytes; a value exactly on a code keeps it (black stays black, white white).
+GLINT_FN vec3 displayCodeValues(vec3 radiance, float exposure, ivec2 pixel) {
+  vec3 code = floor(displayEncode(radiance, exposure) * 255.0f + orderedDitherThreshold(pixel));
+  return clamp(code, 0.0f, 255.0f);
 }
 
 GLINT_KERNEL_END
