@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <span>
 #include <limits>
 #include <map>
 #include <optional>
@@ -20,7 +20,9 @@
 // TINYGLTF_IMPLEMENTATION or STB_* macros here.
 #include <tiny_gltf.h>
 
+#include "glint/decoder_checks.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "scene/geometry.h"
 #include "scene/gltf_field_types.h"
 #include "scene/gltf_precheck.h"
@@ -1026,11 +1028,16 @@ class GltfReader {
   int defaultMaterial_ = -1;
 };
 
-bool isBinaryGltf(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  char magic[4] = {};
-  file.read(magic, 4);
-  return file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+// tinygltf's image decoder (stb_image) behind glint's checks (glint/decoder_checks.h).
+bool loadCheckedImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
+                      int height, const unsigned char* bytes, int size, void*) {
+  try {
+    checkGltfImageForDecoder({reinterpret_cast<const std::byte*>(bytes), static_cast<std::size_t>(std::max(size, 0))});
+  } catch (const Error& e) {
+    if (err) *err += "image " + std::to_string(index) + (image->name.empty() ? "" : " '" + image->name + "'") + ": " + e.what() + "\n";
+    return false;
+  }
+  return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 
 }  // namespace
@@ -1040,30 +1047,46 @@ Scene loadGltf(const fs::path& path) {
     std::error_code ignored;
     if (!fs::exists(path, ignored)) throw error("no such file");
     if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
+    return loadGltf(readFile(path), path.stem().string(), path.parent_path());
+  } catch (const std::exception& e) {  // Error, and an allocation failure reading the file
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
+Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const fs::path& baseDirectory) {
+  try {
     // On the file's own JSON, before tinygltf reads it (gltf_field_types.h, gltf_precheck.h); a file
     // whose JSON does not parse is left to tinygltf's message.
-    if (const std::optional<nlohmann::json> document = readGltfJson(path)) {
+    if (const std::optional<nlohmann::json> document = readGltfJson(bytes)) {
       checkGltfFieldTypes(*document);
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
     }
+    // tinygltf takes a 32-bit length.
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw error(bytes.size(), " bytes, more than 4 GiB");
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
+    loader.SetImageLoader(loadCheckedImage, nullptr);
     tinygltf::Model model;
     std::string errors;
     std::string warnings;
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const auto length = static_cast<unsigned int>(bytes.size());
     // The content decides, not the extension: a .gltf that is really binary still loads.
-    const bool loaded = isBinaryGltf(path) ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
-                                           : loader.LoadASCIIFromFile(&model, &errors, &warnings, path.string());
+    const bool binary = bytes.size() >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    const bool loaded =
+        binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, data, length, baseDirectory.string())
+               : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(data), length,
+                                            baseDirectory.string());
     if (!loaded) {
       const std::string reason = oneLine(errors.empty() ? warnings : errors);
       throw Error(reason.empty() ? "cannot parse the file" : reason);
     }
-    return GltfReader(model).read(path.stem().string());
-  } catch (const Error& e) {
-    throw Error(path.string() + ": " + e.what());
+    return GltfReader(model).read(name);
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {  // allocation failures and the like from a hostile file
-    throw Error(path.string() + ": " + e.what());
+    throw Error(e.what());
   }
 }
 
