@@ -536,8 +536,12 @@ TEST(ZirrKaplanyanStat, WhiteFurnaceAlbedoIsTheSmoothOnesOnAverageNotPerPixel) {
     constexpr int kPositions = 8;
     constexpr int kOtherPositions = 4;
     for (int i = 0; i < kPositions; ++i) {
-      const SurfaceFootprint footprint = squareFootprint(glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f)),
-                                                         1e-3f);
+      // Drawn one statement at a time: the order of a call's arguments is unspecified (g++ and
+      // clang differ), and with 4 positions the sparse mean depends on which are drawn. v first,
+      // then u: the positions the bounds above were measured at.
+      const float v = uniform(rng, 0.0f, 1.0f);
+      const float u = uniform(rng, 0.0f, 1.0f);
+      const SurfaceFootprint footprint = squareFootprint(glm::vec2(u, v), 1e-3f);
       mappedSum += albedo([&](glm::vec3 o, glm::vec3 in) { return zkValue(mapped, footprint, o, in); }, wo);
       if (i >= kOtherPositions) continue;
       sparseSum += albedo([&](glm::vec3 o, glm::vec3 in) { return zkValue(sparse, footprint, o, in); }, wo);
