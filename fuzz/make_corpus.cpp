@@ -320,8 +320,9 @@ int main(int argc, char** argv) {
   write("corpus/eval_line/grazing.json", R"({"wo":[1,0,0.01],"wi":[-1,0,0.01],"duvdx":[0.5,0],"duvdy":[0,1e-6]})");
 
   // --- regressions: inputs that crashed or misbehaved once, and what pins third-party defects ---
-  // Footprints beyond float's squared range once gave NaN axes (now scaled down first).
-  write("regressions/eval_line/footprint-1e20.json", R"({"duvdx":[1e20,0],"duvdy":[0,1e20]})");
+  // Footprints beyond float's squared range once gave NaN axes (now scaled down first): the first,
+  // a seed, gave P22 0; the second, swapped back unscaled, also converted a NaN to an int.
+  write("corpus/eval_line/footprint-1e20.json", R"({"duvdx":[1e20,0],"duvdy":[0,1e20]})");
   write("regressions/eval_line/huge-duvdy-swapped.json", R"({"duvdx":[1e-20,0],"duvdy":[1e20,1e20]})");
   // The largest 32-bit seed: a float rounds it to 2^32, whose conversion back overflows.
   write("regressions/eval_line/pattern-seed-max.json", R"({"pattern_seed":4294967295})");
