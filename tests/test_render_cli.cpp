@@ -315,19 +315,20 @@ TEST(RenderCli, AFullDiskSaysSoNamingTheFile) {
 }
 
 // A texture whose bytes are no image, in a file of its own or as a data URI: the error names the
-// glTF file, the image by index and file, and the decoder's reason.
+// glTF file, the image by index and file, and the reason (here glint's check before the decoder:
+// neither is PNG or JPEG).
 TEST(RenderCli, ATextureThatIsNotAnImageIsNamed) {
   const auto inFile = brokenScene("garbage_texture", [](const auto& f) {
     std::ofstream(f / "image0.png", std::ios::binary) << "these bytes are not a picture";
   });
   expectRenderFails(inFile, "scene/textured.gltf",
-                    "scene/textured.gltf: image 0 'image0.png': not an image glint can decode (unknown image type)");
+                    "scene/textured.gltf: image 0 'image0.png': not a PNG or JPEG image (the formats glTF 2.0 allows)");
   const auto inDataUri = brokenScene("garbage_data_uri", [](const auto& f) {
     editGltfJson(f / "textured.gltf", [](nlohmann::json& d) {
       d["images"][1] = {{"uri", "data:image/png;base64,aGVsbG8gd29ybGQ="}};  // "hello world"
     });
   });
-  expectRenderFails(inDataUri, "scene/textured.gltf", "scene/textured.gltf: image 1: not an image glint can decode");
+  expectRenderFails(inDataUri, "scene/textured.gltf", "scene/textured.gltf: image 1: not a PNG or JPEG image");
 }
 
 // A triangle lit by `lights` point lights of the file (KHR_lights_punctual).

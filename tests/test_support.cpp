@@ -69,6 +69,12 @@ float uniform(Pcg32& rng, float low, float high) {
   return low + (high - low) * static_cast<float>(rng.nextOpenUnit());
 }
 
+glm::vec2 uniformPair(Pcg32& rng, glm::vec2 low, glm::vec2 high) {
+  const float y = uniform(rng, low.y, high.y);
+  const float x = uniform(rng, low.x, high.x);
+  return {x, y};
+}
+
 SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength) {
   auto axis = [&] {
     const float length = std::exp(uniform(rng, std::log(minLength), std::log(maxLength)));
@@ -76,7 +82,7 @@ SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength) {
     return glm::vec2(std::cos(angle), std::sin(angle)) * length;
   };
   SurfaceFootprint footprint;
-  footprint.uv = glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f));
+  footprint.uv = uniformPair(rng, glm::vec2(0.0f), glm::vec2(1.0f));
   footprint.duvdx = axis();
   footprint.duvdy = axis();
   return footprint;
@@ -93,6 +99,11 @@ std::pair<glm::vec2, glm::vec2> turnedDerivatives(float major, float minor, floa
 
 glm::vec3 directionAt(float theta, float phi) {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+glm::vec3 randomDirectionAt(Pcg32& rng, float maxTheta, float maxPhi) {
+  const glm::vec2 angles = uniformPair(rng, glm::vec2(0.0f), glm::vec2(maxTheta, maxPhi));
+  return directionAt(angles.x, angles.y);
 }
 
 double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, glm::vec2 extent, int cells) {
@@ -119,7 +130,7 @@ double meanNdfOverPositions(const GlintParameters& parameters, glm::vec3 m, int 
   double sum = 0.0;
   for (int i = 0; i < positions; ++i) {
     SurfaceFootprint footprint;
-    footprint.uv = glm::vec2(uniform(rng, 0.0f, 1.0f), uniform(rng, 0.0f, 1.0f));
+    footprint.uv = uniformPair(rng, glm::vec2(0.0f), glm::vec2(1.0f));
     footprint.duvdx = glm::vec2(1e-3f, 0.0f);
     footprint.duvdy = glm::vec2(0.0f, 1e-3f);
     sum += GlintBsdf(defaultDictionary(), parameters, footprint).ndf(m);

@@ -40,6 +40,11 @@ void expectOneLineError(const RunResult& result, const std::string& problem);
 
 // Uniform in [low, high) from a PCG32 stream.
 float uniform(Pcg32& rng, float low, float high);
+// Two uniform draws, in [low.x, high.x) and [low.y, high.y), y drawn before x. A call's arguments
+// are evaluated in an unspecified order (g++ right to left, clang left to right), so
+// glm::vec2(uniform(...), uniform(...)) draws other cases under each compiler; the fixed-seed
+// tests' bounds were measured with g++'s order, which this keeps under both.
+glm::vec2 uniformPair(Pcg32& rng, glm::vec2 low, glm::vec2 high);
 // A random footprint: uv in [0, 1)^2, derivatives of log-uniform length in [minLength, maxLength]
 // with independent random directions (anisotropic, possibly sheared ellipses).
 SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength);
@@ -51,6 +56,9 @@ SurfaceFootprint randomFootprint(Pcg32& rng, float minLength, float maxLength);
 std::pair<glm::vec2, glm::vec2> turnedDerivatives(float major, float minor, float uvAngle, float screenAngle);
 // A unit direction in the upper hemisphere with the given polar angle and a random azimuth.
 glm::vec3 directionAt(float thetaRadians, float phiRadians);
+// directionAt of a polar angle in [0, maxTheta) and an azimuth in [0, maxPhi), the azimuth drawn
+// first (uniformPair's order).
+glm::vec3 randomDirectionAt(Pcg32& rng, float maxTheta, float maxPhi);
 
 // The mean of the glint P-NDF at m over `positions` random uv positions in [0, 1)^2 (PCG32 stream
 // `stream` of seed 99), each with a square footprint of 1e-3 uv.

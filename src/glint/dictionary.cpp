@@ -6,12 +6,12 @@
 #include <regex>
 #include <sstream>
 
-#include <tinyexr.h>
 #include <zlib.h>
 
 #include "error.h"
 #include "file_io.h"
 #include "half.h"
+#include "image_io.h"
 #include "kernel/glint_brdf.h"
 
 namespace glint {
@@ -380,25 +380,16 @@ Dictionary Dictionary::loadAuthorsExr(const std::filesystem::path& folder) {
       char suffix[32];
       std::snprintf(suffix, sizeof suffix, "_%04d_%04d.exr", triplet, level);
       const std::filesystem::path file = folder / (name + suffix);
-      float* rgba = nullptr;
-      int width = 0;
-      int height = 0;
-      const char* message = nullptr;
-      if (LoadEXR(&rgba, &width, &height, file.string().c_str(), &message) != TINYEXR_SUCCESS) {
-        const std::string reason = message ? message : "unreadable";
-        FreeEXRErrorMessage(message);
-        throw Error(file.string() + ": " + reason);
-      }
-      if (width != R || height != 1) {
-        std::free(rgba);
-        throw Error(file.string() + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+      // The checked EXR reader of images (image_io.h): the same header checks for both.
+      const ImageRgbF image = decodeExrImage(readFile(file), file.string());
+      if (image.width != R || image.height != 1) {
+        throw Error(file.string() + ": image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                     ", expected " + std::to_string(R) + "x1");
       }
       for (int channel = 0; channel < 3; ++channel) {
         float* row = &values[(static_cast<std::size_t>(level) * N + 3 * triplet + channel) * R];
-        for (int x = 0; x < R; ++x) row[x] = rgba[4 * x + channel];
+        for (int x = 0; x < R; ++x) row[x] = image.at(x, 0)[channel];
       }
-      std::free(rgba);
     }
   }
   try {

@@ -16,6 +16,7 @@
 #include <stb_image.h>
 #include <tinyexr.h>
 
+#include "decoder_checks.h"
 #include "error.h"
 #include "file_io.h"
 #include "kernel/tonemap.h"
@@ -56,21 +57,11 @@ struct CFree {
   void operator()(void* memory) const { std::free(memory); }
 };
 
-std::uint32_t bigEndian32(std::span<const std::byte> bytes, std::size_t offset) {
-  std::uint32_t value = 0;
-  for (std::size_t i = 0; i < 4; ++i) value = value << 8 | std::to_integer<std::uint32_t>(bytes[offset + i]);
-  return value;
-}
-
-ImageRgbF decodePng(const std::filesystem::path& path, std::span<const std::byte> bytes) {
-  // stb_image calls a zero-size image corrupt; the header says what it is.
-  constexpr std::size_t kIhdrEnd = 24;  // signature (8), chunk length and type (8), width, height
-  if (bytes.size() >= kIhdrEnd && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
-    const std::uint32_t width = bigEndian32(bytes, 16);
-    const std::uint32_t height = bigEndian32(bytes, 20);
-    if (width == 0 || height == 0) {
-      throw Error(path.string() + ": zero-size image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-    }
+ImageRgbF decodePng(const std::string& name, std::span<const std::byte> bytes) {
+  try {
+    checkPngForDecoder(bytes);
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
   }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const int size = static_cast<int>(std::min<std::size_t>(bytes.size(), INT32_MAX));
@@ -82,9 +73,9 @@ ImageRgbF decodePng(const std::filesystem::path& path, std::span<const std::byte
   std::unique_ptr<stbi_us, StbiFree> samples(stbi_load_16_from_memory(data, size, &width, &height, &channels, 3));
   if (!samples) {
     const char* reason = stbi_failure_reason();
-    throw Error(path.string() + ": truncated or corrupt PNG (" + (reason ? reason : "unreadable") + ")");
+    throw Error(name + ": truncated or corrupt PNG (" + (reason ? reason : "unreadable") + ")");
   }
-  if (width <= 0 || height <= 0) throw Error(path.string() + ": zero-size image (" + sizeText(width, height) + ")");
+  if (width <= 0 || height <= 0) throw Error(name + ": zero-size image (" + sizeText(width, height) + ")");
   // One decode per code value: a table of the 65536 linear values keeps the decoder in one place
   // and the loop cheap.
   static const std::vector<float> table = [] {
@@ -101,9 +92,12 @@ ImageRgbF decodePng(const std::filesystem::path& path, std::span<const std::byte
   return image;
 }
 
-ImageRgbF decodeExr(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+// tinyexr's LoadEXRFromMemory leaks its header and image on its error paths, and copies pixels
+// with an int index that overflows for large images: glint parses the header itself, checks it,
+// decodes the image with LoadEXRImageFromMemory, and copies the channels, freeing what tinyexr
+// allocated on every path.
+ImageRgbF decodeExr(const std::string& name, std::span<const std::byte> bytes) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const std::string name = path.string();
   EXRVersion version;
   if (ParseEXRVersionFromMemory(&version, data, bytes.size()) != TINYEXR_SUCCESS) {
     throw Error(name + ": truncated or corrupt EXR (bad version field)");
@@ -111,48 +105,96 @@ ImageRgbF decodeExr(const std::filesystem::path& path, std::span<const std::byte
   if (version.multipart || version.non_image) {
     throw Error(name + ": unsupported EXR (multi-part or deep); expected a single RGB(A) or Y image");
   }
-  // The header first, to refuse what LoadEXRFromMemory would misread: it takes unsigned-integer
-  // channels as floats.
-  {
-    EXRHeader header;
-    InitEXRHeader(&header);
-    const char* message = nullptr;
-    const int status = ParseEXRHeaderFromMemory(&header, &version, data, bytes.size(), &message);
-    std::unique_ptr<EXRHeader, int (*)(EXRHeader*)> guard(&header, FreeEXRHeader);
-    if (status != TINYEXR_SUCCESS) {
-      throw Error(name + ": truncated or corrupt EXR header (" + takeExrMessage(message, "unreadable") + ")");
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* message = nullptr;
+  const int parsed = ParseEXRHeaderFromMemory(&header, &version, data, bytes.size(), &message);
+  std::unique_ptr<EXRHeader, int (*)(EXRHeader*)> headerGuard(&header, FreeEXRHeader);
+  if (parsed != TINYEXR_SUCCESS) {
+    throw Error(name + ": truncated or corrupt EXR header (" + takeExrMessage(message, "unreadable") + ")");
+  }
+  // tinyexr computes max - min + 1 of the data window in int, which overflows for a crafted
+  // window: its size is checked here in 64 bits first.
+  const EXRBox2i& window = header.data_window;
+  const std::int64_t width = std::int64_t{window.max_x} - window.min_x + 1;
+  const std::int64_t height = std::int64_t{window.max_y} - window.min_y + 1;
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide) {
+    throw Error(name + ": truncated or corrupt EXR (data window (" + std::to_string(window.min_x) + ", " +
+                std::to_string(window.min_y) + ") to (" + std::to_string(window.max_x) + ", " +
+                std::to_string(window.max_y) + "): expected 1 to " + std::to_string(kMaxImageSide) + " pixels a side)");
+  }
+  // The channels read: R, G, B, or a single channel of any name as grey; alpha is ignored.
+  int source[3] = {-1, -1, -1};
+  for (int c = 0; c < header.num_channels; ++c) {
+    // Unsigned-integer channels would be read as floats.
+    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_UINT) {
+      throw Error(name + ": unsupported EXR channel '" + header.channels[c].name +
+                  "' of unsigned-integer type; expected half or float");
     }
-    for (int c = 0; c < header.num_channels; ++c) {
-      if (header.pixel_types[c] == TINYEXR_PIXELTYPE_UINT) {
-        throw Error(name + ": unsupported EXR channel '" + header.channels[c].name +
-                    "' of unsigned-integer type; expected half or float");
-      }
+    header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    const std::string channel = header.channels[c].name;
+    if (channel == "R") source[0] = c;
+    if (channel == "G") source[1] = c;
+    if (channel == "B") source[2] = c;
+  }
+  if (header.num_channels == 1) source[0] = source[1] = source[2] = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (source[k] < 0) {
+      throw Error(name + ": unsupported EXR (" + "RGB"[k] + " channel not found; expected R, G and B, or a single channel)");
     }
   }
-  float* rgba = nullptr;
-  int width = 0;
-  int height = 0;
-  const char* message = nullptr;
-  const int status = LoadEXRFromMemory(&rgba, &width, &height, data, bytes.size(), &message);
-  std::unique_ptr<float, CFree> owned(status == TINYEXR_SUCCESS ? rgba : nullptr);
+  EXRImage decoded;
+  InitEXRImage(&decoded);
+  // When decoding fails, tinyexr frees the image itself (without clearing its pointers, so glint
+  // must not free it again), but only the planes of the channels the image says it has, which it
+  // sets on success alone: set beforehand, its cleanup frees them too instead of leaking them.
+  decoded.num_channels = header.num_channels;
+  const int status = LoadEXRImageFromMemory(&decoded, &header, data, bytes.size(), &message);
   if (status != TINYEXR_SUCCESS) {
     const std::string reason = takeExrMessage(message, "unreadable");
-    const bool unsupported = status == TINYEXR_ERROR_UNSUPPORTED_FORMAT ||
-                             status == TINYEXR_ERROR_UNSUPPORTED_FEATURE ||
-                             reason.find("channel not found") != std::string::npos;
+    const bool unsupported = status == TINYEXR_ERROR_UNSUPPORTED_FORMAT || status == TINYEXR_ERROR_UNSUPPORTED_FEATURE;
     throw Error(name + (unsupported ? ": unsupported EXR (" : ": truncated or corrupt EXR (") + reason + ")");
   }
+  std::unique_ptr<EXRImage, int (*)(EXRImage*)> imageGuard(&decoded, FreeEXRImage);
   FreeEXRErrorMessage(message);  // none is expected on success; free it if tinyexr left a warning
-  if (width <= 0 || height <= 0) throw Error(name + ": zero-size image (" + sizeText(width, height) + ")");
-  ImageRgbF image = ImageRgbF::filled(width, height);
+  if (decoded.width != width || decoded.height != height) {
+    throw Error(name + ": truncated or corrupt EXR (decoded " + sizeText(decoded.width, decoded.height) +
+                ", the data window says " + sizeText(static_cast<int>(width), static_cast<int>(height)) + ")");
+  }
+  ImageRgbF image = ImageRgbF::filled(decoded.width, decoded.height);
+  // A block of pixels (the whole image, or one tile) at (x0, y0), `stride` pixels a row in its
+  // planes, of which `blockWidth` x `blockHeight` are the image's; what lies outside the image
+  // (a partial tile at its edge, or a crafted tile position) is skipped.
+  auto copyBlock = [&](unsigned char* const* planes, std::int64_t x0, std::int64_t y0, std::int64_t stride,
+                       std::int64_t blockWidth, std::int64_t blockHeight) {
+    if (planes == nullptr) return;
+    for (std::int64_t y = std::max<std::int64_t>(0, -y0); y < blockHeight && y0 + y < height; ++y) {
+      for (std::int64_t x = std::max<std::int64_t>(0, -x0); x < blockWidth && x0 + x < width; ++x) {
+        const auto at = static_cast<std::size_t>(y * stride + x);
+        glm::vec3 value;
+        for (int k = 0; k < 3; ++k) value[k] = reinterpret_cast<const float*>(planes[source[k]])[at];
+        image.at(static_cast<int>(x0 + x), static_cast<int>(y0 + y)) = value;
+      }
+    }
+  };
+  if (header.tiled) {
+    // Each tile's planes hold tile_size_x x tile_size_y pixels, of which its width x height are used.
+    for (int t = 0; t < decoded.num_tiles; ++t) {
+      const EXRTile& tile = decoded.tiles[t];
+      copyBlock(tile.images, std::int64_t{tile.offset_x} * header.tile_size_x,
+                std::int64_t{tile.offset_y} * header.tile_size_y, header.tile_size_x,
+                std::min(tile.width, header.tile_size_x), std::min(tile.height, header.tile_size_y));
+    }
+  } else {
+    copyBlock(decoded.images, 0, 0, width, width, height);
+  }
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
-    const glm::vec3 value(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2]);
+    const glm::vec3 value = image.pixels[i];
     if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z)) {
       const int x = static_cast<int>(i % static_cast<std::size_t>(width));
       const int y = static_cast<int>(i / static_cast<std::size_t>(width));
       throw Error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
     }
-    image.pixels[i] = value;
   }
   return image;
 }
@@ -268,13 +310,19 @@ std::string lowercaseExtension(const std::filesystem::path& path) {
   return extension;
 }
 
-ImageRgbF readImage(const std::filesystem::path& path) {
-  const std::vector<std::byte> bytes = readFile(path);
-  if (bytes.empty()) throw Error(path.string() + ": empty file, expected a PNG or EXR image");
-  if (startsWith(bytes, kPngMagic)) return decodePng(path, bytes);
-  if (startsWith(bytes, kExrMagic)) return decodeExr(path, bytes);
-  throw Error(path.string() + ": not a PNG or EXR image (unrecognised content)");
+ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name) {
+  if (bytes.empty()) throw Error(name + ": empty file, expected a PNG or EXR image");
+  if (startsWith(bytes, kPngMagic)) return decodePng(name, bytes);
+  if (startsWith(bytes, kExrMagic)) return decodeExr(name, bytes);
+  throw Error(name + ": not a PNG or EXR image (unrecognised content)");
 }
+
+ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name) {
+  if (!startsWith(bytes, kExrMagic)) throw Error(name + ": not an EXR image");
+  return decodeExr(name, bytes);
+}
+
+ImageRgbF readImage(const std::filesystem::path& path) { return decodeImage(readFile(path), path.string()); }
 
 std::vector<std::byte> encodeExr(const std::filesystem::path& path, const ImageRgbF& image) {
   if (image.width <= 0 || image.height <= 0) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,11 @@ std::uint8_t linearToSrgb8(float linear);
 // file's magic bytes, not its name. Throws Error with one line naming the file and the problem
 // (missing, truncated or corrupt, unsupported format, zero size, non-finite EXR pixels).
 ImageRgbF readImage(const std::filesystem::path& path);
+// readImage on bytes already read, `name` naming them in errors (the file's path for readImage).
+ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name);
+// The EXR half of decodeImage alone, for readers that take only EXR (the authors' dictionary):
+// bytes that are not an EXR are refused as such.
+ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name);
 
 // Float32 RGB EXR, lossless (ZIP). Throws Error naming the file for a non-finite pixel (readImage
 // would refuse the file) or when it cannot be written; never leaves a partial file.

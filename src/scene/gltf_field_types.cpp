@@ -7,8 +7,7 @@
 #include <utility>
 #include <vector>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -239,27 +238,17 @@ std::uint32_t littleEndian32(const unsigned char* bytes) {
 
 }  // namespace
 
-std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return std::nullopt;
-  std::string text;
+std::optional<nlohmann::json> readGltfJson(std::span<const std::byte> bytes) {
+  const auto* data = reinterpret_cast<const char*>(bytes.data());
+  std::string_view text(data, bytes.size());
   // A .glb: a 12-byte header ("glTF", version, length), then the JSON chunk's length and type
   // ("JSON") and the JSON itself (glTF 2.0, "GLB File Format Specification").
-  std::array<unsigned char, 20> header{};
-  file.read(reinterpret_cast<char*>(header.data()), header.size());
-  const std::size_t headerBytes = static_cast<std::size_t>(file.gcount());
-  if (headerBytes >= 4 && std::string_view(reinterpret_cast<const char*>(header.data()), 4) == "glTF") {
-    if (headerBytes < header.size() || littleEndian32(header.data() + 16) != 0x4E4F534Au) return std::nullopt;
-    const std::uint32_t length = littleEndian32(header.data() + 12);
-    std::error_code ignored;
-    const std::uintmax_t fileSize = std::filesystem::file_size(path, ignored);
-    if (ignored || length > fileSize) return std::nullopt;  // a truncated file: tinygltf says so
-    text.resize(length);
-    file.read(text.data(), static_cast<std::streamsize>(length));
-    if (static_cast<std::uint32_t>(file.gcount()) != length) return std::nullopt;
-  } else {
-    text.assign(reinterpret_cast<const char*>(header.data()), headerBytes);
-    text.append(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  if (text.substr(0, 4) == "glTF") {
+    const auto* header = reinterpret_cast<const unsigned char*>(data);
+    if (bytes.size() < 20 || littleEndian32(header + 16) != 0x4E4F534Au) return std::nullopt;
+    const std::uint32_t length = littleEndian32(header + 12);
+    if (length > bytes.size() - 20) return std::nullopt;  // a truncated file: tinygltf says so
+    text = text.substr(20, length);
   }
   nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded()) return std::nullopt;

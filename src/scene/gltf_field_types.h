@@ -4,16 +4,17 @@
 #ifndef GLINT_SCENE_GLTF_FIELD_TYPES_H
 #define GLINT_SCENE_GLTF_FIELD_TYPES_H
 
-#include <filesystem>
+#include <cstddef>
 #include <optional>
+#include <span>
 
 #include <nlohmann/json.hpp>
 
 namespace glint::scene {
 
-// The JSON of a .gltf file or of a .glb's JSON chunk; nullopt when the file cannot be read or its
+// The JSON of a .gltf file's bytes or of a .glb's JSON chunk; nullopt when it is truncated or its
 // JSON does not parse (tinygltf then reports the problem in its own words).
-std::optional<nlohmann::json> readGltfJson(const std::filesystem::path& path);
+std::optional<nlohmann::json> readGltfJson(std::span<const std::byte> bytes);
 
 // Throws glint::Error "PATH must be TYPE, got VALUE" (e.g. "materials[2].doubleSided must be true
 // or false, got the string \"yes\"") for the first property glint reads whose JSON type is not the

@@ -6,8 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
+#include <span>
 #include <limits>
 #include <map>
 #include <optional>
@@ -23,7 +22,9 @@
 #include <tiny_gltf.h>
 #include <stb_image.h>  // stbi_failure_reason: tinygltf decodes images with the system's stb_image
 
+#include "glint/decoder_checks.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "scene/geometry.h"
 #include "scene/gltf_field_types.h"
 #include "scene/gltf_precheck.h"
@@ -260,8 +261,15 @@ std::string describeImage(const tinygltf::Image& image, int imageIndex) {
 
 // tinygltf's own image decoder (stb_image), whose message names an image by its index alone ("STB
 // cannot decode image data for image[0]"): glint's names its file too and gives stb_image's reason.
+// The decoder runs behind glint's checks of the image's header (glint/decoder_checks.h).
 bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* errors, std::string* warnings, int width,
                  int height, const unsigned char* bytes, int size, void*) {
+  try {
+    checkGltfImageForDecoder({reinterpret_cast<const std::byte*>(bytes), static_cast<std::size_t>(std::max(size, 0))});
+  } catch (const Error& e) {
+    if (errors) *errors += describeImage(*image, imageIndex) + ": " + e.what() + "\n";
+    return false;
+  }
   std::string tinygltfReason;
   if (tinygltf::LoadImageData(image, imageIndex, &tinygltfReason, warnings, width, height, bytes, size, nullptr)) {
     return true;
@@ -1066,28 +1074,19 @@ class GltfReader {
   int defaultMaterial_ = -1;
 };
 
-bool isBinaryGltf(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  char magic[4] = {};
-  file.read(magic, 4);
-  return file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+// Little-endian 32-bit word at `at` (the caller checks the range).
+std::uint32_t word32(std::span<const std::byte> bytes, std::size_t at) {
+  return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
+         static_cast<std::uint32_t>(bytes[at + 2]) << 16 | static_cast<std::uint32_t>(bytes[at + 3]) << 24;
 }
 
 // The file's bytes with its JSON replaced by `document`: the JSON itself for a .gltf; for a .glb
 // the JSON chunk, padded with spaces to 4 bytes as the container requires, and the header's
 // lengths rewritten, the chunks after it kept (readGltfJson has checked the header).
-std::string withJson(const fs::path& path, const nlohmann::json& document) {
+std::string withJson(std::span<const std::byte> bytes, bool binary, const nlohmann::json& document) {
   std::string json = document.dump();
-  if (!isBinaryGltf(path)) return json;
-  std::ifstream file(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  const auto word = [&](std::size_t at) {
-    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at])) |
-           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 1])) << 8 |
-           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 2])) << 16 |
-           static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[at + 3])) << 24;
-  };
-  const std::size_t rest = 20 + word(12);
+  if (!binary) return json;
+  const std::size_t rest = 20 + word32(bytes, 12);
   json.append((4 - json.size() % 4) % 4, ' ');
   const auto put = [](std::string& out, std::uint32_t value) {
     for (int b = 0; b < 4; ++b) out += static_cast<char>((value >> (8 * b)) & 0xFF);
@@ -1097,18 +1096,9 @@ std::string withJson(const fs::path& path, const nlohmann::json& document) {
   put(out, static_cast<std::uint32_t>(20 + json.size() + (bytes.size() - rest)));
   put(out, static_cast<std::uint32_t>(json.size()));
   out += "JSON";
-  return out + json + bytes.substr(rest);
-}
-
-// The container version of a binary glTF (the header's second word): 2 for glTF 2.0, 1 for the
-// glTF 1.0 KHR_binary_glTF container; 0 when the header is cut short (tinygltf says so).
-std::uint32_t binaryGltfVersion(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  unsigned char header[8] = {};
-  file.read(reinterpret_cast<char*>(header), 8);
-  if (file.gcount() != 8) return 0;
-  return static_cast<std::uint32_t>(header[4]) | static_cast<std::uint32_t>(header[5]) << 8 |
-         static_cast<std::uint32_t>(header[6]) << 16 | static_cast<std::uint32_t>(header[7]) << 24;
+  out += json;
+  out.append(reinterpret_cast<const char*>(bytes.data()) + rest, bytes.size() - rest);
+  return out;
 }
 
 }  // namespace
@@ -1118,48 +1108,57 @@ Scene loadGltf(const fs::path& path) {
     std::error_code ignored;
     if (!fs::exists(path, ignored)) throw error("no such file");
     if (!fs::is_regular_file(path, ignored)) throw error("not a regular file");
-    if (isBinaryGltf(path)) {
-      const std::uint32_t version = binaryGltfVersion(path);
-      if (version == 1) throw error("binary glTF 1.0 is not supported (glint reads glTF 2.0)");
-      if (version > 2) throw error("binary glTF container version ", version, " is not supported (glint reads glTF 2.0)");
-    }
+    return loadGltf(readFile(path), path.stem().string(), path.parent_path());
+  } catch (const std::exception& e) {  // Error, and an allocation failure reading the file
+    throw Error(path.string() + ": " + e.what());
+  }
+}
+
+Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const fs::path& baseDirectory) {
+  try {
     // On the file's own JSON, before tinygltf reads it (gltf_field_types.h, gltf_precheck.h); a file
     // whose JSON does not parse is left to tinygltf's message.
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    // The container's version (the header's second word): 2 for glTF 2.0, 1 for glTF 1.0's.
+    if (binary && bytes.size() >= 8 && word32(bytes, 4) != 2) {
+      const std::uint32_t version = word32(bytes, 4);
+      if (version == 1) throw error("binary glTF 1.0 is not supported (glint reads glTF 2.0)");
+      throw error("binary glTF container version ", version, " is not supported (glint reads glTF 2.0)");
+    }
     std::optional<std::string> rewritten;  // the file with its whole-number indices made integers
-    if (std::optional<nlohmann::json> document = readGltfJson(path)) {
+    if (std::optional<nlohmann::json> document = readGltfJson(bytes)) {
       checkGltfVersion(*document);
       const bool wholeNumbers = wholeNumberIndicesToIntegers(*document);
       checkGltfFieldTypes(*document);
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
-      if (wholeNumbers) rewritten = withJson(path, *document);
+      if (wholeNumbers) rewritten = withJson(bytes, binary, *document);
     }
+    if (rewritten) bytes = {reinterpret_cast<const std::byte*>(rewritten->data()), rewritten->size()};
+    // tinygltf takes a 32-bit length.
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw error(bytes.size(), " bytes, more than 4 GiB");
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
     loader.SetImageLoader(decodeImage, nullptr);
     tinygltf::Model model;
     std::string errors;
     std::string warnings;
-    // The content decides, not the extension: a .gltf that is really binary still loads.
-    const bool binary = isBinaryGltf(path);
-    const std::string folder = path.parent_path().string();
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const auto length = static_cast<unsigned int>(bytes.size());
+    // The content decides, not the extension (binary, above): a .gltf that is really binary still loads.
     const bool loaded =
-        rewritten ? (binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings,
-                                                          reinterpret_cast<const unsigned char*>(rewritten->data()),
-                                                          static_cast<unsigned int>(rewritten->size()), folder)
-                            : loader.LoadASCIIFromString(&model, &errors, &warnings, rewritten->data(),
-                                                         static_cast<unsigned int>(rewritten->size()), folder))
-                  : (binary ? loader.LoadBinaryFromFile(&model, &errors, &warnings, path.string())
-                            : loader.LoadASCIIFromFile(&model, &errors, &warnings, path.string()));
+        binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, data, length, baseDirectory.string())
+               : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(data), length,
+                                            baseDirectory.string());
     if (!loaded) {
       const std::string reason = oneLine(errors.empty() ? warnings : errors);
       throw Error(reason.empty() ? "cannot parse the file" : reason);
     }
-    return GltfReader(model).read(path.stem().string());
-  } catch (const Error& e) {
-    throw Error(path.string() + ": " + e.what());
+    return GltfReader(model).read(name);
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {  // allocation failures and the like from a hostile file
-    throw Error(path.string() + ": " + e.what());
+    throw Error(e.what());
   }
 }
 

@@ -2,7 +2,10 @@
 // docs/scenes.md describes what is read, what is ignored, and the glint parameters in extras.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "scene/scene.h"
 
@@ -14,5 +17,8 @@ namespace glint::scene {
 // `extras.glint`. Cameras come from the bounding box (standardCameras) and lighting is the default
 // (addDefaultLighting). Any problem throws Error, one line naming the file; nothing is half loaded.
 Scene loadGltf(const std::filesystem::path& path);
+// The same on a file's bytes already read: `name` becomes the scene's name, relative URIs are
+// read from `baseDirectory`; errors do not name a file (loadGltf adds its path).
+Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const std::filesystem::path& baseDirectory);
 
 }  // namespace glint::scene

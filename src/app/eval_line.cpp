@@ -1,0 +1,123 @@
+// One line of `glint eval` (docs/cli.md): the JSON object's fields, checked, and the BRDF's values.
+#include "eval_line.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "bsdf.h"
+#include "error.h"
+
+namespace glint::app {
+
+namespace {
+
+using nlohmann::json;
+
+const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy",          "wo",
+                                       "wi",          "alpha",         "rho",            "brdf",
+                                       "log_density", "relative_area", "density_randomisation",
+                                       "max_anisotropy", "pattern_seed"};
+
+// An array of N finite numbers, read as T (a float value must be finite as a float).
+template <int N, typename T = float>
+glm::vec<N, T> readVector(const json& object, const char* field, glm::vec<N, T> fallback) {
+  const auto it = object.find(field);
+  if (it == object.end()) return fallback;
+  if (!it->is_array() || it->size() != N) {
+    throw Error(std::string("field '") + field + "' must be an array of " + std::to_string(N) + " numbers");
+  }
+  glm::vec<N, T> value(T(0));
+  for (int i = 0; i < N; ++i) {
+    const json& element = (*it)[static_cast<std::size_t>(i)];
+    if (!element.is_number()) {
+      throw Error(std::string("field '") + field + "' must be an array of " + std::to_string(N) + " numbers");
+    }
+    value[i] = element.get<T>();
+    if (!std::isfinite(value[i])) throw Error(std::string("field '") + field + "' must be finite");
+  }
+  return value;
+}
+
+float readNumber(const json& object, const char* field, float fallback) {
+  const auto it = object.find(field);
+  if (it == object.end()) return fallback;
+  if (!it->is_number()) throw Error(std::string("field '") + field + "' must be a number");
+  const float value = it->get<float>();
+  if (!std::isfinite(value)) throw Error(std::string("field '") + field + "' must be finite");
+  return value;
+}
+
+// A direction at any scale: read in double and divided by its largest component before it is
+// normalised, so that neither [1e30, 0, 1e30] (whose squares overflow a float) nor [1e-30, 0, 1e-30]
+// (whose squares underflow) loses its direction; only the zero vector has none.
+glm::vec3 readDirection(const json& object, const char* field) {
+  const glm::dvec3 w = readVector<3, double>(object, field, glm::dvec3(0.0, 0.0, 1.0));
+  const double largest = std::max({std::abs(w.x), std::abs(w.y), std::abs(w.z)});
+  if (!(largest > 0.0)) throw Error(std::string("field '") + field + "' must be a non-zero direction");
+  return glm::vec3(glm::normalize(w / largest));
+}
+
+json evaluate(const json& input, const Dictionary& dictionary) {
+  if (!input.is_object()) throw Error("expected a JSON object");
+  for (const auto& [key, value] : input.items()) {
+    if (!kFields.contains(key)) throw Error("unknown field '" + key + "'");
+  }
+  GlintParameters parameters = defaultGlintParameters();
+  parameters.alpha = readVector<2>(input, "alpha", parameters.alpha);
+  parameters.rho = readNumber(input, "rho", parameters.rho);
+  parameters.logDensity = readNumber(input, "log_density", parameters.logDensity);
+  parameters.relativeArea = readNumber(input, "relative_area", parameters.relativeArea);
+  parameters.densityRandomisation = readNumber(input, "density_randomisation", parameters.densityRandomisation);
+  parameters.maxAnisotropy = readNumber(input, "max_anisotropy", parameters.maxAnisotropy);
+  // In double, which holds every 32-bit seed exactly (a float rounds those above 2^24).
+  const auto seedField = input.find("pattern_seed");
+  const double seed = seedField == input.end() ? 0.0 : seedField->is_number() ? seedField->get<double>() : -1.0;
+  if (!(seed >= 0.0 && seed <= 4294967295.0 && seed == std::floor(seed))) {
+    throw Error("field 'pattern_seed' must be an integer in [0, 2^32)");
+  }
+  parameters.patternSeed = static_cast<std::uint32_t>(seed);
+  SurfaceFootprint footprint;
+  footprint.uv = readVector<2>(input, "uv", footprint.uv);
+  footprint.duvdx = readVector<2>(input, "duvdx", footprint.duvdx);
+  footprint.duvdy = readVector<2>(input, "duvdy", footprint.duvdy);
+  const glm::vec3 wo = readDirection(input, "wo");
+  const glm::vec3 wi = readDirection(input, "wi");
+  std::string brdf = "glint";
+  if (const auto it = input.find("brdf"); it != input.end()) {
+    if (!it->is_string()) throw Error("field 'brdf' must be \"glint\" or \"cook-torrance\"");
+    brdf = it->get<std::string>();
+  }
+
+  // D and P22 at the half vector, when it is above the surface; f is zero where the model is.
+  const glm::vec3 sum = wo + wi;
+  const glm::vec3 wh = glm::length(sum) > 0.0f ? glm::normalize(sum) : glm::vec3(0.0f);
+  auto report = [&](const auto& bsdf) {
+    const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
+    const float d = wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f;
+    return json{{"f", bsdf.f(wo, wi).x}, {"D", d}, {"P22", p22}};
+  };
+  if (brdf == "glint") return report(GlintBsdf(dictionary, parameters, footprint));
+  if (brdf == "cook-torrance") {
+    validateGlintParameters(parameters);  // the same inputs are accepted by both BRDFs
+    validateFootprint(footprint);
+    return report(CookTorranceBsdf(parameters.alpha, parameters.rho));
+  }
+  throw Error("field 'brdf' must be \"glint\" or \"cook-torrance\", got \"" + brdf + "\"");
+}
+
+}  // namespace
+
+std::string evaluateLine(const std::string& line, const Dictionary& dictionary) {
+  nlohmann::json input;
+  try {
+    input = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers beyond double's range
+    throw Error(std::string("malformed JSON (") + e.what() + ")");
+  }
+  return evaluate(input, dictionary).dump();
+}
+
+}  // namespace glint::app

@@ -1,0 +1,131 @@
+#include "decoder_checks.h"
+
+#include <string>
+
+#include "error.h"
+
+namespace glint {
+
+namespace {
+
+std::uint32_t byteAt(std::span<const std::byte> bytes, std::size_t at) {
+  return at < bytes.size() ? std::to_integer<std::uint32_t>(bytes[at]) : 0u;
+}
+
+std::uint32_t bigEndian32(std::span<const std::byte> bytes, std::size_t at) {
+  return byteAt(bytes, at) << 24 | byteAt(bytes, at + 1) << 16 | byteAt(bytes, at + 2) << 8 | byteAt(bytes, at + 3);
+}
+
+bool isType(std::span<const std::byte> bytes, std::size_t at, const char (&type)[5]) {
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (byteAt(bytes, at + i) != static_cast<unsigned char>(type[i])) return false;
+  }
+  return true;
+}
+
+// One DHT segment as stb_image's stbi__process_marker reads it: `length` includes its own two
+// bytes; tables follow (class and slot, 16 code counts, then the codes' values) until it is used
+// up. stb_image reads a table's counts and builds it before comparing with the length, even past
+// the segment's end (reading zeros past the file's end): so does this walk.
+void checkHuffmanSegment(std::span<const std::byte> bytes, std::size_t at, std::uint32_t length) {
+  long remaining = static_cast<long>(length) - 2;
+  while (remaining > 0) {
+    std::uint32_t codes = 0;
+    for (std::size_t i = 0; i < 16; ++i) codes += byteAt(bytes, at + 1 + i);
+    if (codes > 256) {
+      throw Error("corrupt JPEG (a Huffman table with " + std::to_string(codes) + " codes, more than 256)");
+    }
+    remaining -= 17 + static_cast<long>(codes);
+    at += 17 + codes;
+  }
+  if (remaining != 0) throw Error("corrupt JPEG (a Huffman table segment's length does not match its tables)");
+}
+
+}  // namespace
+
+bool looksLikePng(std::span<const std::byte> bytes) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() < sizeof kSignature) return false;
+  for (std::size_t i = 0; i < sizeof kSignature; ++i) {
+    if (byteAt(bytes, i) != kSignature[i]) return false;
+  }
+  return true;
+}
+
+bool looksLikeJpeg(std::span<const std::byte> bytes) {
+  return bytes.size() >= 2 && byteAt(bytes, 0) == 0xFF && byteAt(bytes, 1) == 0xD8;
+}
+
+void checkPngForDecoder(std::span<const std::byte> bytes) {
+  // Chunks: length (4 bytes, big-endian), type (4), data, CRC (4), after the 8-byte signature.
+  std::size_t at = 8;
+  if (bytes.size() < at + 8 + 13 || !isType(bytes, at + 4, "IHDR") || bigEndian32(bytes, at) != 13) {
+    throw Error("truncated or corrupt PNG (no 13-byte IHDR chunk first)");
+  }
+  const std::uint32_t width = bigEndian32(bytes, at + 8);
+  const std::uint32_t height = bigEndian32(bytes, at + 12);
+  if (width == 0 || height == 0) {
+    throw Error("zero-size image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  }
+  if (width > kMaxImageSide || height > kMaxImageSide) {
+    throw Error("image too large (" + std::to_string(width) + "x" + std::to_string(height) + ", at most " +
+                std::to_string(kMaxImageSide) + " a side)");
+  }
+  bool seenData = false;
+  while (at + 8 <= bytes.size()) {
+    const std::uint32_t length = bigEndian32(bytes, at);
+    if (length > 0x7FFFFFFFu) throw Error("corrupt PNG (a chunk of " + std::to_string(length) + " bytes)");
+    if (isType(bytes, at + 4, "IEND")) break;
+    if (isType(bytes, at + 4, "IDAT")) {
+      if (length == 0 && !seenData) throw Error("corrupt PNG (an empty IDAT chunk before the image data)");
+      seenData = true;
+    }
+    at += 12 + static_cast<std::size_t>(length);
+  }
+}
+
+void checkJpegForDecoder(std::span<const std::byte> bytes) {
+  std::size_t at = 2;  // after the start-of-image marker
+  while (at < bytes.size()) {
+    // stb_image skips bytes that are not 0xFF between segments, then 0xFF fill bytes.
+    if (byteAt(bytes, at) != 0xFF) {
+      ++at;
+      continue;
+    }
+    while (at < bytes.size() && byteAt(bytes, at) == 0xFF) ++at;
+    if (at >= bytes.size()) break;
+    const std::uint32_t marker = byteAt(bytes, at++);
+    if (marker == 0xD9) break;                                           // end of image
+    if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // no length
+    const std::uint32_t length = byteAt(bytes, at) << 8 | byteAt(bytes, at + 1);
+    if (marker == 0xC4) checkHuffmanSegment(bytes, at + 2, length);
+    if (length < 2) break;  // stb_image refuses the file here
+    at += length;
+    if (marker == 0xDA) {
+      // A scan's entropy-coded data: 0xFF is followed by 0x00 (a stuffed byte) or a restart marker
+      // within it; any other marker ends it, and stb_image goes on from there.
+      while (at < bytes.size()) {
+        if (byteAt(bytes, at) != 0xFF) {
+          ++at;
+          continue;
+        }
+        std::size_t next = at + 1;
+        while (next < bytes.size() && byteAt(bytes, next) == 0xFF) ++next;
+        const std::uint32_t following = byteAt(bytes, next);
+        if (next < bytes.size() && (following == 0x00 || (following >= 0xD0 && following <= 0xD7))) {
+          at = next + 1;
+          continue;
+        }
+        break;  // at the marker's 0xFF (or the end): the outer walk reads it
+      }
+    }
+  }
+}
+
+void checkGltfImageForDecoder(std::span<const std::byte> bytes) {
+  if (looksLikePng(bytes)) return checkPngForDecoder(bytes);
+  if (looksLikeJpeg(bytes)) return checkJpegForDecoder(bytes);
+  throw Error("not a PNG or JPEG image (the formats glTF 2.0 allows)");
+}
+
+}  // namespace glint

@@ -1,0 +1,40 @@
+// What glint checks on image bytes before a third-party decoder sees them. The decoders are
+// Debian's compiled copies (stb_image through libstb and libtinygltf, tinyexr), which glint cannot
+// patch; their known defects on crafted files are listed in docs/reliability.md, and each check
+// here refuses exactly the input that reaches one, as a corrupt file, before the decoder runs.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace glint {
+
+// The largest image side stb_image accepts (its STBI_MAX_DIMENSIONS default); glint's own readers
+// use it too so that every decoder refuses the same sizes.
+inline constexpr std::uint32_t kMaxImageSide = 1u << 24;
+
+// Whether the bytes start with the PNG signature, the JPEG start-of-image marker.
+bool looksLikePng(std::span<const std::byte> bytes);
+bool looksLikeJpeg(std::span<const std::byte> bytes);
+
+// For bytes that start with the PNG signature: throws Error (a message without the file's name,
+// for the caller to prefix) when IHDR is not the first chunk with 13 bytes, when the image has a
+// zero side or one over kMaxImageSide, when a chunk declares more than 2^31 - 1 bytes (PNG's own
+// limit), or when an empty IDAT chunk comes before any image data: stb_image then copies zero
+// bytes to a null pointer (undefined behaviour). What the walk cannot see (a chunk running past
+// the end, a bad CRC or zlib stream) is left to the decoder, which reports it.
+void checkPngForDecoder(std::span<const std::byte> bytes);
+
+// For bytes that start with the JPEG start-of-image marker: walks the marker segments as stb_image
+// reads them (skipping the entropy-coded data of each scan) and throws Error for a Huffman table
+// (DHT) of more than 256 codes, or whose segment length does not match its tables: stb_image
+// builds the table before looking at either, and more than 256 codes write past its 257-entry
+// arrays (a heap overflow in libstb).
+void checkJpegForDecoder(std::span<const std::byte> bytes);
+
+// A glTF file's image as the glTF loader hands it to stb_image: PNG or JPEG, the formats glTF 2.0
+// allows (stb_image's others never see a file's bytes), checked as above; throws Error otherwise.
+void checkGltfImageForDecoder(std::span<const std::byte> bytes);
+
+}  // namespace glint

@@ -1,0 +1,119 @@
+// What glint checks before the third-party decoders (stb_image, tinyexr) see a file's bytes
+// (glint/decoder_checks.h, image_io.cpp's EXR reader): each crafted input that reaches a known
+// defect of theirs is refused as corrupt, and the valid files of the fuzz corpus still load. The
+// crafted inputs are the fuzz targets' regression inputs (fuzz/regressions, written by
+// fuzz/make_corpus.cpp).
+#include <filesystem>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "decoder_checks.h"
+#include "error.h"
+#include "file_io.h"
+#include "image_io.h"
+#include "scene/gltf_loader.h"
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kFuzz = fs::path(GLINT_SOURCE_DIR) / "fuzz";
+
+std::string errorOf(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
+}
+
+// One line that contains each of `parts`.
+void expectError(const std::function<void()>& load, const std::vector<std::string>& parts) {
+  const std::string message = errorOf(load);
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  for (const std::string& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message;
+}
+
+TEST(DecoderChecks, PngWithAnEmptyIdatBeforeItsDataIsRefused) {
+  const fs::path bad = kFuzz / "regressions/image/png-empty-idat-first.png";
+  expectError([&] { readImage(bad); }, {"png-empty-idat-first.png", "empty IDAT chunk before the image data"});
+  expectError([&] { checkGltfImageForDecoder(readFile(bad)); }, {"empty IDAT"});
+  // The valid PNGs of the corpus pass, and an empty IDAT after the data is PNG's own business.
+  for (const char* good : {"rgb.png", "grey-alpha.png"}) {
+    const std::vector<std::byte> bytes = readFile(kFuzz / "corpus/image" / good);
+    EXPECT_NO_THROW(checkPngForDecoder(bytes)) << good;
+    EXPECT_NO_THROW(readImage(kFuzz / "corpus/image" / good)) << good;
+  }
+}
+
+TEST(DecoderChecks, PngOfAZeroOrHugeSideIsRefused) {
+  std::vector<std::byte> bytes = readFile(kFuzz / "corpus/image/rgb.png");
+  auto setWidth = [&](std::uint32_t width) {
+    for (int i = 0; i < 4; ++i) bytes[16 + static_cast<std::size_t>(i)] = static_cast<std::byte>(width >> (24 - 8 * i));
+  };
+  setWidth(0);
+  expectError([&] { checkPngForDecoder(bytes); }, {"zero-size image (0x2)"});
+  setWidth(kMaxImageSide + 1);
+  expectError([&] { checkPngForDecoder(bytes); }, {"image too large (16777217x2"});
+}
+
+TEST(DecoderChecks, JpegHuffmanTableOfMoreThan256CodesIsRefused) {
+  expectError([&] { checkGltfImageForDecoder(readFile(kFuzz / "regressions/image/jpeg-huffman-4080-codes.jpg")); },
+              {"corrupt JPEG (a Huffman table with 4080 codes, more than 256)"});
+  for (const char* good : {"grey.jpg", "rgb.jpg"}) {
+    EXPECT_NO_THROW(checkJpegForDecoder(readFile(kFuzz / "corpus/image" / good))) << good;
+  }
+  // Where stb_image meets it: a glTF file's texture. The file is refused naming the image.
+  expectError([&] { scene::loadGltf(kFuzz / "regressions/gltf/jpeg-huffman-4080-codes.glb"); },
+              {"jpeg-huffman-4080-codes.glb", "image 0", "4080 codes"});
+  EXPECT_NO_THROW(scene::loadGltf(kFuzz / "corpus/gltf/jpeg-texture.glb"));
+}
+
+TEST(DecoderChecks, GltfImagesThatAreNeitherPngNorJpegAreRefused) {
+  // "BM" and zeros, base64: stb_image would try its BMP reader on it.
+  const std::string gltf =
+      R"({"asset":{"version":"2.0"},"images":[{"uri":"data:image/png;base64,Qk0AAAAAAAAAAAAAAAA="}]})";
+  const std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(gltf.data()), gltf.size());
+  expectError([&] { scene::loadGltf(bytes, "bmp", ""); }, {"image 0", "not a PNG or JPEG image"});
+}
+
+TEST(DecoderChecks, ExrDataWindowThatOverflowsAnIntIsRefused) {
+  expectError([&] { readImage(kFuzz / "regressions/image/exr-data-window-overflow.exr"); },
+              {"exr-data-window-overflow.exr: truncated or corrupt EXR (data window (-1, 0) to (2147483647, 1)"});
+}
+
+// A chunk that does not decompress: tinyexr fails after allocating the planes, and freed only their
+// list (a leak that the sanitizer build's LeakSanitizer reports at exit); now it frees them too.
+TEST(DecoderChecks, ExrWhosePixelsDoNotDecodeIsRefusedWithoutALeak) {
+  expectError([&] { readImage(kFuzz / "regressions/image/exr-corrupt-chunk-leaks-planes.exr"); },
+              {"exr-corrupt-chunk-leaks-planes.exr: truncated or corrupt EXR ("});
+}
+
+// The EXR reader copies channels itself (tinyexr's own copy leaks on its error paths): scanlines
+// and tiles, half and float, one channel and three, as tinyexr's writer stored them.
+TEST(DecoderChecks, ExrKindsDecodeToTheirValues) {
+  // make_corpus.cpp: 4 x 2 pixels, channel c (B, G, R in file order) of pixel i holds (i + c) / 8.
+  for (const char* name : {"half-none.exr", "half-rle-tiled.exr", "y-piz.exr"}) {
+    SCOPED_TRACE(name);
+    const ImageRgbF image = readImage(kFuzz / "corpus/image" / name);
+    ASSERT_EQ(image.width, 4);
+    ASSERT_EQ(image.height, 2);
+    const bool grey = std::string(name) == "y-piz.exr";
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 expected =
+          grey ? glm::vec3(0.125f * static_cast<float>(i)) : 0.125f * glm::vec3(i + 2, i + 1, i);
+      EXPECT_EQ(image.at(i % 4, i / 4), expected) << "pixel " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glint
