@@ -176,8 +176,9 @@ TEST(RenderCli, GlintMaterialShowsGlintsAtAnyUvScale) {
                           R"(--log-density D sets another\n)");
     std::smatch match;
     ASSERT_TRUE(std::regex_search(result.err, match, said)) << result.err;
+    const std::string density = match[1].str();  // a copy: `result` is reused below, and match points into it
     const scene::Scene loaded = scene::loadScene((folder / file).string());
-    EXPECT_FLOAT_EQ(std::stof(match[1].str()), scene::visibleGlintDensity(loaded, 0).logDensity);
+    EXPECT_FLOAT_EQ(std::stof(density), scene::visibleGlintDensity(loaded, 0).logDensity);
     result = runGlint(folder, "render " + file + " -o fixed.exr --glint-material '*' --log-density 27" + size);
     ASSERT_EQ(result.exitCode, 0) << result.err;
     EXPECT_EQ(result.err.find("log density of the new"), std::string::npos) << "--log-density set it: " << result.err;
@@ -185,7 +186,7 @@ TEST(RenderCli, GlintMaterialShowsGlintsAtAnyUvScale) {
     const double derived = sparkle(readImage(folder / "derived.exr"), smooth);
     const double fixed = sparkle(readImage(folder / "fixed.exr"), smooth);
     std::printf("%s (uv x %g): log density %s, sparkle %.3f; at 27, %.3f\n", stem.c_str(), uvExtent,
-                match[1].str().c_str(), derived, fixed);
+                density.c_str(), derived, fixed);
     EXPECT_GT(derived, 0.05);
     if (uvExtent == 1.0f) EXPECT_LT(fixed, 0.05) << "27 was expected to look smooth at this uv scale";
   }
@@ -325,7 +326,9 @@ TEST(RenderCli, ATextureThatIsNotAnImageIsNamed) {
                     "scene/textured.gltf: image 0 'image0.png': not a PNG or JPEG image (the formats glTF 2.0 allows)");
   const auto inDataUri = brokenScene("garbage_data_uri", [](const auto& f) {
     editGltfJson(f / "textured.gltf", [](nlohmann::json& d) {
-      d["images"][1] = {{"uri", "data:image/png;base64,aGVsbG8gd29ybGQ="}};  // "hello world"
+      nlohmann::json image = nlohmann::json::object();
+      image["uri"] = "data:image/png;base64,aGVsbG8gd29ybGQ=";  // "hello world"
+      d["images"][1] = image;
     });
   });
   expectRenderFails(inDataUri, "scene/textured.gltf", "scene/textured.gltf: image 1: not a PNG or JPEG image");
