@@ -25,16 +25,7 @@ namespace fs = std::filesystem;
 
 const fs::path kFuzz = fs::path(GLINT_SOURCE_DIR) / "fuzz";
 
-std::string errorOf(const std::function<void()>& load) {
-  try {
-    load();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return "";
-}
-
+using test::errorOf;
 // One line that contains each of `parts`.
 void expectError(const std::function<void()>& load, const std::vector<std::string>& parts) {
   const std::string message = errorOf(load);

@@ -207,16 +207,7 @@ TEST(GltfWriter, SaysWhatGltfCannotHold) {
   EXPECT_EQ(gltfLosses(scene), (std::vector<std::string>{"the environment (a uniform ambient light)", "the exposure 2"}));
 }
 
-std::string errorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return "";
-}
-
+using test::errorOf;
 TEST(GltfWriter, ErrorsNameTheFileAndLeaveNone) {
   const fs::path folder = test::temporaryFolder("gltf_writer_errors");
   const Scene sphere = makeBuiltinScene("sphere");

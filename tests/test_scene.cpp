@@ -85,17 +85,7 @@ std::size_t triangleCount(const Scene& scene) {
   return n;
 }
 
-// The message of the Error `load` throws ("" and a test failure when it throws none).
-std::string errorOf(const std::function<void()>& load) {
-  try {
-    load();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no Error thrown";
-  return "";
-}
-
+using test::errorOf;
 // A broken file gives one line that names the file and contains `problem`.
 void expectLoadError(const fs::path& path, const std::string& problem) {
   const std::string message = errorOf([&] { loadGltf(path); });

@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+
+#include "error.h"
 #include <tbb/parallel_for.h>
 
 namespace glint::test {
@@ -57,6 +59,16 @@ RunResult runGlint(const std::filesystem::path& folder, const std::string& argum
   result.out = slurp(folder / "stdout.txt");
   result.err = slurp(folder / "stderr.txt");
   return result;
+}
+
+std::string errorOf(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no Error thrown";
+  return "";
 }
 
 void expectOneLineError(const RunResult& result, const std::string& problem) {

@@ -37,6 +37,8 @@ std::string slurp(const std::filesystem::path& path);
 RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "");
 // A bad input: a non-zero exit (not a crash), exactly one line on stderr that contains `problem`.
 void expectOneLineError(const RunResult& result, const std::string& problem);
+// The message of the glint::Error `body` throws ("" and a test failure when it throws none).
+std::string errorOf(const std::function<void()>& body);
 
 // Uniform in [low, high) from a PCG32 stream.
 float uniform(Pcg32& rng, float low, float high);
