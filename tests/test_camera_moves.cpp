@@ -95,5 +95,24 @@ TEST(CameraMoves, PanMovesTheTargetsDepthByThePixelsDragged) {
   }
 }
 
+TEST(CameraMoves, TurntableTurnsCameraAndTargetAboutTheUpAxisThroughThePivot) {
+  Camera start;
+  start.position = {1.0f, 0.5f, 5.0f};
+  start.target = {1.0f, 0.0f, 3.0f};
+  start.up = {0.0f, 2.0f, 0.0f};  // not unit length
+  const glm::vec3 pivot(1.0f, -4.0f, 2.0f);
+  // A quarter turn about +y takes +z to +x: the offsets (0, ., 3) and (0, ., 1) from the pivot's
+  // axis become (3, ., 0) and (1, ., 0), heights unchanged.
+  const Camera quarter = scene::turntableCamera(start, pivot, 0.5f * 3.14159265f);
+  EXPECT_NEAR(glm::length(quarter.position - glm::vec3(4.0f, 0.5f, 2.0f)), 0.0f, 1e-5f);
+  EXPECT_NEAR(glm::length(quarter.target - glm::vec3(2.0f, 0.0f, 2.0f)), 0.0f, 1e-5f);
+  EXPECT_EQ(quarter.up, start.up);
+  EXPECT_EQ(quarter.verticalFovDegrees, start.verticalFovDegrees);
+  // No turn is the camera itself, bit for bit: the first frame of a sequence is the still.
+  const Camera none = scene::turntableCamera(start, pivot, 0.0f);
+  EXPECT_EQ(none.position, start.position);
+  EXPECT_EQ(none.target, start.target);
+}
+
 }  // namespace
 }  // namespace glint

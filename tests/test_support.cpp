@@ -49,9 +49,10 @@ std::string slurp(const std::filesystem::path& path) {
   return buffer.str();
 }
 
-RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText) {
+RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText,
+                   const std::string& environment) {
   std::ofstream(folder / "stdin.txt") << stdinText;
-  const std::string command = "cd '" + folder.string() + "' && '" GLINT_EXECUTABLE "' " + arguments +
+  const std::string command = "cd '" + folder.string() + "' && " + environment + " '" GLINT_EXECUTABLE "' " + arguments +
                               " < stdin.txt > stdout.txt 2> stderr.txt";
   const int status = std::system(command.c_str());
   RunResult result;

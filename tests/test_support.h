@@ -34,7 +34,9 @@ struct RunResult {
 // A whole file's bytes ("" when it cannot be read).
 std::string slurp(const std::filesystem::path& path);
 // Runs `glint ARGS < stdinText` in `folder`.
-RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "");
+// `environment` (e.g. "PATH=/nonexistent") is set for glint alone.
+RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "",
+                   const std::string& environment = "");
 // A bad input: a non-zero exit (not a crash), exactly one line on stderr that contains `problem`.
 void expectOneLineError(const RunResult& result, const std::string& problem);
 // The message of the glint::Error `body` throws ("" and a test failure when it throws none).

@@ -29,6 +29,7 @@ struct BenchOptions {
   bool json = false;
   std::string dictionary;
   std::string camera = "default";
+  CameraOptions cameraOptions;
   std::string antiAliasing = "ggaa+lean";
 };
 
@@ -68,6 +69,7 @@ void runBench(const BenchOptions& options) {
     SceneOptions sceneOptions;
     sceneOptions.scene = name;
     sceneOptions.camera = options.camera;
+    sceneOptions.cameraOptions = options.cameraOptions;
     scenes.push_back(sceneOptions.loadScene());
   }
   SceneOptions dictionaryOptions;
@@ -174,6 +176,7 @@ void registerBenchCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--warmup", options->warmup, "Untimed frames per scene and BRDF first")->capture_default_str();
   command->add_option("--camera", options->camera, "Camera preset (every scene must have it)")->capture_default_str();
+  options->cameraOptions.addTo(*command);
   command->add_option("--aa", options->antiAliasing,
                       "Glint anti-aliasing of the timed glint frames: ggaa+lean, ggaa or none; unless none, the 2020 "
                       "model is timed too (glint-none), for the filter's cost")

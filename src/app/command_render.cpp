@@ -26,14 +26,21 @@ struct RenderOptions {
   int spp = 1;
   int reference = 0;
   float exposure = 1.0f;
+  OrbitOptions orbit;
 };
 
 void runRender(const RenderOptions& options) {
   const auto [width, height] = parseImageSize(options.size);
   const gl::BrdfModel brdf = gl::brdfModelFromString(options.brdf);
   const std::string output = options.output.empty() ? options.scene.outputNamedAfterScene(".png") : options.output;
-  const std::string extension = lowercaseExtension(output);
-  if (extension != ".png" && extension != ".exr") throw Error(output + ": the output must end in .png or .exr");
+  options.orbit.validate();
+  const bool video = isVideoPath(output);
+  if (video && !options.orbit.enabled()) throw Error(output + ": a video (.mp4) needs --orbit N");
+  // A video's frames are PNG images beside it.
+  const std::string extension = video ? ".png" : lowercaseExtension(output);
+  if (extension != ".png" && extension != ".exr") {
+    throw Error(output + ": the output must end in .png or .exr (or .mp4 with --orbit)");
+  }
   if (options.spp < 1 || options.spp > 65536) throw Error("--spp must be in [1, 65536]");
   if (options.reference != 0 && (options.reference < 1 || options.reference > 65536)) {
     throw Error("--reference must be in [1, 65536]");
@@ -60,22 +67,34 @@ void runRender(const RenderOptions& options) {
   frame.antiAliasing = antiAliasing;
   frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
-  frame.camera = options.scene.findCamera(scene);
-  const bool progress = spp > 1 && isatty(STDERR_FILENO);
-  const ImageRgbF image = gl::renderSupersampled(renderer, frame, spp, [&](int k) {
-    if (progress) std::fprintf(stderr, "\rglint: sample %d/%d", k + 1, spp);
-  });
-  if (progress) std::fprintf(stderr, "\n");
-  if (extension == ".exr") {
-    writeExr(output, image);
-  } else {
-    // The display pass of the viewer's window, so that `glint view` shows these very bytes.
-    writePng(output, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
+  const std::vector<scene::Camera> cameras =
+      options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
+  const int frames = static_cast<int>(cameras.size());
+  const bool progress = (spp > 1 || frames > 1) && isatty(STDERR_FILENO);
+  std::string first, last;
+  for (int f = 0; f < frames; ++f) {
+    frame.camera = cameras[static_cast<std::size_t>(f)];
+    const ImageRgbF image = gl::renderSupersampled(renderer, frame, spp, [&](int k) {
+      if (!progress) return;
+      if (frames > 1) std::fprintf(stderr, "\rglint: frame %d/%d", f + 1, frames);
+      if (spp > 1) std::fprintf(stderr, "%s sample %d/%d", frames > 1 ? "," : "\rglint:", k + 1, spp);
+    });
+    const std::string path = options.orbit.enabled() ? sequenceFramePath(output, f, frames, extension).string() : output;
+    if (extension == ".exr") {
+      writeExr(path, image);
+    } else {
+      // The display pass of the viewer's window, so that `glint view` shows these very bytes.
+      writePng(path, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
+    }
+    (f == 0 ? first : last) = path;
   }
+  if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",
-               output.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
-               gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
+               written.c_str(), options.scene.scene.c_str(), width, height, spp,
+               gl::toString(brdf), gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
+  if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());
 }
 
 }  // namespace
@@ -85,8 +104,9 @@ void registerRenderCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand("render", "Render one frame headless (OpenGL 4.5 through EGL) to PNG or EXR");
   options->scene.addTo(*command);
   command->add_option("-o,--output", options->output,
-                      "Output image: .png (tone-mapped sRGB) or .exr (linear radiance); without it SCENE.png in the "
-                      "current folder (the built-in name or the glTF file's name)");
+                      "Output image: .png (tone-mapped sRGB) or .exr (linear radiance), or with --orbit .mp4 (a "
+                      "video of the PNG frames, with ffmpeg); without it SCENE.png in the current folder (the "
+                      "built-in name or the glTF file's name)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
       ->capture_default_str();
@@ -103,6 +123,7 @@ void registerRenderCommand(CLI::App& app) {
                       "The anti-aliasing reference: the mean of N jittered frames of the 2020 model (--aa none), "
                       "normal maps at their finest level");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
+  options->orbit.addTo(*command);
   command->callback([options] { runRender(*options); });
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -36,6 +37,7 @@ struct TraceOptions {
   bool unfilteredNormalMaps = false;
   float exposure = 1.0f;
   int threads = 0;
+  OrbitOptions orbit;
 };
 
 // The BRDF names are the real-time renderer's (one list of names); the tracer has both models.
@@ -96,12 +98,14 @@ void runTrace(const TraceOptions& options) {
   settings.pixelCentres = options.pixelCentres;
   settings.normalMapFiltering = !options.unfilteredNormalMaps;
   trace::validateTraceSettings(settings);
-  const std::filesystem::path exrPath =
+  const std::filesystem::path output =
       options.output.empty() ? options.scene.outputNamedAfterScene(".exr") : options.output;
-  if (lowercaseExtension(exrPath) != ".exr") {
-    throw Error(exrPath.string() + ": the output must end in .exr (a .png preview is written beside it)");
+  options.orbit.validate();
+  const bool video = isVideoPath(output);
+  if (video && !options.orbit.enabled()) throw Error(output.string() + ": a video (.mp4) needs --orbit N");
+  if (!video && lowercaseExtension(output) != ".exr") {
+    throw Error(output.string() + ": the output must end in .exr (a .png preview is written beside it), or .mp4 with --orbit");
   }
-  const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
   if (options.threads < 0 || options.threads > 1024) throw Error("--threads must be in [0, 1024]");
   std::optional<tbb::global_control> threadLimit;
@@ -110,40 +114,54 @@ void runTrace(const TraceOptions& options) {
   }
 
   const scene::Scene scene = options.scene.loadScene();
-  settings.camera = options.scene.findCamera(scene);
+  const std::vector<scene::Camera> cameras =
+      options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
+  const int frames = static_cast<int>(cameras.size());
   const Dictionary dictionary = options.scene.loadDictionary();
   const auto start = std::chrono::steady_clock::now();
-  // What the tracer refuses of the scene (coordinates beyond its rays' range) names the scene.
-  const trace::PathTracer tracer = [&] {
-    try {
-      return trace::PathTracer(scene, dictionary, settings);
-    } catch (const Error& e) {
-      throw Error(options.scene.scene + ": " + e.what());
-    }
-  }();
-  ProgressBar progress(isatty(STDERR_FILENO) != 0);
-  const ImageRgbF image = tracer.render([&](double fraction) { progress.update(fraction); });
-  progress.finish();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::string first, last;
+  std::uint64_t nonFiniteSamples = 0;
+  for (int f = 0; f < frames; ++f) {
+    settings.camera = cameras[static_cast<std::size_t>(f)];
+    // What the tracer refuses of the scene (coordinates beyond its rays' range) names the scene.
+    const trace::PathTracer tracer = [&] {
+      try {
+        return trace::PathTracer(scene, dictionary, settings);
+      } catch (const Error& e) {
+        throw Error(options.scene.scene + ": " + e.what());
+      }
+    }();
+    if (frames > 1 && isatty(STDERR_FILENO)) std::fprintf(stderr, "glint: frame %d/%d\n", f + 1, frames);
+    ProgressBar progress(isatty(STDERR_FILENO) != 0);
+    const ImageRgbF image = tracer.render([&](double fraction) { progress.update(fraction); });
+    progress.finish();
+    nonFiniteSamples += tracer.nonFiniteSamples();
 
-  // The EXR and its preview are one output: both replace what was there, or neither does.
-  const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);
-  writeFilesAtomically({{exrPath, encodeExr(exrPath, image)},
-                        {pngPath, encodePng(preview.width(), preview.height(), 3, preview.data())}});
-  const double samples = static_cast<double>(settings.width) * settings.height * settings.spp;
+    const std::filesystem::path exrPath = options.orbit.enabled() ? sequenceFramePath(output, f, frames, ".exr") : output;
+    const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
+    // The EXR and its preview are one output: both replace what was there, or neither does.
+    const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);
+    writeFilesAtomically({{exrPath, encodeExr(exrPath, image)},
+                          {pngPath, encodePng(preview.width(), preview.height(), 3, preview.data())}});
+    (f == 0 ? first : last) = exrPath.string() + " and " + pngPath.string();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
                                ? options.brdf + ", " + trace::glintSamplerName(settings.sampler) + " sampler"
                                : options.brdf;
   const std::string paths =
       settings.directOnly ? std::string("direct light only") : "max depth " + std::to_string(settings.maxDepth);
-  std::fprintf(stderr, "glint: wrote %s and %s (%s, %dx%d, %d spp, %s, %s, %.2f s, %.0f samples/s on %zu threads)\n",
-               exrPath.string().c_str(), pngPath.string().c_str(), options.scene.scene.c_str(), settings.width,
-               settings.height, settings.spp, brdf.c_str(), paths.c_str(), seconds, samples / seconds,
+  const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, %s, %.2f s, %.0f samples/s on %zu threads)\n",
+               written.c_str(), options.scene.scene.c_str(), settings.width, settings.height, settings.spp,
+               brdf.c_str(), paths.c_str(), seconds, samples / seconds,
                tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  if (tracer.nonFiniteSamples() > 0) {
+  if (nonFiniteSamples > 0) {
     std::fprintf(stderr, "glint: warning: %llu samples were not finite and count as black\n",
-                 static_cast<unsigned long long>(tracer.nonFiniteSamples()));
+                 static_cast<unsigned long long>(nonFiniteSamples));
   }
+  if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.string().c_str());
 }
 
 }  // namespace
@@ -155,7 +173,8 @@ void registerTraceCommand(CLI::App& app) {
   options->scene.addTo(*command);
   command->add_option("-o,--output", options->output,
                       "Output EXR (linear radiance); OUT.png is written beside it; without it SCENE.exr and "
-                      "SCENE.png in the current folder (the built-in name or the glTF file's name)");
+                      "SCENE.png in the current folder (the built-in name or the glTF file's name); with --orbit, "
+                      ".mp4 makes a video of the PNG previews (with ffmpeg)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--spp", options->spp, "Samples per pixel")->capture_default_str();
   command->add_option("--max-depth", options->maxDepth, "Bounces: 1 is direct light (lights and environment) at the first hit")->capture_default_str();
@@ -174,6 +193,7 @@ void registerTraceCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores); the image does not depend on it")
       ->capture_default_str();
+  options->orbit.addTo(*command);
   command->callback([options] { runTrace(*options); });
 }
 

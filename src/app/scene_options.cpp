@@ -14,6 +14,7 @@ namespace glint::app {
 void SceneOptions::addTo(CLI::App& command) {
   addSceneAndMaterialsTo(command);
   command.add_option("--camera", camera, "Camera preset of the scene (see docs/scenes.md)")->capture_default_str();
+  cameraOptions.addTo(command);
   command.add_option("--dict", dictionary,
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
@@ -81,7 +82,7 @@ scene::Scene SceneOptions::loadScene() const {
                    m.name.c_str());
     }
   }
-  findCamera(s);
+  s.cameras[camera] = cameraOptions.applyTo(findCamera(s));
   // Which density the new layers got, unless --log-density replaced it; only once nothing above
   // failed, so that an error stays the one line on stderr.
   if (!layered.empty() && !logDensity) std::fprintf(stderr, "glint: %s\n", describeDefaultGlintDensity(s, layered).c_str());

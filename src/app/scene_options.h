@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/camera_options.h"
 #include "glint/dictionary.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene.h"
@@ -25,6 +26,7 @@ struct SceneOptions {
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
   std::optional<float> sky;
+  CameraOptions cameraOptions;  // --look-from, --look-at, --up, --fov: applied to the chosen preset
 
   // All of the options below (render, view, trace).
   void addTo(CLI::App& command);
@@ -32,7 +34,7 @@ struct SceneOptions {
   // --log-density, --relative-area), without those of a view (camera, dictionary, sky): export.
   void addSceneAndMaterialsTo(CLI::App& command);
   // Loads the scene, applies --glint-material and the overrides (validated like the file's own
-  // parameters), and checks the camera; throws Error with one line.
+  // parameters), checks the camera and applies the camera options to it; throws Error with one line.
   scene::Scene loadScene() const;
   const scene::Camera& findCamera(const scene::Scene& scene) const;
   Dictionary loadDictionary() const;

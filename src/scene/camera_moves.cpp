@@ -66,4 +66,12 @@ Camera panCamera(const Camera& camera, glm::vec2 pixels, int frameHeight) {
   return moved;
 }
 
+Camera turntableCamera(const Camera& camera, glm::vec3 pivot, float angle) {
+  const glm::vec3 axis = glm::normalize(camera.up);
+  Camera moved = camera;
+  moved.position = pivot + rotated(camera.position - pivot, angle, axis);
+  moved.target = pivot + rotated(camera.target - pivot, angle, axis);
+  return moved;
+}
+
 }  // namespace glint::scene

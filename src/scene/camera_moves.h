@@ -22,4 +22,8 @@ Camera zoomCamera(const Camera& camera, float factor);
 // by `pixels` on a frame `frameHeight` pixels high (x right, y down, as image rows).
 Camera panCamera(const Camera& camera, glm::vec2 pixels, int frameHeight);
 
+// Turns the camera and its target by `angle` radians about the axis through `pivot` along the
+// camera's up vector: frame after frame, a turntable around the pivot (glint render --orbit).
+Camera turntableCamera(const Camera& camera, glm::vec3 pivot, float angle);
+
 }  // namespace glint::scene

@@ -1,0 +1,155 @@
+// Cameras from the command line (--look-from, --look-at, --up, --fov) and turntable sequences
+// (--orbit N, --orbit-degrees D, -o VIDEO.mp4) as a user runs them: `glint render`, `trace` and
+// `bench`, and their one-line errors.
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "glint/image_io.h"
+#include "scene/builtin_scenes.h"
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+using namespace glint::test;
+
+std::string triple(glm::vec3 v) {
+  char text[128];
+  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
+  return text;
+}
+
+// The share of pixels of which a channel differs by more than 0.01 (linear, decoded from the sRGB
+// PNGs: a step of 2 to 3 codes in the mid-tones) between two images of the same size.
+double differingShare(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const ImageRgbF x = readImage(a);
+  const ImageRgbF y = readImage(b);
+  EXPECT_EQ(x.width, y.width);
+  EXPECT_EQ(x.height, y.height);
+  if (x.pixels.size() != y.pixels.size()) return 1.0;
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < x.pixels.size(); ++k) {
+    const glm::vec3 d = glm::abs(x.pixels[k] - y.pixels[k]);
+    differing += std::max(d.r, std::max(d.g, d.b)) > 0.01f;
+  }
+  return static_cast<double>(differing) / static_cast<double>(x.pixels.size());
+}
+
+TEST(CameraCli, LookFromAndOrbitPlaceTheSameCamera) {
+  // The sphere's default camera turned half a turn about its target is the camera placed by hand
+  // at the mirror image of its position across the target's vertical axis (up is +y there).
+  const scene::Camera preset = scene::loadScene("sphere").cameras.at("default");
+  ASSERT_EQ(preset.up, glm::vec3(0.0f, 1.0f, 0.0f));
+  const glm::vec3 p = preset.target;
+  const glm::vec3 mirrored(2.0f * p.x - preset.position.x, preset.position.y, 2.0f * p.z - preset.position.z);
+  const auto folder = temporaryFolder("camera_orbit");
+  const std::string common = "render sphere --size 96x64 --look-at " + triple(p);
+  RunResult result = runGlint(folder, common + " -o still.png");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  // Two frames of a whole turn: 0 and 180 degrees.
+  result = runGlint(folder, common + " -o turn.png --orbit 2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("2 frames turn-0000.png .. turn-0001.png"), std::string::npos) << result.err;
+  result = runGlint(folder, common + " -o mirrored.png --look-from " + triple(mirrored));
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  // The first frame is the still itself, byte for byte.
+  EXPECT_EQ(slurp(folder / "turn-0000.png"), slurp(folder / "still.png"));
+  // The half turn's position differs from the hand-placed one by float rounding (sin pi is not 0 in
+  // float): a glint can cross a cell boundary, so up to 1% of the pixels may differ; the still,
+  // seen from the other side, differs in a fifth of them or more.
+  EXPECT_LT(differingShare(folder / "turn-0001.png", folder / "mirrored.png"), 0.01);
+  EXPECT_GT(differingShare(folder / "still.png", folder / "mirrored.png"), 0.2);
+}
+
+TEST(CameraCli, FovAndUpChangeTheView) {
+  const auto folder = temporaryFolder("camera_fov");
+  const scene::Camera preset = scene::loadScene("sphere").cameras.at("default");
+  RunResult result = runGlint(folder, "render sphere --size 64x64 -o preset.png");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.9g", preset.verticalFovDegrees);
+  // The preset's own values leave the image as it is; other values change it.
+  result = runGlint(folder, "render sphere --size 64x64 -o same.png --fov " + std::string(fov) + " --up 0,1,0 --look-from " +
+                                triple(preset.position) + " --look-at " + triple(preset.target));
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(slurp(folder / "same.png"), slurp(folder / "preset.png"));
+  result = runGlint(folder, "render sphere --size 64x64 -o wide.png --fov 90");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_GT(differingShare(folder / "wide.png", folder / "preset.png"), 0.2);
+  result = runGlint(folder, "render sphere --size 64x64 -o rolled.png --up 1,0,0");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_GT(differingShare(folder / "rolled.png", folder / "preset.png"), 0.2);
+}
+
+TEST(CameraCli, BadCamerasAndSequencesAreOneLineErrors) {
+  const auto folder = temporaryFolder("camera_errors");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--look-from 1,2", "--look-from takes three finite numbers"},
+      {"--look-at 1,nan,2", "--look-at takes three finite numbers"},
+      {"--up 0,0,0", "--up must not be zero"},
+      {"--look-from 0,0,3 --look-at 0,0,3", "position and look-at point are the same"},
+      {"--look-from 0,2,0 --look-at 0,0,0 --up 0,1,0", "up vector is along its view direction"},
+      {"--fov 0", "--fov must be in (0, 180)"},
+      {"--fov 180", "--fov must be in (0, 180)"},
+      {"--orbit 0", "--orbit must be in [1, 100000]"},
+      {"--orbit-degrees 90", "--orbit-degrees needs --orbit N"},
+      {"--orbit 3 --orbit-degrees inf", "--orbit-degrees must be a number"},
+  };
+  for (const auto& [arguments, problem] : cases) {
+    const RunResult result = runGlint(folder, "render sphere --size 32x32 -o out.png " + arguments);
+    expectOneLineError(result, problem);
+    EXPECT_FALSE(std::filesystem::exists(folder / "out.png")) << arguments;
+    EXPECT_FALSE(std::filesystem::exists(folder / "out-0000.png")) << arguments;
+  }
+  expectOneLineError(runGlint(folder, "render sphere --size 32x32 -o out.mp4"), "out.mp4: a video (.mp4) needs --orbit N");
+  expectOneLineError(runGlint(folder, "trace sphere --size 32x32 -o out.mp4"), "out.mp4: a video (.mp4) needs --orbit N");
+  expectOneLineError(runGlint(folder, "bench sphere --size 32x32 --frames 1 --fov 200"), "--fov must be in (0, 180)");
+  EXPECT_TRUE(std::filesystem::is_empty(folder / "") || !std::filesystem::exists(folder / "out.mp4"));
+}
+
+TEST(CameraCli, AVideoWithoutFfmpegLeavesTheFramesAndSaysSo) {
+  const auto folder = temporaryFolder("camera_video_absent");
+  // A PATH without ffmpeg (the shell and glint are found by their full paths).
+  const RunResult result = runGlint(folder, "render sphere --size 32x32 --orbit 3 -o spin.mp4", "", "PATH=/nonexistent");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("ffmpeg was not found, so spin.mp4 was not made: the frames are the output"),
+            std::string::npos)
+      << result.err;
+  for (const char* frame : {"spin-0000.png", "spin-0001.png", "spin-0002.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(folder / frame)) << frame;
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder / "spin.mp4"));
+}
+
+TEST(CameraCli, AVideoWithFfmpeg) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg)";
+  const auto folder = temporaryFolder("camera_video");
+  const RunResult result = runGlint(folder, "render sphere --size 33x31 --orbit 4 --orbit-degrees 90 -o spin.mp4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("wrote spin.mp4"), std::string::npos) << result.err;
+  const std::string video = slurp(folder / "spin.mp4");
+  ASSERT_GT(video.size(), 8u);
+  EXPECT_EQ(video.substr(4, 4), "ftyp");  // an MP4 file's first box
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+}
+
+TEST(CameraCli, TraceWritesNumberedFramesAndBenchTakesTheCamera) {
+  const auto folder = temporaryFolder("camera_trace");
+  RunResult result = runGlint(folder, "trace sphere --size 16x16 --spp 1 --orbit 2 -o t.exr");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  for (const char* file : {"t-0000.exr", "t-0000.png", "t-0001.exr", "t-0001.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(folder / file)) << file;
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder / "t.exr"));
+  // The two frames see the sphere from opposite sides.
+  EXPECT_NE(slurp(folder / "t-0000.png"), slurp(folder / "t-0001.png"));
+  result = runGlint(folder, "bench sphere --size 16x16 --frames 1 --warmup 0 --fov 30 --look-from 0,1,4");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+}
+
+}  // namespace
+}  // namespace glint
