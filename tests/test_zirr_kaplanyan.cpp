@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,37 @@ TEST(ZirrKaplanyan, BinomialIsMonotoneBoundedAndHandlesItsLimits) {
       }
     }
   }
+}
+
+// The tuned schedule's binomial: its law set up once (per grid level) and its scan as long as the
+// law needs (zirrKaplanyanScanLength, n' counts below 18 trials) draws the counts of the reference's
+// 18-count scan bit for bit. Three quarters of the cases have fewer than 18 trials, where the scan
+// is shortened; u spans (0, 1], 1 included (hashToUnitOpen's largest value rounds to 1).
+TEST(ZirrKaplanyan, BinomialScanOfItsOwnLengthDrawsTheSameCounts) {
+  Pcg32 rng(2121, 3);
+  int shortened = 0;
+  int countIsTrials = 0;  // shortened scans whose count is n', which the shortened scan never reaches
+  int differing = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const float n = rng.nextBelow(4) != 0 ? std::exp(uniform(rng, std::log(1e-3f), std::log(18.0f)))
+                                          : std::exp(uniform(rng, std::log(18.0f), std::log(1e4f)));
+    const float p = std::exp(uniform(rng, std::log(1e-9f), 0.0f));
+    const float u = rng.nextBelow(64) == 0 ? 1.0f : uniform(rng, 0.0f, 1.0f);
+    const kernel::ZirrKaplanyanBinomialLaw law = kernel::zirrKaplanyanBinomialLaw(n, p);
+    const int scanLength = kernel::zirrKaplanyanScanLength(law);
+    const float reference = kernel::zirrKaplanyanBinomial(u, n, p);
+    const float tuned = kernel::zirrKaplanyanBinomialDraw(law, u, scanLength);
+    if (law.kind == kernel::kZirrKaplanyanCountIsScanned && scanLength < kernel::kZirrKaplanyanBinomialScan) {
+      ++shortened;
+      countIsTrials += reference == law.trials;
+    }
+    if (std::memcmp(&reference, &tuned, sizeof(float)) != 0) {
+      if (++differing <= 10) ADD_FAILURE() << "n " << n << ", p " << p << ", u " << u << ": " << tuned << " != " << reference;
+    }
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(shortened, 100000);
+  EXPECT_GT(countIsTrials, 1000);
 }
 
 TEST(ZirrKaplanyan, ConvergesToCookTorranceWithGgxSmithAtVeryHighDensity) {
@@ -563,7 +595,7 @@ struct GpuInput {
   glm::vec4 uvAndDuvdx, duvdyAndRoughness, woAndLogDensity, wiAndSearchCone, microRoughnessEtc, anisotropyAndSeed;
 };
 struct GpuOutput {
-  float f, glints, visits, unused;
+  float f, glints, visits, fReference;  // fReference: zirrKaplanyanReferenceReflectance
 };
 struct GlCase {
   ZirrKaplanyanParameters parameters;
@@ -613,6 +645,56 @@ std::vector<GlCase> randomGlCases(int count) {
 
 float evaluateOnCpu(const GlCase& c) { return zkValue(c.parameters, c.footprint, c.wo, c.wi); }
 
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
+
+// What the tuned schedule does differently for one case: it exits before the walk (where the
+// reference visits cells), or it draws every cell from its level's law (v = 0).
+struct ScheduleUse {
+  bool exits;
+  bool sharesLaw;
+};
+ScheduleUse scheduleUse(const GlCase& c) {
+  int tunedVisits = 0;
+  int referenceVisits = 0;
+  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+                                       c.parameters, false, tunedVisits);
+  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+                                       c.parameters, true, referenceVisits);
+  return {tunedVisits == 0 && referenceVisits > 0, c.parameters.variation == 0.0f};
+}
+
+// The tuned schedule (per-level set-up, scans of their own length, the early exit where no cell
+// can reflect) computes the reference shader's schedule's value bit for bit (the renderer's
+// zirr-kaplanyan and zirr-kaplanyan-reference images are byte-identical), on 20,000 random cases
+// (those of the CPU-versus-GLSL test and as many more), both schedules' paths taken many times.
+TEST(ZirrKaplanyan, TunedScheduleIsBitIdenticalToTheReference) {
+  const std::vector<GlCase> cases = randomGlCases(20000);
+  int differing = 0;
+  int exits = 0;
+  int sharedNonZero = 0;
+  int perCellNonZero = 0;
+  for (const GlCase& c : cases) {
+    int visits = 0;
+    const float tuned = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
+                                                             c.wo, c.wi, c.parameters, false, visits);
+    const float reference = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx,
+                                                                 c.footprint.duvdy, c.wo, c.wi, c.parameters, true, visits);
+    if (!sameBits(tuned, reference) && ++differing <= 10) {
+      ADD_FAILURE() << "tuned " << tuned << ", reference " << reference;
+    }
+    const ScheduleUse use = scheduleUse(c);
+    exits += use.exits;
+    sharedNonZero += use.sharesLaw && reference > 0.0f;
+    perCellNonZero += !use.sharesLaw && reference > 0.0f;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(exits, 500);
+  EXPECT_GT(sharedNonZero, 5000);
+  EXPECT_GT(perCellNonZero, 5000);
+  std::printf("ZK tuned vs reference schedule: %d of %zu differ; exits %d, non-zero with the level's law %d, with "
+              "per-cell laws %d\n", differing, cases.size(), exits, sharedNonZero, perCellNonZero);
+}
+
 // The branch boundaries where a disagreement is explained (onBranchBoundary): a half-vector bin
 // edge (floor(q / (mu + c) + jitter)), a step of the binomial's inverse CDF (u against the CDF of
 // p), the normal branch's switch at n p = 5, the count multiplier's fold at m = 0, a cell or row
@@ -628,9 +710,13 @@ TEST(ZirrKaplanyanGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
   int unexplained = 0;
   int nonZero = 0;
   int visitMismatches = 0;
+  int scheduleMismatches = 0;  // on the GPU, the tuned schedule's f against the reference schedule's
+  int exits = 0;
   double largestRelative = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const GlCase& c = cases[i];
+    scheduleMismatches += !sameBits(gpu[i].f, gpu[i].fReference);
+    exits += scheduleUse(c).exits;
     const float cpu = evaluateOnCpu(c);
     int visits = 0;
     const float glints = kernel::zirrKaplanyanGlintsCounted(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
@@ -651,10 +737,13 @@ TEST(ZirrKaplanyanGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
   EXPECT_LE(disagreements, 30) << "99.7% of 10000 must agree within 1e-3 relative";
   EXPECT_EQ(unexplained, 0);
   EXPECT_LE(visitMismatches, 10);
+  EXPECT_EQ(scheduleMismatches, 0) << "the GLSL tuned schedule must reproduce the reference schedule bit for bit";
+  EXPECT_GT(exits, 250);  // the tuned schedule's early exit is among the cases compared
   RecordProperty("disagreements", disagreements);
   std::printf("ZK CPU vs GLSL: %d of %zu disagree beyond 1e-3 relative (+1e-5 absolute), all at branch boundaries; "
-              "largest relative difference among agreeing f > 1e-3: %.2e; cell-visit counts differ in %d\n",
-              disagreements, cases.size(), largestRelative, visitMismatches);
+              "largest relative difference among agreeing f > 1e-3: %.2e; cell-visit counts differ in %d; on the GPU "
+              "the tuned and reference schedules differ in %d (%d early exits)\n",
+              disagreements, cases.size(), largestRelative, visitMismatches, scheduleMismatches, exits);
 }
 
 }  // namespace
