@@ -619,6 +619,13 @@ std::vector<GpuOutput> evaluateOnGpu(const std::vector<GlCase>& cases) {
   return dispatchCompute<GpuOutput>(program, inputs);
 }
 
+// Even cases' parameters mapped from ours (log density in [minLogDensity, maxLogDensity)), odd ones
+// the model's own.
+ZirrKaplanyanParameters mappedOrNativeParameters(Pcg32& rng, int i, float minLogDensity, float maxLogDensity) {
+  return i % 2 ? randomNativeParameters(rng)
+               : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, minLogDensity, maxLogDensity));
+}
+
 // Half mapped from our parameters, half the model's own over wide ranges; footprints from
 // magnified to minified with random shapes, uv in [-1, 2), views down to 89 degrees, three
 // quarters of the half vectors within 1.5 alpha of the normal (where the glints are).
@@ -627,8 +634,7 @@ std::vector<GlCase> randomGlCases(int count) {
   std::vector<GlCase> cases;
   for (int i = 0; i < count; ++i) {
     GlCase c;
-    c.parameters = i % 2 ? randomNativeParameters(rng)
-                         : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 12.0f, 45.0f));
+    c.parameters = mappedOrNativeParameters(rng, i, 12.0f, 45.0f);
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;
     c.wo = randomDirectionAt(rng, 1.55f, 6.2832f);
@@ -651,15 +657,14 @@ std::vector<GlCase> exitEdgeCases(int count) {
   std::vector<GlCase> cases;
   for (int i = 0; i < count; ++i) {
     GlCase c;
-    c.parameters = i % 2 ? randomNativeParameters(rng)
-                         : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 50.0f, 100.0f));
-    c.parameters.logDensity = uniform(rng, 50.0f, 100.0f);
+    c.parameters = mappedOrNativeParameters(rng, i, 50.0f, 100.0f);
+    c.parameters.logDensity = uniform(rng, 50.0f, 100.0f);  // native parameters too
     c.footprint = randomFootprint(rng, 1e-4f, 1e-1f);
     c.wo = randomDirectionAt(rng, 1.2f, 6.2832f);
     const float angle = uniform(rng, 0.0f, 6.2832f);
-    const float slope = uniform(rng, 5.0f, 11.0f);
-    c.wi = reflectAtSlope(c.wo, slope * glm::vec2(std::cos(angle), std::sin(angle)) * c.parameters.roughness);
-    if (c.wi.z <= 0.0f) c.wi = randomDirectionAt(rng, 1.55f, 6.2832f);
+    const glm::vec2 direction(std::cos(angle), std::sin(angle));
+    c.wi = reflectAtSlope(c.wo, uniform(rng, 5.0f, 11.0f) * direction * c.parameters.roughness);
+    if (c.wi.z <= 0.0f) c.wi = randomDirectionAt(rng, 1.55f, 6.2832f);  // wo grazing: anywhere above
     cases.push_back(c);
   }
   return cases;
