@@ -1,8 +1,9 @@
 // Forward shading of glTF metal-roughness materials whose specular lobe is the glint BRDF (or
 // Cook-Torrance), lit by point, spot and directional lights and an environment (diffuse by spherical
 // harmonics, specular by a pre-filtered map, both without glints). The host compiles one program
-// per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE or
-// SPECULAR_ZIRR_KAPLANYAN, so that each carries only its own code and everything else is identical;
+// per specular model, SPECULAR_MODEL = SPECULAR_GLINT, SPECULAR_COOK_TORRANCE, SPECULAR_ZIRR_KAPLANYAN
+// or SPECULAR_ZIRR_KAPLANYAN_REFERENCE (the same values on the reference shader's schedule), so that
+// each carries only its own code and everything else is identical;
 // glint materials with coloured cells get their own program (GLINT_COLOURED_CELLS = 1), glint
 // programs that anti-alias their glints (GLINT_FILTERED = 1, glint_antialiasing.h) theirs, those
 // that also filter their normal map (GLINT_LEAN = 1, normal_map_filtering.h) or read it at its
@@ -14,13 +15,15 @@
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
+#define SPECULAR_ZIRR_KAPLANYAN_REFERENCE 3
+#define ZIRR_KAPLANYAN (SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN || SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE)
 // One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
 #include "glint_brdf.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
 #include "environment.glsl"
-#if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
+#if ZIRR_KAPLANYAN
 #include "zirr_kaplanyan.h"
 #endif
 
@@ -245,12 +248,16 @@ void main() {
     } else {
       specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }
-#elif SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN
+#elif ZIRR_KAPLANYAN
     if (GLINT_LAYER) {
       // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
       // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
-      specular = fresnel * params.relativeArea *
-                 zirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
+#if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE
+      float zirrKaplanyan = zirrKaplanyanReferenceReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
+#else
+      float zirrKaplanyan = zirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
+#endif
+      specular = fresnel * params.relativeArea * zirrKaplanyan;
     } else {
       specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }

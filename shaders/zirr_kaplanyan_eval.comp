@@ -1,6 +1,7 @@
 // Evaluates the Zirr & Kaplanyan 2016 kernel for a buffer of inputs: the GPU half of the
-// CPU-versus-GLSL test (tests/test_zirr_kaplanyan.cpp). Same entry point as the renderer's and
-// glint::ZirrKaplanyanBsdf: zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params).
+// CPU-versus-GLSL test (tests/test_zirr_kaplanyan.cpp). Same entry points as the renderer's and
+// glint::ZirrKaplanyanBsdf: zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), and
+// zirrKaplanyanReferenceReflectance (the reference shader's schedule), which must match it bit for bit.
 #include "zirr_kaplanyan.h"
 
 layout(local_size_x = 64) in;
@@ -15,7 +16,7 @@ struct ZirrKaplanyanInput {
 };
 
 layout(std430, binding = 0) readonly buffer Inputs { ZirrKaplanyanInput inputs[]; };
-layout(std430, binding = 1) writeonly buffer Outputs { vec4 outputs[]; };  // f, glints(), cell visits, 0
+layout(std430, binding = 1) writeonly buffer Outputs { vec4 outputs[]; };  // f, glints(), cell visits, f (reference schedule)
 
 uniform uint uCount;
 
@@ -41,5 +42,6 @@ void main() {
   vec3 wi = data.wiAndSearchCone.xyz;
   int visits;
   float glints = zirrKaplanyanGlintsCounted(uv, duvdx, duvdy, wo, wi, params, visits);
-  outputs[i] = vec4(zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), glints, float(visits), 0.0f);
+  outputs[i] = vec4(zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), glints, float(visits),
+                    zirrKaplanyanReferenceReflectance(uv, duvdx, duvdy, wo, wi, params));
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -134,6 +135,37 @@ TEST(ZirrKaplanyan, BinomialIsMonotoneBoundedAndHandlesItsLimits) {
       }
     }
   }
+}
+
+// The tuned schedule's binomial: its law set up once (per grid level) and its scan as long as the
+// law needs (zirrKaplanyanScanLength, n' counts below 18 trials) draws the counts of the reference's
+// 18-count scan bit for bit. Three quarters of the cases have fewer than 18 trials, where the scan
+// is shortened; u spans (0, 1], 1 included (hashToUnitOpen's largest value rounds to 1).
+TEST(ZirrKaplanyan, BinomialScanOfItsOwnLengthDrawsTheSameCounts) {
+  Pcg32 rng(2121, 3);
+  int shortened = 0;
+  int countIsTrials = 0;  // shortened scans whose count is n', which the shortened scan never reaches
+  int differing = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const float n = rng.nextBelow(4) != 0 ? std::exp(uniform(rng, std::log(1e-3f), std::log(18.0f)))
+                                          : std::exp(uniform(rng, std::log(18.0f), std::log(1e4f)));
+    const float p = std::exp(uniform(rng, std::log(1e-9f), 0.0f));
+    const float u = rng.nextBelow(64) == 0 ? 1.0f : uniform(rng, 0.0f, 1.0f);
+    const kernel::ZirrKaplanyanBinomialLaw law = kernel::zirrKaplanyanBinomialLaw(n, p);
+    const int scanLength = kernel::zirrKaplanyanScanLength(law);
+    const float reference = kernel::zirrKaplanyanBinomial(u, n, p);
+    const float tuned = kernel::zirrKaplanyanBinomialDraw(law, u, scanLength);
+    if (law.kind == kernel::kZirrKaplanyanCountIsScanned && scanLength < kernel::kZirrKaplanyanBinomialScan) {
+      ++shortened;
+      countIsTrials += reference == law.trials;
+    }
+    if (std::memcmp(&reference, &tuned, sizeof(float)) != 0) {
+      if (++differing <= 10) ADD_FAILURE() << "n " << n << ", p " << p << ", u " << u << ": " << tuned << " != " << reference;
+    }
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(shortened, 100000);
+  EXPECT_GT(countIsTrials, 1000);
 }
 
 TEST(ZirrKaplanyan, ConvergesToCookTorranceWithGgxSmithAtVeryHighDensity) {
@@ -563,7 +595,7 @@ struct GpuInput {
   glm::vec4 uvAndDuvdx, duvdyAndRoughness, woAndLogDensity, wiAndSearchCone, microRoughnessEtc, anisotropyAndSeed;
 };
 struct GpuOutput {
-  float f, glints, visits, unused;
+  float f, glints, visits, fReference;  // fReference: zirrKaplanyanReferenceReflectance
 };
 struct GlCase {
   ZirrKaplanyanParameters parameters;
@@ -587,6 +619,13 @@ std::vector<GpuOutput> evaluateOnGpu(const std::vector<GlCase>& cases) {
   return dispatchCompute<GpuOutput>(program, inputs);
 }
 
+// Even cases' parameters mapped from ours (log density in [minLogDensity, maxLogDensity)), odd ones
+// the model's own.
+ZirrKaplanyanParameters mappedOrNativeParameters(Pcg32& rng, int i, float minLogDensity, float maxLogDensity) {
+  return i % 2 ? randomNativeParameters(rng)
+               : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, minLogDensity, maxLogDensity));
+}
+
 // Half mapped from our parameters, half the model's own over wide ranges; footprints from
 // magnified to minified with random shapes, uv in [-1, 2), views down to 89 degrees, three
 // quarters of the half vectors within 1.5 alpha of the normal (where the glints are).
@@ -595,8 +634,7 @@ std::vector<GlCase> randomGlCases(int count) {
   std::vector<GlCase> cases;
   for (int i = 0; i < count; ++i) {
     GlCase c;
-    c.parameters = i % 2 ? randomNativeParameters(rng)
-                         : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 12.0f, 45.0f));
+    c.parameters = mappedOrNativeParameters(rng, i, 12.0f, 45.0f);
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;
     c.wo = randomDirectionAt(rng, 1.55f, 6.2832f);
@@ -611,7 +649,92 @@ std::vector<GlCase> randomGlCases(int count) {
   return cases;
 }
 
+// Cases at the edge of the tuned schedule's early exit (p = P_MIN = 1e-30): half vectors 5 to 11
+// roughnesses from the normal, where p falls through 1e-30, and densities of 1e22 to 1e43 per uv
+// area, where cells expect up to the 1e30 guard, so that counts just above the exit are not 0.
+std::vector<GlCase> exitEdgeCases(int count) {
+  Pcg32 rng(2121, 7);
+  std::vector<GlCase> cases;
+  for (int i = 0; i < count; ++i) {
+    GlCase c;
+    c.parameters = mappedOrNativeParameters(rng, i, 50.0f, 100.0f);
+    c.parameters.logDensity = uniform(rng, 50.0f, 100.0f);  // native parameters too
+    c.footprint = randomFootprint(rng, 1e-4f, 1e-1f);
+    c.wo = randomDirectionAt(rng, 1.2f, 6.2832f);
+    const float angle = uniform(rng, 0.0f, 6.2832f);
+    const glm::vec2 direction(std::cos(angle), std::sin(angle));
+    c.wi = reflectAtSlope(c.wo, uniform(rng, 5.0f, 11.0f) * direction * c.parameters.roughness);
+    if (c.wi.z <= 0.0f) c.wi = randomDirectionAt(rng, 1.55f, 6.2832f);  // wo grazing: anywhere above
+    cases.push_back(c);
+  }
+  return cases;
+}
+
 float evaluateOnCpu(const GlCase& c) { return zkValue(c.parameters, c.footprint, c.wo, c.wi); }
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
+
+// What the tuned schedule does differently for one case: it exits before the walk (where the
+// reference visits cells), or it draws every cell from its level's law (v = 0).
+struct ScheduleUse {
+  bool exits;
+  bool sharesLaw;
+};
+ScheduleUse scheduleUse(const GlCase& c) {
+  int tunedVisits = 0;
+  int referenceVisits = 0;
+  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+                                       c.parameters, false, tunedVisits);
+  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+                                       c.parameters, true, referenceVisits);
+  return {tunedVisits == 0 && referenceVisits > 0, c.parameters.variation == 0.0f};
+}
+
+// The tuned schedule (per-level set-up, scans of their own length, the early exit where no cell
+// can reflect) computes the reference shader's schedule's value bit for bit (the renderer's
+// zirr-kaplanyan and zirr-kaplanyan-reference images are byte-identical), on 20,000 random cases
+// (those of the CPU-versus-GLSL test and as many more) and 5,000 at the edge of the early exit. The
+// lower bounds on how often each path is taken are about a third of what these fixed cases give
+// (the counts are printed), so that the comparison is known to cover them.
+TEST(ZirrKaplanyan, TunedScheduleIsBitIdenticalToTheReference) {
+  std::vector<GlCase> cases = randomGlCases(20000);
+  const std::vector<GlCase> edge = exitEdgeCases(5000);
+  cases.insert(cases.end(), edge.begin(), edge.end());
+  int differing = 0;
+  int exits = 0;
+  int sharedNonZero = 0;
+  int perCellNonZero = 0;
+  int edgeExits = 0;
+  int edgeNonZero = 0;  // values the exit must not drop: not 0 although p is far below the lobe's
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const GlCase& c = cases[i];
+    int visits = 0;
+    const float tuned = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
+                                                             c.wo, c.wi, c.parameters, false, visits);
+    const float reference = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx,
+                                                                 c.footprint.duvdy, c.wo, c.wi, c.parameters, true, visits);
+    if (!sameBits(tuned, reference) && ++differing <= 10) {
+      ADD_FAILURE() << "tuned " << tuned << ", reference " << reference;
+    }
+    const ScheduleUse use = scheduleUse(c);
+    exits += use.exits;
+    if (i >= 20000) {
+      edgeExits += use.exits;
+      edgeNonZero += reference > 0.0f;
+    }
+    sharedNonZero += use.sharesLaw && reference > 0.0f;
+    perCellNonZero += !use.sharesLaw && reference > 0.0f;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(exits, 95);
+  EXPECT_GT(edgeExits, 65);
+  EXPECT_GT(edgeNonZero, 1500);
+  EXPECT_GT(sharedNonZero, 2900);
+  EXPECT_GT(perCellNonZero, 1000);
+  std::printf("ZK tuned vs reference schedule: %d of %zu differ; exits %d (%d at the edge, where %d values are not "
+              "0), non-zero with the level's law %d, with per-cell laws %d\n", differing, cases.size(), exits,
+              edgeExits, edgeNonZero, sharedNonZero, perCellNonZero);
+}
 
 // The branch boundaries where a disagreement is explained (onBranchBoundary): a half-vector bin
 // edge (floor(q / (mu + c) + jitter)), a step of the binomial's inverse CDF (u against the CDF of
@@ -628,9 +751,13 @@ TEST(ZirrKaplanyanGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
   int unexplained = 0;
   int nonZero = 0;
   int visitMismatches = 0;
+  int scheduleMismatches = 0;  // on the GPU, the tuned schedule's f against the reference schedule's
+  int exits = 0;
   double largestRelative = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const GlCase& c = cases[i];
+    scheduleMismatches += !sameBits(gpu[i].f, gpu[i].fReference);
+    exits += scheduleUse(c).exits;
     const float cpu = evaluateOnCpu(c);
     int visits = 0;
     const float glints = kernel::zirrKaplanyanGlintsCounted(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
@@ -651,10 +778,13 @@ TEST(ZirrKaplanyanGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
   EXPECT_LE(disagreements, 30) << "99.7% of 10000 must agree within 1e-3 relative";
   EXPECT_EQ(unexplained, 0);
   EXPECT_LE(visitMismatches, 10);
+  EXPECT_EQ(scheduleMismatches, 0) << "the GLSL tuned schedule must reproduce the reference schedule bit for bit";
+  EXPECT_GT(exits, 47);  // the early exit is among the cases compared (142 of these; a third of it)
   RecordProperty("disagreements", disagreements);
   std::printf("ZK CPU vs GLSL: %d of %zu disagree beyond 1e-3 relative (+1e-5 absolute), all at branch boundaries; "
-              "largest relative difference among agreeing f > 1e-3: %.2e; cell-visit counts differ in %d\n",
-              disagreements, cases.size(), largestRelative, visitMismatches);
+              "largest relative difference among agreeing f > 1e-3: %.2e; cell-visit counts differ in %d; on the GPU "
+              "the tuned and reference schedules differ in %d (%d early exits)\n",
+              disagreements, cases.size(), largestRelative, visitMismatches, scheduleMismatches, exits);
 }
 
 }  // namespace

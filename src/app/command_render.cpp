@@ -108,7 +108,8 @@ void registerRenderCommand(CLI::App& app) {
                       "video of the PNG frames, with ffmpeg); without it SCENE.png in the current folder (the "
                       "built-in name or the glTF file's name)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
-  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance or zirr-kaplanyan")
+  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance, zirr-kaplanyan or zirr-kaplanyan-reference (the same "
+                      "images on the reference shader's slower schedule)")
       ->capture_default_str();
   command->add_option("--aa", options->antiAliasing,
                       "Glint anti-aliasing: ggaa+lean (the glints filtered by the half vector's variation over the "

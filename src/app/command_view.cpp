@@ -286,7 +286,8 @@ void runView(const ViewOptions& options) {
       ImGui::Separator();
       combo("BRDF", frameControls.brdf, brdfNames);
       tooltip("The specular model of the glint materials: glint (Chermain et al. 2020), cook-torrance (the "
-              "smooth lobe of the same roughness) or zirr-kaplanyan (Zirr & Kaplanyan 2016), as `glint render --brdf`.");
+              "smooth lobe of the same roughness), zirr-kaplanyan (Zirr & Kaplanyan 2016) or zirr-kaplanyan-reference "
+              "(the same on the reference shader's slower schedule), as `glint render --brdf`.");
       combo("anti-aliasing", frameControls.antiAliasing, antiAliasingNames);
       tooltip("ggaa+lean: glints filtered by the half vector's variation over the pixel and by the normal map's "
               "slope variance; ggaa: the first only; none: the 2020 model.");

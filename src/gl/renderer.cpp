@@ -86,14 +86,15 @@ scene::Texture halvedBeyond(const scene::Texture& t, int limit) {
 }  // namespace
 
 std::vector<BrdfModel> allBrdfModels() {
-  return {BrdfModel::Glint, BrdfModel::CookTorrance, BrdfModel::ZirrKaplanyan};
+  return {BrdfModel::Glint, BrdfModel::CookTorrance, BrdfModel::ZirrKaplanyan, BrdfModel::ZirrKaplanyanReference};
 }
 
 BrdfModel brdfModelFromString(const std::string& name) {
   if (name == "glint") return BrdfModel::Glint;
   if (name == "cook-torrance") return BrdfModel::CookTorrance;
   if (name == "zirr-kaplanyan") return BrdfModel::ZirrKaplanyan;
-  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance, zirr-kaplanyan)");
+  if (name == "zirr-kaplanyan-reference") return BrdfModel::ZirrKaplanyanReference;
+  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance, zirr-kaplanyan, zirr-kaplanyan-reference)");
 }
 
 const char* toString(BrdfModel model) {
@@ -101,6 +102,7 @@ const char* toString(BrdfModel model) {
     case BrdfModel::Glint: return "glint";
     case BrdfModel::CookTorrance: return "cook-torrance";
     case BrdfModel::ZirrKaplanyan: return "zirr-kaplanyan";
+    case BrdfModel::ZirrKaplanyanReference: return "zirr-kaplanyan-reference";
   }
   return "unknown";
 }
@@ -184,7 +186,8 @@ struct ForwardVariant {
 ShaderProgram forwardProgram(ForwardVariant variant) {
   const char* specular = variant.model == BrdfModel::Glint          ? "SPECULAR_GLINT"
                          : variant.model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
-                                                                    : "SPECULAR_ZIRR_KAPLANYAN";
+                         : variant.model == BrdfModel::ZirrKaplanyan ? "SPECULAR_ZIRR_KAPLANYAN"
+                                                                     : "SPECULAR_ZIRR_KAPLANYAN_REFERENCE";
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
                        {{"SPECULAR_MODEL", specular},
                         {"GLINT_COLOURED_CELLS", variant.colouredCells ? "1" : "0"},

@@ -20,7 +20,9 @@ namespace glint::gl {
 // compiled per light count (LIGHT_COUNT). The path tracer draws them all.
 constexpr int kMaxLights = 8;
 
-enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan };
+// ZirrKaplanyanReference: the same images as ZirrKaplanyan on the reference shader's schedule, slower
+// (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md "Cost"), so that benchmarks measure against both.
+enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan, ZirrKaplanyanReference };
 // Every model, in the order tables list them.
 std::vector<BrdfModel> allBrdfModels();
 BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices

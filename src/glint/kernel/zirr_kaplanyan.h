@@ -134,25 +134,60 @@ GLINT_FN float zirrKaplanyanLogOneMinus(float q) {
   return log(1.0f - q);
 }
 
-// The number of microdetails of a cell that reflect into the eye: an inverse-CDF draw at u of
-// Binomial(n, p), continuous in p (spec 3.9, APPROX_BINOMIAL). n need not be an integer.
-GLINT_FN float zirrKaplanyanBinomial(float u, float n, float p) {
+// The binomial count (spec 3.9, APPROX_BINOMIAL), split into its set-up, which depends on n and p
+// only, and the draw at u: with v = 0 every cell of a grid level has the same n and p, so the
+// tuned schedule sets the law up once per level (zirrKaplanyanLevelSetup) and draws per cell.
+GLINT_CONST int kZirrKaplanyanCountIsConstant = 0;  // the count is `trials`: 0 (no trial, p <= P_MIN) or n (p >= 1)
+GLINT_CONST int kZirrKaplanyanCountIsNormal = 1;    // n p above kZirrKaplanyanGaussianThreshold
+GLINT_CONST int kZirrKaplanyanCountIsScanned = 2;   // the inverse CDF scanned, then the geometric tail
+
+struct ZirrKaplanyanBinomialLaw {
+  int kind;           // kZirrKaplanyanCountIs...
+  float trials;       // constant: the count; normal: n, the clamp; scanned: n' = ceil(n)
+  float mean;         // normal: n p
+  float spread;       // normal: sqrt(n p (1 - p))
+  float pmfLo;        // scanned: P(0) at the lower quantised probability p_lo, and its odds p_lo / (1 - p_lo)
+  float oddsLo;
+  float pmfHi;        // scanned: the same at p_hi (0 when p_hi = 1)
+  float oddsHi;
+  bool hiIsOne;       // scanned: p_hi = 1, every trial succeeds
+  float interpolation;  // scanned: where p' lies between p_hi and p_lo, in powers of 0.9
+  float log2P;        // scanned: log2 p', the geometric tail's ratio
+  float tailMass;     // scanned: 1 - p'^(n' - 18), 1 / C of the spec
+};
+
+// The law of Binomial(n, p) as the draw below uses it; n need not be an integer.
+GLINT_FN ZirrKaplanyanBinomialLaw zirrKaplanyanBinomialLaw(float n, float p) {
+  ZirrKaplanyanBinomialLaw law;
+  law.kind = kZirrKaplanyanCountIsConstant;
+  law.trials = 0.0f;
+  law.mean = 0.0f;
+  law.spread = 0.0f;
+  law.pmfLo = 0.0f;
+  law.oddsLo = 0.0f;
+  law.pmfHi = 0.0f;
+  law.oddsHi = 0.0f;
+  law.hiIsOne = false;
+  law.interpolation = 0.0f;
+  law.log2P = 0.0f;
+  law.tailMass = 0.0f;
   if (!(n > 0.0f)) {
-    return 0.0f;
+    return law;
   }
   float mean = n * p;
   if (mean > kZirrKaplanyanGaussianThreshold) {
-    // Normal approximation; erfinv(2u - 1) has std 1/sqrt(2), so this normal is sqrt(2) narrower
-    // than the binomial (spec 3.9, kept for fidelity).
-    float k = mean + erfinvApprox(-kZirrKaplanyanGaussianClamp + 2.0f * kZirrKaplanyanGaussianClamp * u) *
-                         sqrt(mean * max(1.0f - p, 0.0f));
-    return clamp(k, 0.0f, n);
+    law.kind = kZirrKaplanyanCountIsNormal;
+    law.trials = n;
+    law.mean = mean;
+    law.spread = sqrt(mean * max(1.0f - p, 0.0f));
+    return law;
   }
   if (p >= 1.0f) {
-    return n;
+    law.trials = n;
+    return law;
   }
   if (p <= kZirrKaplanyanMinProbability) {
-    return 0.0f;
+    return law;
   }
   // An integer number of trials with the same mean, and p quantised to the powers of 0.9 on either
   // side (p_lo < p' <= p_hi): the two counts are interpolated like mip levels, so the result is
@@ -160,24 +195,50 @@ GLINT_FN float zirrKaplanyanBinomial(float u, float n, float p) {
   float trials = ceil(n);
   float pTrial = p * n / trials;
   if (pTrial <= kZirrKaplanyanMinProbability) {  // guard: p n / n' can underflow where p did not
-    return 0.0f;
+    return law;
   }
   float t = log2(pTrial) / kZirrKaplanyanLog2QuantisationBase;
   float tFloor = floor(t);
   float pHi = exp2(tFloor * kZirrKaplanyanLog2QuantisationBase);
   float pLo = 0.9f * pHi;
-  bool hiIsOne = tFloor <= 0.0f;  // q = 1: every trial succeeds, the count is n'
-  float pmfLo = exp(trials * zirrKaplanyanLogOneMinus(pLo));
-  float pmfHi = hiIsOne ? 0.0f : exp(trials * zirrKaplanyanLogOneMinus(pHi));
+  law.kind = kZirrKaplanyanCountIsScanned;
+  law.trials = trials;
+  law.hiIsOne = tFloor <= 0.0f;  // q = 1: every trial succeeds, the count is n'
+  law.pmfLo = exp(trials * zirrKaplanyanLogOneMinus(pLo));
+  law.pmfHi = law.hiIsOne ? 0.0f : exp(trials * zirrKaplanyanLogOneMinus(pHi));
+  law.oddsLo = pLo / (1.0f - pLo);
+  law.oddsHi = law.hiIsOne ? 0.0f : pHi / (1.0f - pHi);
+  law.interpolation = t - tFloor;
+  law.log2P = log2(pTrial);
+  law.tailMass = 1.0f - exp2((trials - float(kZirrKaplanyanBinomialScan)) * law.log2P);
+  return law;
+}
+
+// The number of microdetails of a cell that reflect into the eye: an inverse-CDF draw at u of the
+// law, continuous in p (spec 3.9). scanLength: the counts scanned before the tail. The reference
+// scans kZirrKaplanyanBinomialScan whatever n' (a constant trip count, which llvmpipe unrolls and
+// runs on every lane); zirrKaplanyanScanLength gives the same counts with a trip count of its own.
+GLINT_FN float zirrKaplanyanBinomialDraw(ZirrKaplanyanBinomialLaw law, float u, int scanLength) {
+  if (law.kind == kZirrKaplanyanCountIsNormal) {
+    // Normal approximation; erfinv(2u - 1) has std 1/sqrt(2), so this normal is sqrt(2) narrower
+    // than the binomial (spec 3.9, kept for fidelity).
+    float k = law.mean + erfinvApprox(-kZirrKaplanyanGaussianClamp + 2.0f * kZirrKaplanyanGaussianClamp * u) *
+                             law.spread;
+    return clamp(k, 0.0f, law.trials);
+  }
+  if (law.kind == kZirrKaplanyanCountIsConstant) {
+    return law.trials;
+  }
+  float trials = law.trials;
+  float pmfLo = law.pmfLo;
+  float pmfHi = law.pmfHi;
   float cdfLo = pmfLo;
   float cdfHi = pmfHi;
-  float oddsLo = pLo / (1.0f - pLo);
-  float oddsHi = hiIsOne ? 0.0f : pHi / (1.0f - pHi);
   float countLo = trials;
   float countHi = trials;
   bool foundLo = false;
   bool foundHi = false;
-  for (int i = 0; i < kZirrKaplanyanBinomialScan; ++i) {
+  for (int i = 0; i < scanLength; ++i) {
     if (!foundLo && u < cdfLo) {
       countLo = float(i);
       foundLo = true;
@@ -191,28 +252,41 @@ GLINT_FN float zirrKaplanyanBinomial(float u, float n, float p) {
       break;  // the tail below starts from CDF(17)
     }
     float step = (trials - float(i)) / float(i + 1);
-    pmfLo = pmfLo * step * oddsLo;
-    pmfHi = pmfHi * step * oddsHi;
+    pmfLo = pmfLo * step * law.oddsLo;
+    pmfHi = pmfHi * step * law.oddsHi;
     cdfLo += pmfLo;
     cdfHi += pmfHi;
   }
   // Beyond 17 successes: the inverse CDF of a geometric tail with ratio p' truncated at n'
   // (reaching n' at U = 1), where U is u renormalised to the remaining mass. For n' <= 18 the scan
   // covered every count and only rounding is left: n'.
-  float tailLength = trials - float(kZirrKaplanyanBinomialScan);
-  float log2P = log2(pTrial);
-  float tailMass = 1.0f - exp2(tailLength * log2P);  // 1 / C of the spec
+  bool hasTail = trials > float(kZirrKaplanyanBinomialScan);
   if (!foundLo) {
     float tailU = (u - cdfLo) / (1.0f - cdfLo);
-    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * tailMass, 1e-30f)) / log2P;
-    countLo = tailLength > 0.0f ? min(trials, tail) : trials;
+    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * law.tailMass, 1e-30f)) / law.log2P;
+    countLo = hasTail ? min(trials, tail) : trials;
   }
   if (!foundHi) {
     float tailU = (u - cdfHi) / (1.0f - cdfHi);
-    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * tailMass, 1e-30f)) / log2P;
-    countHi = (tailLength > 0.0f && !hiIsOne) ? min(trials, tail) : trials;
+    float tail = float(kZirrKaplanyanBinomialScan) + log2(max(1.0f - tailU * law.tailMass, 1e-30f)) / law.log2P;
+    countHi = (hasTail && !law.hiIsOne) ? min(trials, tail) : trials;
   }
-  return countHi + (countLo - countHi) * (t - tFloor);
+  return countHi + (countLo - countHi) * law.interpolation;
+}
+
+// How many counts the scan must visit for the law to draw what the reference's 18 draw: 0..n' - 1
+// when n' < 18 (the reference goes on, but past n' the pmf is exactly 0, so the CDF and whether u
+// is below it no longer change; a u found by none of 0..n' - 1 has the count n' either way), else
+// the reference's 18. A trip count the compiler cannot fold into a constant, so that llvmpipe does
+// not unroll the loop for every lane but runs it only as long as one of its lanes is still scanning.
+GLINT_FN int zirrKaplanyanScanLength(ZirrKaplanyanBinomialLaw law) {
+  return int(min(law.trials, float(kZirrKaplanyanBinomialScan)));
+}
+
+// The reference's binomial draw in one call (set-up and draw at u, the full scan): the unit the
+// tests check.
+GLINT_FN float zirrKaplanyanBinomial(float u, float n, float p) {
+  return zirrKaplanyanBinomialDraw(zirrKaplanyanBinomialLaw(n, p), u, kZirrKaplanyanBinomialScan);
 }
 
 // Smith's masking in GGX form with a^2 = r_x r_y, as the reference writes it (spec 3 step 4):
@@ -229,10 +303,42 @@ struct ZirrKaplanyanPixel {
   float brdfScale;     // K = Lambda / (4 pi mu_x mu_y): pmf to BRDF
 };
 
+// E0 = rho_d h^2 (spec 3 step 7.5): the microdetails a cell of size h = 2^level expects, in logs.
+GLINT_FN float zirrKaplanyanExpectedBase(float level, ZirrKaplanyanParameters params) {
+  return exp(min(params.logDensity + 1.38629436f * level, kZirrKaplanyanMaxLogCount));
+}
+
+// The binomial's trials for a cell expecting E0 m microdetails: at least one where E0 >= 1 (step 7.5).
+GLINT_FN float zirrKaplanyanTrials(float expected, float expectedBase) {
+  return max(expected, min(1.0f, expectedBase));
+}
+
+// What every cell of a grid level shares. The reference computes all of it per cell; the tuned
+// schedule once per level: E0, and with v = 0 the count's law too, since the count multiplier
+// 1 + 0 erfinv(.) is then exactly 1 and every cell of the level expects E0 and draws from the same
+// Binomial(E0, p) at its own u.
+struct ZirrKaplanyanLevel {
+  float level;          // log2 of the cell size
+  float expectedBase;   // E0 (tuned schedule only)
+  bool sharesLaw;       // tuned schedule and v = 0: every cell expects E0 and draws from `law`
+  ZirrKaplanyanBinomialLaw law;
+};
+
+GLINT_FN ZirrKaplanyanLevel zirrKaplanyanLevel(float level, ZirrKaplanyanPixel pixel, ZirrKaplanyanParameters params,
+                                               bool asReference) {
+  ZirrKaplanyanLevel setup;
+  setup.level = level;
+  setup.expectedBase = asReference ? 0.0f : zirrKaplanyanExpectedBase(level, params);
+  setup.sharesLaw = !asReference && params.variation == 0.0f;
+  setup.law = zirrKaplanyanBinomialLaw(
+      setup.sharesLaw ? zirrKaplanyanTrials(setup.expectedBase, setup.expectedBase) : 0.0f, pixel.probability);
+  return setup;
+}
+
 // The value of one cell (spec 3 steps 7-8): the found / expected microdetail ratio, clamped to
-// R p, times K. (iu, iv) are the cell's integer grid coordinates at cell size 2^level.
-GLINT_FN float zirrKaplanyanCell(int iu, int iv, float level, ZirrKaplanyanPixel pixel,
-                                 ZirrKaplanyanParameters params) {
+// R p, times K. (iu, iv) are the cell's integer grid coordinates at the level's cell size.
+GLINT_FN float zirrKaplanyanCell(int iu, int iv, ZirrKaplanyanLevel setup, ZirrKaplanyanPixel pixel,
+                                 ZirrKaplanyanParameters params, bool asReference) {
   // Coherent ids and the pattern seed, hashed by a bijection: the cell's bin-grid jitter from two
   // lanes, a 64-bit cell key from the other two.
   uvec4 cellHash = pcg4d(uvec4(uint(zirrKaplanyanCoherentIndex(iu)), uint(zirrKaplanyanCoherentIndex(iv)),
@@ -242,30 +348,52 @@ GLINT_FN float zirrKaplanyanCell(int iu, int iv, float level, ZirrKaplanyanPixel
   vec2 binFloor = floor(pixel.binCoordinate + jitter);
   uvec4 binHash = pcg4d(uvec4(uint(zirrKaplanyanCellIndex(binFloor.x)), uint(zirrKaplanyanCellIndex(binFloor.y)),
                               cellHash.z, cellHash.w));
-  // Count multiplier ("randomize glint sizes"), negative values folded into (0, 1) (step 7.4).
-  float multiplier = 1.0f + params.variation * erfinvApprox(-kZirrKaplanyanVariationClamp +
-                                                            2.0f * kZirrKaplanyanVariationClamp * hashToUnitOpen(binHash.x));
-  if (multiplier <= 0.0f) {
-    multiplier = fract(multiplier) / (1.0f - multiplier);
+  float expected = setup.expectedBase;
+  ZirrKaplanyanBinomialLaw law = setup.law;
+  if (!setup.sharesLaw) {
+    // Count multiplier ("randomize glint sizes"), negative values folded into (0, 1) (step 7.4).
+    float multiplier = 1.0f + params.variation * erfinvApprox(-kZirrKaplanyanVariationClamp +
+                                                              2.0f * kZirrKaplanyanVariationClamp * hashToUnitOpen(binHash.x));
+    if (multiplier <= 0.0f) {
+      multiplier = fract(multiplier) / (1.0f - multiplier);
+    }
+    multiplier = max(multiplier, kZirrKaplanyanMinMultiplier);
+    float expectedBase = asReference ? zirrKaplanyanExpectedBase(setup.level, params) : setup.expectedBase;
+    expected = expectedBase * multiplier;
+    law = zirrKaplanyanBinomialLaw(zirrKaplanyanTrials(expected, expectedBase), pixel.probability);
   }
-  multiplier = max(multiplier, kZirrKaplanyanMinMultiplier);
-  // Expected microdetails E0 = rho_d h^2 (step 7.5), in logs: h = 2^level.
-  float expectedBase = exp(min(params.logDensity + 1.38629436f * level, kZirrKaplanyanMaxLogCount));
-  float expected = expectedBase * multiplier;
   if (expected < kZirrKaplanyanMinExpectedCount) {
     return 0.0f;
   }
-  float trials = max(expected, min(1.0f, expectedBase));
-  float found = zirrKaplanyanBinomial(hashToUnitOpen(binHash.y), trials, pixel.probability);
+  float found = zirrKaplanyanBinomialDraw(law, hashToUnitOpen(binHash.y),
+                                          asReference ? kZirrKaplanyanBinomialScan : zirrKaplanyanScanLength(law));
   return min(found / expected, params.dynamicRange * pixel.probability) * pixel.brdfScale;
+}
+
+// Whether every cell's count is certainly 0, so that the walk would only sum zeros: the tuned
+// schedule's early exit, the counterpart of the glint renderer's negligible-slope exit but exact.
+// Below p = P_MIN a scanned count is 0 (zirrKaplanyanBinomialLaw), and the only other branch, the
+// normal one, needs n p > 5, while n is at most max(E0 m, 1) with E0 <= e^69 < 1e30 and the
+// multiplier m <= 1 + v erfinv(0.999) = 1 + 2.33 v (3 v: a margin for rounding).
+GLINT_FN bool zirrKaplanyanNoCellReflects(float probability, ZirrKaplanyanParameters params) {
+  return probability <= kZirrKaplanyanMinProbability &&
+         probability * (1e30f * (1.0f + 3.0f * params.variation)) <= kZirrKaplanyanGaussianThreshold;
 }
 
 // The reference's glints(): ZK16 for one pixel footprint and one directional light (spec 3),
 // without the output scale (a quarter of Cook-Torrance's f on average). uv and its screen-space
 // derivatives (the columns of J), wo and wi in the local frame (z = normal, x = +u). cellVisits:
 // the cells visited, both levels together (at most kZirrKaplanyanMaxCellVisits).
-GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
-                                          ZirrKaplanyanParameters params, GLINT_OUT(int) cellVisits) {
+//
+// asReference: the schedule of the reference shader (every cell sets up its own E0 and binomial
+// law, the binomial scan has the constant trip count 18, no early exit), kept to measure against.
+// Otherwise the tuned schedule (docs/zirr-kaplanyan.md, "Cost"): the same arithmetic on the same
+// values in the same order wherever a value is used, so the result is bit for bit the same
+// (ZirrKaplanyan.TunedScheduleIsBitIdenticalToTheReference), with per-level set-up, scan bounds
+// of their own and the early exit where no cell can reflect.
+GLINT_FN float zirrKaplanyanGlintsScheduled(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
+                                            ZirrKaplanyanParameters params, bool asReference,
+                                            GLINT_OUT(int) cellVisits) {
   cellVisits = 0;
   // Step 0: gating.
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
@@ -294,6 +422,9 @@ GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 
                    ? params.searchConeAngle * params.searchConeAngle / (4.0f * cosLightHalf * h.z)
                    : 0.0f;
   pixel.probability = min(p0 + (1.0f - p0) * clamp(cone, 0.0f, 1.0f), 1.0f);
+  if (!asReference && zirrKaplanyanNoCellReflects(pixel.probability, params)) {
+    return 0.0f;
+  }
 
   // Step 1: M = J^-1 through the adjugate of J / s, s its largest entry (det cancels in the skew
   // and stays out of uvPP's division; the scale keeps det finite for any finite footprint):
@@ -338,6 +469,7 @@ GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 
     float level = level0 + float(j);
     float hCell = ldexp(1.0f, int(level));
     float levelWeight = 1.0f - abs(level - lod);
+    ZirrKaplanyanLevel levelSetup = zirrKaplanyanLevel(level, pixel, params, asReference);
     // Range of cell corners: the box shrunk by half a cell, never past its centre.
     float loL = min(yL - 0.5f * boxL + 0.5f * hCell, yL);
     float hiL = max(yL + 0.5f * boxL - 0.5f * hCell, yL);
@@ -366,7 +498,8 @@ GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 
           int iL = zirrKaplanyanCellIndex(indexL);
           int iS = zirrKaplanyanCellIndex(indexS);
           weightSum += weight;
-          valueSum += weight * zirrKaplanyanCell(longIsU ? iL : iS, longIsU ? iS : iL, level, pixel, params);
+          valueSum += weight * zirrKaplanyanCell(longIsU ? iL : iS, longIsU ? iS : iL, levelSetup, pixel, params,
+                                                 asReference);
         }
         indexS += 1.0f;
         cellVisits += 1;
@@ -376,6 +509,12 @@ GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 
     result += levelWeight * (weightSum > 0.0f ? valueSum / weightSum : 0.0f);
   }
   return result;
+}
+
+// The tuned schedule: the CPU BSDF's and the renderer's `zirr-kaplanyan`.
+GLINT_FN float zirrKaplanyanGlintsCounted(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
+                                          ZirrKaplanyanParameters params, GLINT_OUT(int) cellVisits) {
+  return zirrKaplanyanGlintsScheduled(uv, duvdx, duvdy, wo, wi, params, false, cellVisits);
 }
 
 GLINT_FN float zirrKaplanyanGlints(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi, ZirrKaplanyanParameters params) {
@@ -388,6 +527,14 @@ GLINT_FN float zirrKaplanyanGlints(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec
 GLINT_FN float zirrKaplanyanReflectance(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
                                         ZirrKaplanyanParameters params) {
   return kZirrKaplanyanOutputScale * zirrKaplanyanGlints(uv, duvdx, duvdy, wo, wi, params);
+}
+
+// The same value on the reference shader's schedule: the renderer's `zirr-kaplanyan-reference`,
+// timed by `glint bench` next to the tuned one.
+GLINT_FN float zirrKaplanyanReferenceReflectance(vec2 uv, vec2 duvdx, vec2 duvdy, vec3 wo, vec3 wi,
+                                                 ZirrKaplanyanParameters params) {
+  int cellVisits;
+  return kZirrKaplanyanOutputScale * zirrKaplanyanGlintsScheduled(uv, duvdx, duvdy, wo, wi, params, true, cellVisits);
 }
 
 GLINT_KERNEL_END
