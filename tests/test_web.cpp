@@ -168,7 +168,10 @@ ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
       EXPECT_EQ(report["steps"][s]["error"], "") << name << ": the page says so";
     }
     const std::vector<char> page = job.readFile(name + ".rgba");
-    ASSERT_EQ(page.size(), static_cast<std::size_t>(size) * size * 4) << name;
+    if (page.size() != static_cast<std::size_t>(size) * size * 4) {
+      ADD_FAILURE() << name << ": no frame from the page";
+      continue;
+    }
     const ImageRgb8 desktop = desktopImage(name, size);
     ImageDifference d;
     long sum = 0;
@@ -176,7 +179,7 @@ ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
       for (int x = 0; x < size; ++x) {
         const auto* p = reinterpret_cast<const unsigned char*>(&page[(static_cast<std::size_t>(y) * size + x) * 4]);
         const auto& q = desktop.at(x, y);
-        const int diff[3] = {std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])};
+        const int diff[3] = {std::abs(p[0] - q.r), std::abs(p[1] - q.g), std::abs(p[2] - q.b)};
         const int largest = std::max({diff[0], diff[1], diff[2]});
         d.largest = std::max(d.largest, largest);
         d.pixelsDiffering += largest > 0;
@@ -201,12 +204,13 @@ TEST(PageWeb, BuiltinScenesOnLlvmpipeAreTheDesktopRenderersImages) {
   EXPECT_EQ(d.pixelsDiffering, 0);
 }
 
-// A broken glTF dropped on the page: the page names the file and the problem, keeps the scene it
-// had and draws it on; a good one dropped after it is shown.
+// A broken glTF (its JSON cut short) dropped on the page: the page names the file and the problem
+// (the line `glint render` prints), keeps the scene it had, and nothing is logged as an error or
+// thrown (BrowserJob::run); a good one dropped after it is shown.
 TEST(PageWeb, ABrokenGltfDroppedOnThePageIsNamedAndThePreviousSceneKept) {
   SKIP_WITHOUT_BROWSER();
   BrowserJob job("drop");
-  const std::string broken = R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 7}}]}]})";
+  const std::string broken = R"({"asset": {"version": "2.0"}, "scenes": [)";  // cut short
   job.writeFile("broken.gltf", broken.data(), broken.size());
   const std::vector<std::byte> good = scene::encodeGltf(scene::makeBuiltinScene("sphere"), scene::GltfEncoding::Binary);
   job.writeFile("good.glb", good.data(), good.size());
@@ -218,7 +222,7 @@ TEST(PageWeb, ABrokenGltfDroppedOnThePageIsNamedAndThePreviousSceneKept) {
   const json& dropBroken = report["steps"][1];
   const std::string error = dropBroken["error"];
   EXPECT_EQ(error.rfind("broken.gltf: ", 0), 0u) << error;
-  EXPECT_NE(error.find("accessor"), std::string::npos) << error;  // the problem: accessor 7 does not exist
+  EXPECT_NE(error.find("unexpected end of input"), std::string::npos) << error;  // the problem
   EXPECT_EQ(dropBroken["after"], "carpaint");
   const json& dropGood = report["steps"][2];
   EXPECT_EQ(dropGood["error"], "");

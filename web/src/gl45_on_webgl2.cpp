@@ -1,5 +1,6 @@
 // The OpenGL 4.5 calls of the desktop renderer (web/include/glad/gl.h) in OpenGL ES 3.0 (WebGL2),
-// by binding each object to edit it. Three things WebGL2 lacks are emulated:
+// by binding each object to edit it and binding back what was bound, so that, as with direct state
+// access, no binding changes. Three things WebGL2 lacks are emulated:
 //   - buffer textures: the buffer's texels, row after row, in a 2D texture kTexelBufferWidth wide
 //     (the kernel's prelude reads them so under GL_ES);
 //   - three-component float textures (RGB32F) cannot have mipmaps generated (they are not
@@ -51,7 +52,30 @@ void bindBuffer(GLenum target, GLuint buffer) {
   }
 }
 
-void bindTexture2D(GLuint texture) { glBindTexture(GL_TEXTURE_2D, texture); }
+// Runs `edit` with `texture` bound to the active unit, then binds back the texture that was there:
+// direct state access leaves every binding as it is, and the renderer relies on that (it creates a
+// texture between binding a material's textures and drawing).
+template <typename Edit>
+void withTexture2D(GLuint texture, Edit edit) {
+  GLint previous = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &previous);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  edit();
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous));
+}
+
+// The same for the vertex array and the array buffer.
+template <typename Edit>
+void withVertexArray(GLuint array, Edit edit) {
+  GLint previousArray = 0;
+  GLint previousBuffer = 0;
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previousArray);
+  glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &previousBuffer);
+  glBindVertexArray(array);
+  edit();
+  glBindVertexArray(static_cast<GLuint>(previousArray));
+  glBindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(previousBuffer));
+}
 
 // Runs `edit` with `framebuffer` bound, then binds back the one that was.
 template <typename Edit>
@@ -83,35 +107,32 @@ void glCreateTextures(GLenum, GLsizei n, GLuint* textures) {
 }
 
 void glTextureStorage2D(GLuint texture, GLsizei levels, GLenum internalFormat, GLsizei width, GLsizei height) {
-  bindTexture2D(texture);
   textureSizes[texture] = {width, height};
   if (internalFormat == GL_RGB32F) internalFormat = GL_RGBA32F;
-  glTexStorage2D(GL_TEXTURE_2D, levels, internalFormat, width, height);
+  withTexture2D(texture, [&] { glTexStorage2D(GL_TEXTURE_2D, levels, internalFormat, width, height); });
 }
 
 void glTextureSubImage2D(GLuint texture, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
                          GLenum type, const void* pixels) {
-  bindTexture2D(texture);
   // RGB floats go into RGBA32F textures only (RGB32F is stored so): ES 3.0 takes RGBA floats there.
+  std::vector<float> rgba;
   if (format == GL_RGB && type == GL_FLOAT) {
     const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    std::vector<float> rgba(count * 4, 1.0f);
+    rgba.assign(count * 4, 1.0f);
     const float* rgb = static_cast<const float*>(pixels);
     for (std::size_t i = 0; i < count; ++i) std::copy_n(rgb + 3 * i, 3, rgba.data() + 4 * i);
-    glTexSubImage2D(GL_TEXTURE_2D, level, x, y, width, height, GL_RGBA, GL_FLOAT, rgba.data());
-    return;
+    format = GL_RGBA;
+    pixels = rgba.data();
   }
-  glTexSubImage2D(GL_TEXTURE_2D, level, x, y, width, height, format, type, pixels);
+  withTexture2D(texture, [&] { glTexSubImage2D(GL_TEXTURE_2D, level, x, y, width, height, format, type, pixels); });
 }
 
 void glGenerateTextureMipmap(GLuint texture) {
-  bindTexture2D(texture);
-  glGenerateMipmap(GL_TEXTURE_2D);
+  withTexture2D(texture, [] { glGenerateMipmap(GL_TEXTURE_2D); });
 }
 
 void glTextureParameteri(GLuint texture, GLenum name, GLint value) {
-  bindTexture2D(texture);
-  glTexParameteri(GL_TEXTURE_2D, name, value);
+  withTexture2D(texture, [&] { glTexParameteri(GL_TEXTURE_2D, name, value); });
 }
 
 void glBindTextureUnit(GLuint unit, GLuint texture) {
@@ -129,13 +150,14 @@ void glTextureBuffer(GLuint texture, GLenum internalFormat, GLuint buffer) {
   const std::size_t texels = bytes.size() / static_cast<std::size_t>(bytesPerTexel);
   const std::size_t rows = std::max<std::size_t>(1, (texels + kTexelBufferWidth - 1) / kTexelBufferWidth);
   bytes.resize(rows * kTexelBufferWidth * static_cast<std::size_t>(bytesPerTexel), 0);
-  bindTexture2D(texture);
-  glTexStorage2D(GL_TEXTURE_2D, 1, internalFormat, kTexelBufferWidth, static_cast<GLsizei>(rows));
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexelBufferWidth, static_cast<GLsizei>(rows), format, type, bytes.data());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  withTexture2D(texture, [&] {
+    glTexStorage2D(GL_TEXTURE_2D, 1, internalFormat, kTexelBufferWidth, static_cast<GLsizei>(rows));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kTexelBufferWidth, static_cast<GLsizei>(rows), format, type, bytes.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  });
 }
 
 void glGetTextureImage(GLuint texture, GLint level, GLenum format, GLenum type, GLsizei, void* pixels) {
@@ -168,15 +190,11 @@ void glVertexArrayVertexBuffer(GLuint array, GLuint binding, GLuint buffer, GLin
 }
 
 void glVertexArrayElementBuffer(GLuint array, GLuint buffer) {
-  glBindVertexArray(array);
-  bindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer);
-  glBindVertexArray(0);
+  withVertexArray(array, [&] { bindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffer); });
 }
 
 void glEnableVertexArrayAttrib(GLuint array, GLuint index) {
-  glBindVertexArray(array);
-  glEnableVertexAttribArray(index);
-  glBindVertexArray(0);
+  withVertexArray(array, [&] { glEnableVertexAttribArray(index); });
 }
 
 void glVertexArrayAttribFormat(GLuint array, GLuint index, GLint size, GLenum type, GLboolean normalized,
@@ -189,12 +207,11 @@ void glVertexArrayAttribBinding(GLuint array, GLuint index, GLuint binding) {
   const VertexArrayState& state = vertexArrays[array];
   const VertexBinding& b = state.bindings.at(binding);
   const AttributeFormat& f = state.formats.at(index);
-  glBindVertexArray(array);
-  bindBuffer(GL_ARRAY_BUFFER, b.buffer);
-  glVertexAttribPointer(index, f.size, f.type, f.normalized, b.stride,
-                        reinterpret_cast<const void*>(static_cast<std::uintptr_t>(b.offset + f.relativeOffset)));
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  withVertexArray(array, [&] {
+    bindBuffer(GL_ARRAY_BUFFER, b.buffer);
+    glVertexAttribPointer(index, f.size, f.type, f.normalized, b.stride,
+                          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(b.offset + f.relativeOffset)));
+  });
 }
 
 void glCreateFramebuffers(GLsizei n, GLuint* framebuffers) { glGenFramebuffers(n, framebuffers); }
@@ -234,8 +251,11 @@ void glClearNamedFramebufferfi(GLuint framebuffer, GLenum buffer, GLint drawBuff
 void glCreateRenderbuffers(GLsizei n, GLuint* renderbuffers) { glGenRenderbuffers(n, renderbuffers); }
 
 void glNamedRenderbufferStorage(GLuint renderbuffer, GLenum internalFormat, GLsizei width, GLsizei height) {
+  GLint previous = 0;
+  glGetIntegerv(GL_RENDERBUFFER_BINDING, &previous);
   glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
   glRenderbufferStorage(GL_RENDERBUFFER, internalFormat, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(previous));
 }
 
 void glintWebGetIntegerv(GLenum name, GLint* value) {
