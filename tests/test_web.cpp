@@ -229,5 +229,19 @@ TEST(PageWeb, ABrokenGltfDroppedOnThePageIsNamedAndThePreviousSceneKept) {
   EXPECT_EQ(dropGood["after"], "good.glb");
 }
 
+// The sliders of `glint view` on the page: each one, moved, changes the frame (the sphere: one glint
+// material, one light).
+TEST(PageWeb, EverySliderChangesTheFrame) {
+  SKIP_WITHOUT_BROWSER();
+  BrowserJob job("sliders");
+  job.steps.push_back({{"kind", "sliders"}, {"name", "sphere"}, {"width", 64}, {"height", 64}});
+  const json report = job.run("llvmpipe");
+  ASSERT_EQ(report["steps"].size(), 1u) << report.dump();
+  const json& changed = report["steps"][0]["changed"];
+  EXPECT_EQ(changed.size(), 8u) << changed.dump();  // 5 material sliders, 3 light sliders
+  for (const auto& [slider, frameChanged] : changed.items()) EXPECT_TRUE(frameChanged.get<bool>()) << slider;
+  EXPECT_EQ(report["steps"][0]["error"], "");
+}
+
 }  // namespace
 }  // namespace glint

@@ -8,6 +8,7 @@
 //   {"kind": "scene", "name": "sphere", "width": 128, "height": 128, "output": "sphere.rgba"}
 //   {"kind": "time", "name": "sphere", "width": 256, "height": 256, "frames": 5}
 //   {"kind": "drop", "file": "broken.gltf"}
+//   {"kind": "sliders", "name": "sphere", "width": 64, "height": 64}
 //   {"kind": "screenshot", "output": "page.png", "scene": "sphere"}
 import { readFile, writeFile } from 'node:fs/promises';
 import { createServer } from 'node:http';
@@ -116,6 +117,30 @@ try {
         return { error: error.textContent, before, after: window.glint.page.sceneName };
       }, bytes, path.basename(step.file));
       report.steps.push({ kind: 'drop', file: step.file, ...result });
+    } else if (step.kind === 'sliders') {
+      // Each slider of the page's glint material and light moved as a user would (an input event),
+      // one at a time from the scene as loaded: whether the frame changed.
+      const result = await page.evaluate((name, width, height) => {
+        const { page: p, loadBuiltin, drawFrame } = window.glint;
+        const frame = () => {
+          drawFrame();
+          return p.renderer.readFrame(width, height);
+        };
+        p.width = document.querySelector('#view').width = width;
+        p.height = document.querySelector('#view').height = height;
+        const changed = {};
+        for (const input of document.querySelectorAll('#material-controls input, #light-controls input')) {
+          loadBuiltin(name);
+          const before = frame();
+          const label = input.parentElement.textContent.trim();
+          input.value = Number(input.min) + 0.3 * (Number(input.max) - Number(input.min));
+          input.dispatchEvent(new Event('input'));
+          const after = frame();
+          changed[label] = before.some((v, i) => v !== after[i]);
+        }
+        return { changed, error: document.querySelector('#error').textContent };
+      }, step.name, step.width, step.height);
+      report.steps.push({ kind: 'sliders', name: step.name, ...result });
     } else if (step.kind === 'screenshot') {
       await page.evaluate((name) => {
         const { page: p, loadBuiltin, drawFrame } = window.glint;

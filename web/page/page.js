@@ -4,8 +4,6 @@
 'use strict';
 
 const SCENES = ['sphere', 'parquet', 'carpaint', 'showroom', 'grazing-smooth', 'grazing-rough', 'arctic'];
-const MATERIAL_FIELDS = 5;  // alpha x, alpha y, rho, log density, relative area
-const LIGHT_FIELDS = 3;     // azimuth, elevation, strength
 const RADIANS_PER_PIXEL = 0.01;  // as the desktop viewer's orbit
 
 const $ = (selector) => document.querySelector(selector);
@@ -113,25 +111,28 @@ function showValue(input) {
   input.previousElementSibling.textContent = Math.abs(value) >= 10 ? value.toFixed(1) : value.toFixed(3);
 }
 
-// The sliders of the chosen glint material and light, read from the renderer's controls.
-function syncMaterialSliders() {
-  const r = page.renderer;
-  const material = Number($('#material').value);
-  $('#material-controls').disabled = !(material >= 0);
-  for (const input of $('#material-controls').querySelectorAll('input')) {
-    if (material >= 0) input.value = r.getMaterial(material, Number(input.dataset.field));
-    showValue(input);
+// A fieldset of sliders editing one of the renderer's controls (a glint material's or a light's):
+// `chooser` picks which, get and set read and write a field. Returns the function that reads the
+// chosen one's fields into the sliders.
+function controlSliders(fieldset, chooser, get, set) {
+  const inputs = [...$(fieldset).querySelectorAll('input')];
+  const sync = () => {
+    const chosen = Number($(chooser).value);
+    $(fieldset).disabled = !(chosen >= 0);
+    for (const input of inputs) {
+      if (chosen >= 0) input.value = get(chosen, Number(input.dataset.field));
+      showValue(input);
+    }
+  };
+  for (const input of inputs) {
+    input.addEventListener('input', () => {
+      set(Number($(chooser).value), Number(input.dataset.field), Number(input.value));
+      showValue(input);
+      redraw();
+    });
   }
-}
-
-function syncLightSliders() {
-  const r = page.renderer;
-  const light = Number($('#light').value);
-  $('#light-controls').disabled = !(light >= 0);
-  for (const input of $('#light-controls').querySelectorAll('input')) {
-    if (light >= 0) input.value = r.getLight(light, Number(input.dataset.field));
-    showValue(input);
-  }
+  $(chooser).addEventListener('change', sync);
+  return sync;
 }
 
 // After a scene is loaded: its glint materials and lights in the choosers.
@@ -148,8 +149,8 @@ function sceneLoaded(name) {
   // Intensity up to ten times the light's own, as in the desktop viewer.
   const strength = lights.length ? r.getLight(Number($('#light').value), 2) : 0;
   $('#light-controls input[data-field="2"]').max = strength > 0 ? 10 * strength : 100;
-  syncMaterialSliders();
-  syncLightSliders();
+  page.syncMaterialSliders();
+  page.syncLightSliders();
   showError('');
   redraw();
 }
@@ -186,22 +187,8 @@ function wireControls() {
   $('#aa').addEventListener('change', (e) => { r.setAntiAliasing(e.target.value); redraw(); });
   $('#exposure').addEventListener('input', (e) => { r.setExposure(Number(e.target.value)); showValue(e.target); redraw(); });
   showValue($('#exposure'));
-  $('#material').addEventListener('change', syncMaterialSliders);
-  $('#light').addEventListener('change', syncLightSliders);
-  for (const input of $('#material-controls').querySelectorAll('input')) {
-    input.addEventListener('input', () => {
-      r.setMaterial(Number($('#material').value), Number(input.dataset.field), Number(input.value));
-      showValue(input);
-      redraw();
-    });
-  }
-  for (const input of $('#light-controls').querySelectorAll('input')) {
-    input.addEventListener('input', () => {
-      r.setLight(Number($('#light').value), Number(input.dataset.field), Number(input.value));
-      showValue(input);
-      redraw();
-    });
-  }
+  page.syncMaterialSliders = controlSliders('#material-controls', '#material', r.getMaterial, r.setMaterial);
+  page.syncLightSliders = controlSliders('#light-controls', '#light', r.getLight, r.setLight);
 
   // Orbit with one pointer (mouse or finger), zoom with two (pinch) or the wheel.
   const canvas = $('#view');
