@@ -135,7 +135,7 @@ TEST(PageWeb, DictionaryIsGlintsDefault) {
 }
 
 // The desktop renderer's 8-bit image of a built-in scene (what `glint render` writes), RGB.
-ImageRgb8 desktopImage(const std::string& name, int size) {
+ImageRgb8 desktopImage(const std::string& name, int size, const std::string& brdf) {
   useGlContext();
   const scene::Scene scene = scene::makeBuiltinScene(name);
   gl::Renderer renderer(scene, defaultDictionary());
@@ -143,6 +143,7 @@ ImageRgb8 desktopImage(const std::string& name, int size) {
   frame.width = size;
   frame.height = size;
   frame.camera = scene.cameras.at("default");
+  frame.brdf = gl::brdfModelFromString(brdf);
   const ImageRgbF radiance = gl::renderSupersampled(renderer, frame, 1);
   return gl::DisplayPass().encode(radiance, scene.exposure);
 }
@@ -153,26 +154,34 @@ struct ImageDifference {
   double meanAbsolute = 0.0;  // over the channels
 };
 
-// Every built-in scene in the page at 128 x 128 against the desktop renderer on llvmpipe.
+// Every built-in scene in the page against the desktop renderer on llvmpipe, with the glint BRDF;
+// and the sphere and the car paint with the other two (the Zirr & Kaplanyan program uses the
+// prelude's GLSL ES findLSB and ldexp).
 ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
-  const std::vector<std::string> names = scene::builtinSceneNames();
+  std::vector<std::pair<std::string, std::string>> views;  // scene, BRDF
+  for (const std::string& name : scene::builtinSceneNames()) views.emplace_back(name, "glint");
+  for (const char* brdf : {"cook-torrance", "zirr-kaplanyan"}) {
+    views.emplace_back("sphere", brdf);
+    views.emplace_back("carpaint", brdf);
+  }
   BrowserJob job("scenes-" + backend);
-  for (const std::string& name : names) {
-    job.steps.push_back({{"kind", "scene"}, {"name", name}, {"width", size}, {"height", size}, {"output", name + ".rgba"}});
+  for (const auto& [name, brdf] : views) {
+    job.steps.push_back({{"kind", "scene"}, {"name", name}, {"brdf", brdf}, {"width", size}, {"height", size},
+                         {"output", name + "-" + brdf + ".rgba"}});
   }
   const json report = job.run(backend);
   ImageDifference total;
-  for (std::size_t s = 0; s < names.size(); ++s) {
-    const std::string& name = names[s];
+  for (std::size_t s = 0; s < views.size(); ++s) {
+    const auto& [name, brdf] = views[s];
     if (report.contains("steps") && report["steps"].size() > s) {
-      EXPECT_EQ(report["steps"][s]["error"], "") << name << ": the page says so";
+      EXPECT_EQ(report["steps"][s]["error"], "") << name << ", " << brdf << ": the page says so";
     }
-    const std::vector<char> page = job.readFile(name + ".rgba");
+    const std::vector<char> page = job.readFile(name + "-" + brdf + ".rgba");
     if (page.size() != static_cast<std::size_t>(size) * size * 4) {
       ADD_FAILURE() << name << ": no frame from the page";
       continue;
     }
-    const ImageRgb8 desktop = desktopImage(name, size);
+    const ImageRgb8 desktop = desktopImage(name, size, brdf);
     ImageDifference d;
     long sum = 0;
     for (int y = 0; y < size; ++y) {
@@ -187,8 +196,9 @@ ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
       }
     }
     d.meanAbsolute = static_cast<double>(sum) / (3.0 * size * size);
-    std::printf("%s, %s, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255, %.4f/255 on "
-                "average\n", backend.c_str(), name.c_str(), size, size, d.pixelsDiffering, d.largest, d.meanAbsolute);
+    std::printf("%s, %s, %s, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255, %.4f/255 on "
+                "average\n", backend.c_str(), name.c_str(), brdf.c_str(), size, size, d.pixelsDiffering, d.largest,
+                d.meanAbsolute);
     total.largest = std::max(total.largest, d.largest);
     total.pixelsDiffering += d.pixelsDiffering;
     total.meanAbsolute = std::max(total.meanAbsolute, d.meanAbsolute);

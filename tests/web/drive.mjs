@@ -1,11 +1,13 @@
 // Drives the page (web/page) in the system's headless chromium for tests/test_web.cpp and
 // scripts/web-bench: serves the built site and the job's folder on 127.0.0.1, runs the job's steps
 // in the page and writes their results into the job's folder, with report.json saying what each
-// step gave and every error the page logged or threw.
+// step gave, every error the page logged or threw, and when its first frame was drawn (ms from
+// the start of loading).
 //   node tests/web/drive.mjs SITE_DIR JOB_DIR swiftshader|llvmpipe
 // JOB_DIR/job.json: {"steps": [...]}, each step one of
 //   {"kind": "kernel", "inputs": "in.bin", "count": N, "filtered": false, "output": "out.bin"}
 //   {"kind": "scene", "name": "sphere", "width": 128, "height": 128, "output": "sphere.rgba"}
+//     (and "brdf": "cook-torrance" or "zirr-kaplanyan"; glint by default)
 //   {"kind": "time", "name": "sphere", "width": 256, "height": 256, "frames": 5}
 //   {"kind": "drop", "file": "broken.gltf"}
 //   {"kind": "sliders", "name": "sphere", "width": 64, "height": 64}
@@ -64,6 +66,11 @@ try {
   await page.setViewport({ width: 900, height: 620 });
   await page.goto(`${address}/index.html`, { waitUntil: 'load' });
   await page.evaluate(() => window.glint.ready);
+  // The first frame, drawn on the next animation frame after the page is ready.
+  report.firstFrameAt = await page.evaluate(async () => {
+    while (window.glint.page.firstFrameAt === null) await new Promise((resolve) => setTimeout(resolve, 20));
+    return window.glint.page.firstFrameAt;
+  });
 
   for (const step of job.steps) {
     if (step.kind === 'kernel') {
@@ -79,10 +86,11 @@ try {
       await writeFile(path.join(jobDir, step.output), Buffer.from(output, 'base64'));
       report.steps.push({ kind: 'kernel', output: step.output });
     } else if (step.kind === 'scene' || step.kind === 'time') {
-      const result = await page.evaluate((name, width, height, frames, read) => {
+      const result = await page.evaluate((name, width, height, frames, read, brdf) => {
         const { page: p, loadBuiltin, drawFrame } = window.glint;
         p.width = document.querySelector('#view').width = width;
         p.height = document.querySelector('#view').height = height;
+        p.renderer.setBrdf(brdf);
         loadBuiltin(name);
         const ms = [];
         for (let i = 0; i < frames; ++i) {
@@ -95,7 +103,7 @@ try {
           for (let i = 0; i < rgba.length; i += 0x8000) pixels += String.fromCharCode(...rgba.subarray(i, i + 0x8000));
         }
         return { ms, pixels: btoa(pixels), error: document.querySelector('#error').textContent };
-      }, step.name, step.width, step.height, step.frames || 1, step.kind === 'scene');
+      }, step.name, step.width, step.height, step.frames || 1, step.kind === 'scene', step.brdf || 'glint');
       if (step.kind === 'scene') await writeFile(path.join(jobDir, step.output), Buffer.from(result.pixels, 'base64'));
       report.steps.push({ kind: step.kind, name: step.name, ms: result.ms, error: result.error });
     } else if (step.kind === 'drop') {

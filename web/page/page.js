@@ -74,6 +74,7 @@ const page = {
   sceneName: '',
   frameMs: 0,
   pending: false,
+  firstFrameAt: null,
   // The canvas's drawing size: its attributes (512 x 512), or ?size=WxH.
   width: $('#view').width,
   height: $('#view').height,
@@ -99,6 +100,8 @@ function drawFrame() {
   page.renderer.render(page.width, page.height);
   page.renderer.finish();
   page.frameMs = performance.now() - start;
+  // When the page's first frame was drawn, in ms from the start of its loading.
+  if (page.firstFrameAt === null) page.firstFrameAt = performance.now();
   $('#status').textContent = `${page.sceneName}: ${page.width}x${page.height}, ${page.frameMs.toFixed(0)} ms a frame`;
 }
 
