@@ -61,10 +61,8 @@ struct BrowserJob {
   fs::path folder;
   json steps = json::array();
 
-  explicit BrowserJob(const std::string& name) : folder(fs::temp_directory_path() / ("glint-web-" + name)) {
-    fs::remove_all(folder);
-    fs::create_directories(folder);
-  }
+  // In the test process's own temporary folder: ctest runs tests side by side.
+  explicit BrowserJob(const std::string& name) : folder(temporaryFolder("web-" + name)) {}
   ~BrowserJob() { fs::remove_all(folder); }
 
   void writeFile(const std::string& name, const void* data, std::size_t size) const {
