@@ -21,13 +21,13 @@ struct DictionaryView {
   int mipRowLength;  // texels of all mip levels of one distribution
 };
 
-layout(binding = 0) uniform samplerBuffer uGlintDictionary;
+layout(binding = 0) uniform GLINT_TEXEL_BUFFER uGlintDictionary;
 uniform ivec3 uGlintDictionaryShape;  // L, N, R
 uniform float uGlintDictionaryAlpha;  // alpha_d
 #if GLINT_FILTERED
 // The mip chain: RGBA16F texels (p_m[k], p_m[k+1], q_m[k], q_m[k+1]), q_m the next level at level
 // m's positions, row after row as the C++ DictionaryView's filteredTexels.
-layout(binding = 10) uniform samplerBuffer uGlintFilteredDictionary;
+layout(binding = 10) uniform GLINT_TEXEL_BUFFER uGlintFilteredDictionary;
 uniform ivec2 uGlintDictionaryMips;  // numMips, mipRowLength
 #endif
 
@@ -48,7 +48,7 @@ DictionaryView glintDictionary() {
 }
 
 vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
-  return texelFetch(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
+  return glintTexelBufferFetch(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
 }
 
 // Where level m of the mip chain starts in a distribution's row (as in prelude.h).
@@ -58,7 +58,7 @@ int glintMipOffset(int texelsPerDistribution, int mip) {
 
 #if GLINT_FILTERED
 vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
-  return texelFetch(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength + index);
+  return glintTexelBufferFetch(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength + index);
 }
 #else
 // Unfiltered programs never read the mip chain; the kernel's filtered lookup, compiled but not

@@ -1,19 +1,9 @@
 // Evaluates the shared kernel for a buffer of inputs: the GPU half of the CPU-versus-GLSL test
-// (tests/test_gl_kernel.cpp). Same functions, same argument order as glint::GlintBsdf. With SLOPE_SET
-// defined it evaluates the renderer's several-slopes walk instead; with GLINT_FILTERED 1 the P-SDF
-// is the anti-aliased one (glintFilteredP22) at the case's slope derivatives.
-#include "glint_brdf.h"
+// (tests/test_gl_kernel.cpp). Each case as kernel_eval.glsl evaluates it; with SLOPE_SET defined
+// it evaluates the renderer's several-slopes walk instead.
+#include "kernel_eval.glsl"
 
 layout(local_size_x = 64) in;
-
-struct KernelInput {
-  vec4 uvAndDuvdx;           // uv.xy, duvdx.xy
-  vec4 duvdyAndAlpha;        // duvdy.xy, alpha.xy
-  vec4 woAndLogDensity;      // wo.xyz, log density
-  vec4 wiAndRelativeArea;    // wi.xyz, relative area
-  vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
-  vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
-};
 
 layout(std430, binding = 0) readonly buffer Inputs { KernelInput inputs[]; };
 #ifdef SLOPE_SET
@@ -31,39 +21,20 @@ layout(std430, binding = 1) writeonly buffer Outputs { vec4 outputs[]; };  // f,
 
 uniform uint uCount;
 
-// Case i's parameters, footprint and directions.
-void readCase(uint i, out GlintParameters params, out vec2 uv, out vec2 duvdx, out vec2 duvdy, out vec3 wo,
-              out vec3 wi) {
-  KernelInput data = inputs[i];
-  params.alpha = data.duvdyAndAlpha.zw;
-  params.logDensity = data.woAndLogDensity.w;
-  params.relativeArea = data.wiAndRelativeArea.w;
-  params.densityRandomisation = data.randomisationEtc.x;
-  params.maxAnisotropy = data.randomisationEtc.y;
-  params.patternSeed = uint(data.randomisationEtc.z);
-  params.rho = data.randomisationEtc.w;
-  params.colouredCells = false;
-  uv = data.uvAndDuvdx.xy;
-  duvdx = data.uvAndDuvdx.zw;
-  duvdy = data.duvdyAndAlpha.xy;
-  wo = data.woAndLogDensity.xyz;
-  wi = data.wiAndRelativeArea.xyz;
-}
-
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uCount) {
     return;
   }
-  GlintParameters params;
-  vec2 uv, duvdx, duvdy;
-  vec3 wo, wi;
-  readCase(i, params, uv, duvdx, duvdy, wo, wi);
-  DictionaryView dict = glintDictionary();
 #ifdef SLOPE_SET
   // The renderer's several-lights walk (glintP22Set): case i's footprint, with coloured cells, at
   // the half vectors of its wo with the wi of cases i, i + 1 and i + 2, each also walked alone;
   // 0 where a half vector is below the surface.
+  GlintParameters params;
+  vec2 uv, duvdx, duvdy;
+  vec3 wo, wi;
+  readCase(inputs[i], params, uv, duvdx, duvdy, wo, wi);
+  DictionaryView dict = glintDictionary();
   GlintSlopeSet slopes;
   bool above[GLINT_SLOPE_COUNT];
   params.colouredCells = true;
@@ -80,18 +51,6 @@ void main() {
     slopeSetOutputs[i].alone[k] = above[k] ? alone : vec4(0.0f);
   }
 #else
-  vec3 wh = normalize(wo + wi);
-#if GLINT_FILTERED
-  float p22 = wh.z > 0.0f ? glintFilteredP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh),
-                                             inputs[i].slopeDerivatives)
-                          : 0.0f;
-  float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
-  float f = wo.z > 0.0f && wi.z > 0.0f ? microfacetReflectance(wo, wi, wh, d) : 0.0f;
-#else
-  float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;
-  float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
-  float f = glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi);
-#endif
-  outputs[i] = vec4(f, d, p22, cookTorranceReflectance(params.alpha, params.rho, wo, wi));
+  outputs[i] = evaluateCase(inputs[i]);
 #endif
 }

@@ -8,6 +8,7 @@
 #include "gl/dictionary_texture.h"
 #include "gl/shader.h"
 #include "gl_support.h"
+#include "kernel_cases.h"
 #include "test_support.h"
 
 namespace glint {
@@ -15,51 +16,8 @@ namespace {
 
 using namespace glint::test;
 
-struct KernelInput {
-  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives;
-};
-struct Case {
-  GlintParameters parameters;
-  SurfaceFootprint footprint;
-  glm::vec3 wo, wi;
-  glm::vec4 derivatives{0.0f};  // the half vector slope's screen derivatives, for the filtered program
-};
-struct Values {
-  float f, d, p22, cookTorrance;
-};
-
-Values evaluateOnCpu(const Case& c) {
-  const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
-  const glm::vec3 wh = glm::normalize(c.wo + c.wi);
-  const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
-  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22,
-          CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
-}
-
-std::vector<KernelInput> kernelInputs(const std::vector<Case>& cases) {
-  std::vector<KernelInput> inputs;
-  for (const Case& c : cases) {
-    const GlintParameters& p = c.parameters;
-    inputs.push_back({{c.footprint.uv, c.footprint.duvdx},
-                      {c.footprint.duvdy, p.alpha},
-                      {c.wo, p.logDensity},
-                      {c.wi, p.relativeArea},
-                      {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), p.rho},
-                      c.derivatives});
-  }
-  return inputs;
-}
-
-// The anti-aliased P-SDF (glintFilteredP22) at the case's slope derivatives, on the CPU.
-Values evaluateFilteredOnCpu(const Case& c) {
-  const glm::vec3 wh = glm::normalize(c.wo + c.wi);
-  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
-  const float p22 = kernel::glintFilteredP22(defaultDictionary().view(), c.parameters, c.footprint.uv, c.footprint.duvdx,
-                                             c.footprint.duvdy, kernel::slopeFromNormal(wh), c.derivatives);
-  const float d = kernel::ndfFromP22(p22, wh.z);
-  const float f = c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::microfacetReflectance(c.wo, c.wi, wh, d) : 0.0f;
-  return {f, d, p22, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
-}
+using Case = KernelCase;
+using Values = KernelValues;
 
 std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases, bool filtered = false) {
   useGlContext();
@@ -83,81 +41,17 @@ std::vector<SlopeSetValues> evaluateSlopeSetOnGpu(const std::vector<Case>& cases
   return dispatchCompute<SlopeSetValues>(program, kernelInputs(cases), [&] { dictionary.bind(program); });
 }
 
-// Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
-// smooth, relative areas, footprints from magnified to minified, directions down to grazing.
-std::vector<Case> randomCases(int count) {
-  Pcg32 rng(4242, 9);
-  std::vector<Case> cases;
-  for (int i = 0; i < count; ++i) {
-    Case c;
-    c.parameters = defaultGlintParameters();
-    c.parameters.alpha = glm::vec2(uniform(rng, 0.05f, 1.0f), uniform(rng, 0.05f, 1.0f));
-    c.parameters.logDensity = uniform(rng, 12.0f, 45.0f);
-    c.parameters.relativeArea = rng.nextBelow(3) == 0 ? uniform(rng, 0.05f, 1.0f) : 1.0f;
-    c.parameters.patternSeed = rng.nextBelow(4);
-    c.parameters.rho = rng.nextBelow(3) == 0 ? uniform(rng, -0.99f, 0.99f) : 0.0f;
-    c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
-    c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
-    c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
-    // Half vectors within the lobe (where glints are), the rest anywhere, grazing included.
-    if (rng.nextBelow(4) != 0) {
-      const glm::vec2 slope = glm::vec2(uniform(rng, -1.5f, 1.5f), uniform(rng, -1.5f, 1.5f)) * c.parameters.alpha;
-      const glm::vec3 m = glm::normalize(glm::vec3(-slope, 1.0f));
-      c.wi = glm::reflect(-c.wo, m);
-    } else {
-      c.wi = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
-    }
-    cases.push_back(c);
-  }
-  return cases;
-}
-
-// A disagreement is explained at a branch boundary (onBranchBoundary): a cell's rounded dictionary
-// level, its relative-area mask, the ellipse's edge, the 4 sigma_d support.
 // Ten thousand random cases through one of the two programs (2020, or anti-aliased at each case's
 // slope derivatives) against the CPU.
 void expectCpuAndGlslAgree(const std::vector<Case>& cases, bool filtered) {
-  const std::vector<Values> gpu = evaluateOnGpu(cases, filtered);
-  const auto onCpu = [filtered](const Case& c) { return filtered ? evaluateFilteredOnCpu(c) : evaluateOnCpu(c); };
-  int disagreements = 0;
-  int unexplained = 0;
-  int nonZero = 0;
-  double largestRelative = 0.0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const Values cpu = onCpu(cases[i]);
-    nonZero += cpu.f > 1e-3f;
-    if (cpu.f > 1e-3f) largestRelative = std::max(largestRelative, std::abs(double(gpu[i].f) / cpu.f - 1.0));
-    EXPECT_TRUE(cpuAndGpuAgree(gpu[i].cookTorrance, cpu.cookTorrance)) << "Cook-Torrance, case " << i;
-    if (cpuAndGpuAgree(gpu[i].f, cpu.f) && cpuAndGpuAgree(gpu[i].d, cpu.d) && cpuAndGpuAgree(gpu[i].p22, cpu.p22)) continue;
-    ++disagreements;
-    if (!onBranchBoundary(cases[i], gpu[i].f, [&](const Case& moved) { return onCpu(moved).f; })) {
-      ++unexplained;
-      ADD_FAILURE() << "case " << i << ": GPU f " << gpu[i].f << " D " << gpu[i].d << ", CPU f " << cpu.f << " D "
-                    << cpu.d << " (not at a branch boundary)";
-    }
-  }
-  EXPECT_GT(nonZero, 5000);  // most cases see the lobe: the agreement is not between zeros
-  EXPECT_LE(disagreements, 10) << "99.9% of 10000 must agree within 1e-3 relative";
-  EXPECT_EQ(unexplained, 0);
-  ::testing::Test::RecordProperty("disagreements", disagreements);
-  std::printf("CPU vs GLSL%s: %d of %zu disagree beyond 1e-3 relative (+1e-5 absolute); largest relative "
-              "difference where f > 1e-3: %.2e\n", filtered ? " (anti-aliased)" : "", disagreements, cases.size(),
-              largestRelative);
+  expectCpuAndGpuAgree(cases, filtered, evaluateOnGpu(cases, filtered), "GLSL");
 }
 
-TEST(KernelGl, CpuAndGlslAgreeOnTenThousandRandomInputs) { expectCpuAndGlslAgree(randomCases(10000), false); }
+TEST(KernelGl, CpuAndGlslAgreeOnTenThousandRandomInputs) { expectCpuAndGlslAgree(randomKernelCases(10000), false); }
 
-// The anti-aliased kernel: slope correlation in a third of the cases (randomCases), and slope
-// derivatives from none to a few times the lobe's width, so that every mip level is read.
+// The anti-aliased kernel at random slope derivatives (randomFilteredKernelCases).
 TEST(KernelGl, AntiAliasedCpuAndGlslAgreeOnTenThousandRandomInputs) {
-  std::vector<Case> cases = randomCases(10000);
-  Pcg32 rng(4343, 10);
-  for (Case& c : cases) {
-    const float scale = rng.nextBelow(8) == 0 ? 0.0f : std::pow(10.0f, uniform(rng, -4.0f, 0.5f));
-    c.derivatives = glm::vec4(uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f),
-                              uniform(rng, -1.0f, 1.0f)) * scale;
-  }
-  expectCpuAndGlslAgree(cases, true);
+  expectCpuAndGlslAgree(randomFilteredKernelCases(10000), true);
 }
 
 // The renderer evaluates all of a pixel's lights over one walk of the footprint's cells: each slope
@@ -167,7 +61,7 @@ TEST(KernelGl, AntiAliasedCpuAndGlslAgreeOnTenThousandRandomInputs) {
 // a compiler that schedules them differently.
 TEST(KernelGl, SlopeSetMatchesOneSlopeAtATime) {
   constexpr int kSlopes = 3;
-  const std::vector<Case> cases = randomCases(3000);
+  const std::vector<Case> cases = randomKernelCases(3000);
   const std::size_t n = cases.size();
   std::vector<Case> alone;  // case i with the wi of case i + k, for k = 0, 1, 2
   for (int k = 0; k < kSlopes; ++k) {

@@ -41,6 +41,27 @@ std::string oneLine(std::string log) {
   return log.size() > 600 ? log.substr(0, 600) + "..." : log;
 }
 
+#ifdef GLINT_GLSL_ES
+// WebGL2 (web/): GLSL ES 3.00, with every type at high precision as in desktop GLSL (uint hashing
+// needs highp int; samplers have no default precision for some types).
+constexpr const char* kVersionHeader =
+    "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n";
+
+// GLSL ES 3.00 has no layout(binding = N) (ES 3.10): the qualifiers are taken out of the source
+// and each sampler is given its unit after linking, as the desktop shaders bind them.
+std::vector<std::pair<std::string, GLint>> takeSamplerBindings(std::string& source) {
+  static const std::regex binding(R"re(layout\s*\(\s*binding\s*=\s*(\d+)\s*\)\s*(uniform\s+\w+\s+(\w+)\s*;))re");
+  std::vector<std::pair<std::string, GLint>> units;
+  for (std::sregex_iterator it(source.begin(), source.end(), binding), end; it != end; ++it) {
+    units.emplace_back((*it)[3], std::stoi((*it)[1]));
+  }
+  source = std::regex_replace(source, binding, "$2");
+  return units;
+}
+#else
+constexpr const char* kVersionHeader = "#version 450 core\n";
+#endif
+
 }  // namespace
 
 std::string expandIncludes(const std::string& name) {
@@ -50,14 +71,20 @@ std::string expandIncludes(const std::string& name) {
 
 ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& stages,
                              const std::vector<std::pair<std::string, std::string>>& defines) {
-  std::string header = "#version 450 core\n";
+  std::string header = kVersionHeader;
   for (const auto& [name, value] : defines) header += "#define " + name + " " + value + "\n";
   std::vector<GLuint> shaders;
   auto cleanUp = [&] {
     for (GLuint shader : shaders) glDeleteShader(shader);
   };
+#ifdef GLINT_GLSL_ES
+  std::vector<std::pair<std::string, GLint>> samplerUnits;
+#endif
   for (const auto& [type, name] : stages) {
-    const std::string source = header + expandIncludes(name);
+    std::string source = header + expandIncludes(name);
+#ifdef GLINT_GLSL_ES
+    for (auto& unit : takeSamplerBindings(source)) samplerUnits.push_back(unit);
+#endif
     const GLuint shader = glCreateShader(type);
     shaders.push_back(shader);
     const char* text = source.c_str();
@@ -85,6 +112,10 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
     id_ = 0;
     throw Error("shader program " + stages.front().second + " does not link: " + oneLine(log));
   }
+#ifdef GLINT_GLSL_ES
+  glUseProgram(id_);
+  for (const auto& [sampler, unit] : samplerUnits) glUniform1i(uniform(sampler.c_str()), unit);
+#endif
 }
 
 ShaderProgram::~ShaderProgram() {

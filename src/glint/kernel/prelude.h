@@ -1,5 +1,5 @@
 // The kernel's language bridge: every file under kernel/ compiles both as C++20 (with glm) and as
-// GLSL 4.50, so that the model's equations are written once (docs/conventions.md, "One model, two
+// GLSL 4.50 (or GLSL ES 3.00 for WebGL2: the GL_ES branch below), so that the model's equations are written once (docs/conventions.md, "One model, two
 // languages"). Rules for kernel code:
 //   - every input is a function argument: no uniforms, no derivatives, no globals;
 //   - integer hashing on uint (wrap-around is defined in both languages);
@@ -75,6 +75,23 @@ GLINT_KERNEL_END
 
 #else  // GLSL
 
+#ifdef GL_ES
+// GLSL ES 3.00 (WebGL2, web/): what desktop GLSL has and ES 3.00 lacks. findLSB and ldexp are ES
+// 3.10 built-ins, given here exactly (through the float's bits, no exp2 or log2 rounding); and
+// buffer textures do not exist, so the host lays a buffer's texels row after row in a 2D texture
+// 2048 texels wide (web/src/gl45_on_webgl2.cpp, kTexelBufferWidth).
+int findLSB(uint v) {
+  return v == 0u ? -1 : (floatBitsToInt(float(v & (0u - v))) >> 23) - 127;
+}
+float ldexp(float x, int e) {
+  return x * intBitsToFloat((e + 127) << 23);
+}
+#define GLINT_TEXEL_BUFFER highp sampler2D
+#define glintTexelBufferFetch(buffer, index) texelFetch(buffer, ivec2((index) & 2047, (index) >> 11), 0)
+#else
+#define GLINT_TEXEL_BUFFER samplerBuffer
+#define glintTexelBufferFetch(buffer, index) texelFetch(buffer, index)
+#endif
 #include "glint_dictionary.glsl"
 
 #define GLINT_KERNEL_BEGIN

@@ -1,0 +1,114 @@
+#include "kernel_cases.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+namespace glint::test {
+
+KernelValues evaluateOnCpu(const KernelCase& c) {
+  const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
+  const glm::vec3 wh = glm::normalize(c.wo + c.wi);
+  const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
+  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22,
+          CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+}
+
+std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
+  std::vector<KernelInput> inputs;
+  for (const KernelCase& c : cases) {
+    const GlintParameters& p = c.parameters;
+    inputs.push_back({{c.footprint.uv, c.footprint.duvdx},
+                      {c.footprint.duvdy, p.alpha},
+                      {c.wo, p.logDensity},
+                      {c.wi, p.relativeArea},
+                      {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), p.rho},
+                      c.derivatives});
+  }
+  return inputs;
+}
+
+// The anti-aliased P-SDF (glintFilteredP22) at the case's slope derivatives, on the CPU.
+KernelValues evaluateFilteredOnCpu(const KernelCase& c) {
+  const glm::vec3 wh = glm::normalize(c.wo + c.wi);
+  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  const float p22 = kernel::glintFilteredP22(defaultDictionary().view(), c.parameters, c.footprint.uv, c.footprint.duvdx,
+                                             c.footprint.duvdy, kernel::slopeFromNormal(wh), c.derivatives);
+  const float d = kernel::ndfFromP22(p22, wh.z);
+  const float f = c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::microfacetReflectance(c.wo, c.wi, wh, d) : 0.0f;
+  return {f, d, p22, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+}
+
+std::vector<KernelCase> randomKernelCases(int count) {
+  Pcg32 rng(4242, 9);
+  std::vector<KernelCase> cases;
+  for (int i = 0; i < count; ++i) {
+    KernelCase c;
+    c.parameters = defaultGlintParameters();
+    c.parameters.alpha = glm::vec2(uniform(rng, 0.05f, 1.0f), uniform(rng, 0.05f, 1.0f));
+    c.parameters.logDensity = uniform(rng, 12.0f, 45.0f);
+    c.parameters.relativeArea = rng.nextBelow(3) == 0 ? uniform(rng, 0.05f, 1.0f) : 1.0f;
+    c.parameters.patternSeed = rng.nextBelow(4);
+    c.parameters.rho = rng.nextBelow(3) == 0 ? uniform(rng, -0.99f, 0.99f) : 0.0f;
+    c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
+    c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
+    c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
+    // Half vectors within the lobe (where glints are), the rest anywhere, grazing included.
+    if (rng.nextBelow(4) != 0) {
+      const glm::vec2 slope = glm::vec2(uniform(rng, -1.5f, 1.5f), uniform(rng, -1.5f, 1.5f)) * c.parameters.alpha;
+      const glm::vec3 m = glm::normalize(glm::vec3(-slope, 1.0f));
+      c.wi = glm::reflect(-c.wo, m);
+    } else {
+      c.wi = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
+    }
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+std::vector<KernelCase> randomFilteredKernelCases(int count) {
+  std::vector<KernelCase> cases = randomKernelCases(count);
+  Pcg32 rng(4343, 10);
+  for (KernelCase& c : cases) {
+    const float scale = rng.nextBelow(8) == 0 ? 0.0f : std::pow(10.0f, uniform(rng, -4.0f, 0.5f));
+    c.derivatives = glm::vec4(uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f), uniform(rng, -1.0f, 1.0f),
+                              uniform(rng, -1.0f, 1.0f)) * scale;
+  }
+  return cases;
+}
+
+// A disagreement is explained at a branch boundary (onBranchBoundary): a cell's rounded dictionary
+// level, its relative-area mask, the ellipse's edge, the 4 sigma_d support.
+void expectCpuAndGpuAgree(const std::vector<KernelCase>& cases, bool filtered, const std::vector<KernelValues>& gpu,
+                          const char* gpuName) {
+  ASSERT_EQ(gpu.size(), cases.size());
+  const auto onCpu = [filtered](const KernelCase& c) { return filtered ? evaluateFilteredOnCpu(c) : evaluateOnCpu(c); };
+  int disagreements = 0;
+  int unexplained = 0;
+  int nonZero = 0;
+  double largestRelative = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const KernelValues cpu = onCpu(cases[i]);
+    nonZero += cpu.f > 1e-3f;
+    if (cpu.f > 1e-3f) largestRelative = std::max(largestRelative, std::abs(double(gpu[i].f) / cpu.f - 1.0));
+    EXPECT_TRUE(cpuAndGpuAgree(gpu[i].cookTorrance, cpu.cookTorrance)) << "Cook-Torrance, case " << i;
+    if (cpuAndGpuAgree(gpu[i].f, cpu.f) && cpuAndGpuAgree(gpu[i].d, cpu.d) && cpuAndGpuAgree(gpu[i].p22, cpu.p22)) continue;
+    ++disagreements;
+    if (!onBranchBoundary(cases[i], gpu[i].f, [&](const KernelCase& moved) { return onCpu(moved).f; })) {
+      ++unexplained;
+      ADD_FAILURE() << "case " << i << ": GPU f " << gpu[i].f << " D " << gpu[i].d << ", CPU f " << cpu.f << " D "
+                    << cpu.d << " (not at a branch boundary)";
+    }
+  }
+  const int count = static_cast<int>(cases.size());
+  EXPECT_GT(nonZero, count / 2);  // most cases see the lobe: the agreement is not between zeros
+  EXPECT_LE(disagreements, count / 1000) << "99.9% of " << count << " must agree within 1e-3 relative";
+  EXPECT_EQ(unexplained, 0);
+  ::testing::Test::RecordProperty("disagreements", disagreements);
+  std::printf("CPU vs %s%s: %d of %zu disagree beyond 1e-3 relative (+1e-5 absolute); largest relative "
+              "difference where f > 1e-3: %.2e\n", gpuName, filtered ? " (anti-aliased)" : "", disagreements, cases.size(),
+              largestRelative);
+}
+
+}  // namespace glint::test

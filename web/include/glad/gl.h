@@ -1,0 +1,54 @@
+// The OpenGL the desktop renderer (src/gl/) is written against, on WebGL2: the web build puts this
+// file where glad's generated header would be, so that src/gl/renderer.cpp, display.cpp,
+// environment.cpp, dictionary_texture.cpp and shader.cpp compile for the page unchanged. WebGL2
+// is OpenGL ES 3.0; the OpenGL 4.5 calls the renderer makes beyond it (direct state access, buffer
+// textures, reading a texture back) are implemented in web/src/gl45_on_webgl2.cpp with ES 3.0
+// calls.
+#pragma once
+
+#include <GLES3/gl3.h>
+#include <GLES2/gl2ext.h>
+
+#define GL_TEXTURE_BUFFER 0x8C2A
+#define GL_MAX_TEXTURE_BUFFER_SIZE 0x8C2B
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+void glCreateTextures(GLenum target, GLsizei n, GLuint* textures);
+void glTextureStorage2D(GLuint texture, GLsizei levels, GLenum internalFormat, GLsizei width, GLsizei height);
+void glTextureSubImage2D(GLuint texture, GLint level, GLint x, GLint y, GLsizei width, GLsizei height, GLenum format,
+                         GLenum type, const void* pixels);
+void glGenerateTextureMipmap(GLuint texture);
+void glTextureParameteri(GLuint texture, GLenum name, GLint value);
+void glBindTextureUnit(GLuint unit, GLuint texture);
+void glTextureBuffer(GLuint texture, GLenum internalFormat, GLuint buffer);
+void glGetTextureImage(GLuint texture, GLint level, GLenum format, GLenum type, GLsizei size, void* pixels);
+void glCreateBuffers(GLsizei n, GLuint* buffers);
+void glNamedBufferStorage(GLuint buffer, GLsizeiptr size, const void* data, GLbitfield flags);
+void glCreateVertexArrays(GLsizei n, GLuint* arrays);
+void glVertexArrayVertexBuffer(GLuint array, GLuint binding, GLuint buffer, GLintptr offset, GLsizei stride);
+void glVertexArrayElementBuffer(GLuint array, GLuint buffer);
+void glEnableVertexArrayAttrib(GLuint array, GLuint index);
+void glVertexArrayAttribFormat(GLuint array, GLuint index, GLint size, GLenum type, GLboolean normalized,
+                               GLuint relativeOffset);
+void glVertexArrayAttribBinding(GLuint array, GLuint index, GLuint binding);
+void glCreateFramebuffers(GLsizei n, GLuint* framebuffers);
+void glNamedFramebufferTexture(GLuint framebuffer, GLenum attachment, GLuint texture, GLint level);
+void glNamedFramebufferRenderbuffer(GLuint framebuffer, GLenum attachment, GLenum target, GLuint renderbuffer);
+GLenum glCheckNamedFramebufferStatus(GLuint framebuffer, GLenum target);
+void glClearNamedFramebufferfv(GLuint framebuffer, GLenum buffer, GLint drawBuffer, const GLfloat* value);
+void glClearNamedFramebufferfi(GLuint framebuffer, GLenum buffer, GLint drawBuffer, GLfloat depth, GLint stencil);
+void glCreateRenderbuffers(GLsizei n, GLuint* renderbuffers);
+void glNamedRenderbufferStorage(GLuint renderbuffer, GLenum internalFormat, GLsizei width, GLsizei height);
+// ES 3.0's glGetIntegerv, which also answers GL_MAX_TEXTURE_BUFFER_SIZE (the texel buffers' limit).
+void glintWebGetIntegerv(GLenum name, GLint* value);
+
+#ifdef __cplusplus
+}
+#endif
+
+#ifndef GLINT_GL45_ON_WEBGL2_IMPLEMENTATION
+#define glGetIntegerv glintWebGetIntegerv
+#endif
