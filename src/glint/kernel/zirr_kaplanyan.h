@@ -136,7 +136,7 @@ GLINT_FN float zirrKaplanyanLogOneMinus(float q) {
 
 // The binomial count (spec 3.9, APPROX_BINOMIAL), split into its set-up, which depends on n and p
 // only, and the draw at u: with v = 0 every cell of a grid level has the same n and p, so the
-// tuned schedule sets the law up once per level (zirrKaplanyanLevelSetup) and draws per cell.
+// tuned schedule sets the law up once per level (zirrKaplanyanLevel) and draws per cell.
 GLINT_CONST int kZirrKaplanyanCountIsConstant = 0;  // the count is `trials`: 0 (no trial, p <= P_MIN) or n (p >= 1)
 GLINT_CONST int kZirrKaplanyanCountIsNormal = 1;    // n p above kZirrKaplanyanGaussianThreshold
 GLINT_CONST int kZirrKaplanyanCountIsScanned = 2;   // the inverse CDF scanned, then the geometric tail
