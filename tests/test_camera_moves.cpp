@@ -108,10 +108,14 @@ TEST(CameraMoves, TurntableTurnsCameraAndTargetAboutTheUpAxisThroughThePivot) {
   EXPECT_NEAR(glm::length(quarter.target - glm::vec3(2.0f, 0.0f, 2.0f)), 0.0f, 1e-5f);
   EXPECT_EQ(quarter.up, start.up);
   EXPECT_EQ(quarter.verticalFovDegrees, start.verticalFovDegrees);
-  // No turn is the camera itself, bit for bit: the first frame of a sequence is the still.
-  const Camera none = scene::turntableCamera(start, pivot, 0.0f);
-  EXPECT_EQ(none.position, start.position);
-  EXPECT_EQ(none.target, start.target);
+  // No turn is the camera itself, bit for bit, wherever the pivot is (a still is not moved by
+  // float rounding through the pivot): the first frame of a sequence is the still.
+  Camera oblique = obliqueCamera(Camera::Projection::Perspective);
+  for (const glm::vec3 somewhere : {glm::vec3(0.3f, -1.7f, 0.11f), glm::vec3(1.3e3f, 0.7f, -2.9f)}) {
+    const Camera none = scene::turntableCamera(oblique, somewhere, 0.0f);
+    EXPECT_EQ(none.position, oblique.position);
+    EXPECT_EQ(none.target, oblique.target);
+  }
 }
 
 }  // namespace

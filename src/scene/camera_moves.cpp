@@ -67,6 +67,9 @@ Camera panCamera(const Camera& camera, glm::vec2 pixels, int frameHeight) {
 }
 
 Camera turntableCamera(const Camera& camera, glm::vec3 pivot, float angle) {
+  // No turn leaves the camera bit for bit: through the pivot, (p - pivot) + pivot rounds away
+  // from p, and the first frame of a sequence must be the still.
+  if (angle == 0.0f) return camera;
   const glm::vec3 axis = glm::normalize(camera.up);
   Camera moved = camera;
   moved.position = pivot + rotated(camera.position - pivot, angle, axis);

@@ -23,7 +23,8 @@ Camera zoomCamera(const Camera& camera, float factor);
 Camera panCamera(const Camera& camera, glm::vec2 pixels, int frameHeight);
 
 // Turns the camera and its target by `angle` radians about the axis through `pivot` along the
-// camera's up vector: frame after frame, a turntable around the pivot (glint render --orbit).
+// camera's up vector: frame after frame, a turntable around the pivot (glint render --orbit). An
+// angle of 0 returns the camera unchanged, bit for bit.
 Camera turntableCamera(const Camera& camera, glm::vec3 pivot, float angle);
 
 }  // namespace glint::scene
