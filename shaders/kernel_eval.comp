@@ -2,7 +2,9 @@
 // (tests/test_gl_kernel.cpp). Same functions, same argument order as glint::GlintBsdf. With SLOPE_SET
 // defined it evaluates the renderer's several-slopes walk instead; with GLINT_FILTERED 1 the P-SDF
 // is the anti-aliased one (glintFilteredP22) at the case's slope derivatives.
+#define GLINT_MULTIPLE_SCATTERING 1
 #include "glint_brdf.h"
+#include "multiple_scattering.h"
 
 layout(local_size_x = 64) in;
 
@@ -13,6 +15,7 @@ struct KernelInput {
   vec4 wiAndRelativeArea;    // wi.xyz, relative area
   vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
   vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
+  vec4 target;               // ndf, masking (microfacet_targets.h), multiple scattering (0 or 1), as floats
 };
 
 layout(std430, binding = 0) readonly buffer Inputs { KernelInput inputs[]; };
@@ -43,6 +46,9 @@ void readCase(uint i, out GlintParameters params, out vec2 uv, out vec2 duvdx, o
   params.patternSeed = uint(data.randomisationEtc.z);
   params.rho = data.randomisationEtc.w;
   params.colouredCells = false;
+  params.ndf = int(data.target.x);
+  params.masking = int(data.target.y);
+  params.multipleScattering = data.target.z > 0.5f;
   uv = data.uvAndDuvdx.xy;
   duvdx = data.uvAndDuvdx.zw;
   duvdy = data.duvdyAndAlpha.xy;
@@ -86,12 +92,15 @@ void main() {
                                              inputs[i].slopeDerivatives)
                           : 0.0f;
   float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
-  float f = wo.z > 0.0f && wi.z > 0.0f ? microfacetReflectance(wo, wi, wh, d) : 0.0f;
+  float f = wo.z > 0.0f && wi.z > 0.0f ? glintMaskedReflectance(params, wo, wi, wh, d) : 0.0f;
 #else
   float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;
   float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
   float f = glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi);
 #endif
-  outputs[i] = vec4(f, d, p22, cookTorranceReflectance(params.alpha, params.rho, wo, wi));
+  // The compensation lobe with F = 1 (multiple_scattering.h), added to both BRDFs when the case has it.
+  float multiple = params.multipleScattering ? multipleScatteringReflectance(params.ndf, params.masking, params.alpha, wo, wi) : 0.0f;
+  outputs[i] = vec4(f + multiple, d, p22,
+                    targetCookTorranceReflectance(params.ndf, params.masking, params.alpha, params.rho, wo, wi) + multiple);
 #endif
 }

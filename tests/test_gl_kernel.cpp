@@ -8,6 +8,7 @@
 #include "gl/dictionary_texture.h"
 #include "gl/shader.h"
 #include "gl_support.h"
+#include "kernel/multiple_scattering.h"
 #include "test_support.h"
 
 namespace glint {
@@ -16,7 +17,7 @@ namespace {
 using namespace glint::test;
 
 struct KernelInput {
-  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives;
+  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives, target;
 };
 struct Case {
   GlintParameters parameters;
@@ -28,12 +29,19 @@ struct Values {
   float f, d, p22, cookTorrance;
 };
 
+// Cook-Torrance with the case's target and masking.
+float cookTorranceOnCpu(const Case& c) {
+  return CookTorranceBsdf(c.parameters.alpha, c.parameters.rho, Fresnel::none(), Spectrum(1.0f),
+                          microfacetTarget(c.parameters))
+      .f(c.wo, c.wi)
+      .x;
+}
+
 Values evaluateOnCpu(const Case& c) {
   const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
   const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
-  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22,
-          CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22, cookTorranceOnCpu(c)};
 }
 
 std::vector<KernelInput> kernelInputs(const std::vector<Case>& cases) {
@@ -45,7 +53,8 @@ std::vector<KernelInput> kernelInputs(const std::vector<Case>& cases) {
                       {c.wo, p.logDensity},
                       {c.wi, p.relativeArea},
                       {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), p.rho},
-                      c.derivatives});
+                      c.derivatives,
+                      {static_cast<float>(p.ndf), static_cast<float>(p.masking), p.multipleScattering ? 1.0f : 0.0f, 0.0f}});
   }
   return inputs;
 }
@@ -53,12 +62,18 @@ std::vector<KernelInput> kernelInputs(const std::vector<Case>& cases) {
 // The anti-aliased P-SDF (glintFilteredP22) at the case's slope derivatives, on the CPU.
 Values evaluateFilteredOnCpu(const Case& c) {
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
-  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, cookTorranceOnCpu(c)};
   const float p22 = kernel::glintFilteredP22(defaultDictionary().view(), c.parameters, c.footprint.uv, c.footprint.duvdx,
                                              c.footprint.duvdy, kernel::slopeFromNormal(wh), c.derivatives);
   const float d = kernel::ndfFromP22(p22, wh.z);
-  const float f = c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::microfacetReflectance(c.wo, c.wi, wh, d) : 0.0f;
-  return {f, d, p22, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  const float multiple = c.parameters.multipleScattering
+                             ? kernel::multipleScatteringReflectance(c.parameters.ndf, c.parameters.masking,
+                                                                     c.parameters.alpha, c.wo, c.wi)
+                             : 0.0f;
+  const float f =
+      (c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::glintMaskedReflectance(c.parameters, c.wo, c.wi, wh, d) : 0.0f) +
+      multiple;
+  return {f, d, p22, cookTorranceOnCpu(c)};
 }
 
 std::vector<Values> evaluateOnGpu(const std::vector<Case>& cases, bool filtered = false) {
@@ -84,9 +99,12 @@ std::vector<SlopeSetValues> evaluateSlopeSetOnGpu(const std::vector<Case>& cases
 }
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
-// smooth, relative areas, footprints from magnified to minified, directions down to grazing.
+// smooth, relative areas, footprints from magnified to minified, directions down to grazing, both
+// smooth targets, both maskings, with and without multiple scattering (drawn from a stream of their own, so that the other draws are
+// those of the Beckmann-only cases before the targets existed).
 std::vector<Case> randomCases(int count) {
   Pcg32 rng(4242, 9);
+  Pcg32 targets(4242, 10);
   std::vector<Case> cases;
   for (int i = 0; i < count; ++i) {
     Case c;
@@ -96,6 +114,9 @@ std::vector<Case> randomCases(int count) {
     c.parameters.relativeArea = rng.nextBelow(3) == 0 ? uniform(rng, 0.05f, 1.0f) : 1.0f;
     c.parameters.patternSeed = rng.nextBelow(4);
     c.parameters.rho = rng.nextBelow(3) == 0 ? uniform(rng, -0.99f, 0.99f) : 0.0f;
+    c.parameters.ndf = static_cast<int>(targets.nextBelow(2));
+    c.parameters.masking = static_cast<int>(targets.nextBelow(2));
+    c.parameters.multipleScattering = targets.nextBelow(2) == 0;
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
     c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
@@ -122,10 +143,12 @@ void expectCpuAndGlslAgree(const std::vector<Case>& cases, bool filtered) {
   int disagreements = 0;
   int unexplained = 0;
   int nonZero = 0;
+  int nonZeroPerTarget[2][2] = {{0, 0}, {0, 0}};  // [ndf][masking]
   double largestRelative = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Values cpu = onCpu(cases[i]);
     nonZero += cpu.f > 1e-3f;
+    nonZeroPerTarget[cases[i].parameters.ndf][cases[i].parameters.masking] += cpu.f > 1e-3f;
     if (cpu.f > 1e-3f) largestRelative = std::max(largestRelative, std::abs(double(gpu[i].f) / cpu.f - 1.0));
     EXPECT_TRUE(cpuAndGpuAgree(gpu[i].cookTorrance, cpu.cookTorrance)) << "Cook-Torrance, case " << i;
     if (cpuAndGpuAgree(gpu[i].f, cpu.f) && cpuAndGpuAgree(gpu[i].d, cpu.d) && cpuAndGpuAgree(gpu[i].p22, cpu.p22)) continue;
@@ -137,6 +160,9 @@ void expectCpuAndGlslAgree(const std::vector<Case>& cases, bool filtered) {
     }
   }
   EXPECT_GT(nonZero, 5000);  // most cases see the lobe: the agreement is not between zeros
+  for (const auto& ndf : nonZeroPerTarget) {
+    for (int count : ndf) EXPECT_GT(count, 1000);  // and every target with every masking
+  }
   EXPECT_LE(disagreements, 10) << "99.9% of 10000 must agree within 1e-3 relative";
   EXPECT_EQ(unexplained, 0);
   ::testing::Test::RecordProperty("disagreements", disagreements);

@@ -25,6 +25,10 @@ struct SceneOptions {
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
   std::optional<float> sky;
+  // The specular target of every material (scene::Material::specular).
+  std::optional<std::string> ndf;
+  std::optional<std::string> masking;
+  std::optional<bool> multipleScattering;
 
   // All of the options below (render, view, trace).
   void addTo(CLI::App& command);

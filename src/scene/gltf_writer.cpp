@@ -39,8 +39,11 @@ tinygltf::Value pair(glm::vec2 value) {
 
 // The glint layer exactly as the loader reads it (docs/scenes.md, "Glint parameters in glTF
 // extras"): every field, so that the file does not depend on the loader's defaults.
-tinygltf::Value glintExtras(const GlintLayer& layer) {
+tinygltf::Value glintExtras(const GlintLayer& layer, const MicrofacetTarget& specular) {
   tinygltf::Value::Object glint;
+  glint["ndf"] = tinygltf::Value(std::string(ndfName(specular.ndf)));
+  glint["masking"] = tinygltf::Value(std::string(maskingName(specular.masking)));
+  glint["multiple_scattering"] = tinygltf::Value(specular.multipleScattering);
   glint["alpha"] = pair(layer.alpha);
   glint["rho"] = number(layer.rho);
   glint["log_density"] = number(layer.logDensity);
@@ -242,7 +245,7 @@ class GltfWriter {
       for (int t : {m.glint.roughnessTexture, m.glint.logDensityTexture, m.glint.relativeAreaTexture}) {
         textureIndex(t, "glint texture", m);
       }
-      out.extras = glintExtras(m.glint);
+      out.extras = glintExtras(m.glint, m.specular);
     }
     model_.materials.push_back(std::move(out));
   }
