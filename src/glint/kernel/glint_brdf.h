@@ -287,9 +287,9 @@ struct GlintCell {
   bool smoothLimit;
   bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
   int dictionaryLevel;  // when it reads the dictionary
-  // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled slope
-  // times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). Exactly 1 for Beckmann.
-  float precision;
+  // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
+  // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
+  float scalePrecision;
   float unscale;
 };
 
@@ -301,7 +301,7 @@ GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintL
   cell.smoothLimit = false;
   cell.ggxTail = false;
   cell.dictionaryLevel = 0;
-  cell.precision = 1.0f;
+  cell.scalePrecision = 1.0f;
   cell.unscale = 1.0f;
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
@@ -314,7 +314,7 @@ GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintL
       float w = glintCellPrecision(cell.hash);
       cell.ggxTail = w < kGgxTailPrecision;
       cell.readsDictionary = !cell.ggxTail;
-      cell.precision = w;
+      cell.scalePrecision = w;
       cell.unscale = sqrt(w);
     }
   }
@@ -533,12 +533,12 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
             vec2 cellUnscaled = unscaled[k] * cell.unscale;
             GlintMarginalFilter cellFilter = kernelFilter[k];
             if (filtering && params.ndf == kNdfGgx) {
-              cellFilter = glintMarginalFilter(dict, glintMarginalLod(dict, cell.precision * kernelVariance[k]));
+              cellFilter = glintMarginalFilter(dict, glintMarginalLod(dict, cell.scalePrecision * kernelVariance[k]));
             }
             p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
                                                        cellUnscaled, cellFilter)
                           : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, cellUnscaled);
-            p *= cell.precision;
+            p *= cell.scalePrecision;
           }
           dictionarySum[k] += weight * p;
           if (params.colouredCells) {
