@@ -204,24 +204,34 @@ TEST(GlintTargetsStat, MeanOverPositionsIsGgxAtModerateDensity) {
 TEST(GlintTargetsStat, GgxPNdfIsNormalisedForEveryFootprint) {
   // The P-SDF with the GGX target integrates to 1 (MRA = 1) over 200 random footprints,
   // roughnesses and densities, within 0.5% (the tolerance), over the slope plane out to
-  // 60 alpha (integrateOverWholeSlopePlane, 250 x 250: a step of 0.038 alpha at the peak, growing
-  // with the slope as the cells that reach it widen; GlintBrdfStat.PNdfIsNormalisedForEveryFootprint
-  // measured 0.057 alpha steps within 2e-4 of a grid four times finer). The widest glint cell
-  // reaches 56 alpha; the smooth GGX cells and the remainder keep 3e-4 of their mass beyond.
+  // 60 alpha (integrateOverWholeSlopePlane). The widest glint cell reaches 56 alpha; the smooth GGX
+  // cells and the remainder keep 3e-4 of their mass beyond. A 250 x 250 grid (0.038 alpha steps at
+  // the peak, 0.085 alpha at 2 alpha) is coarse for the sparsest glints, whose few lobes of 0.04
+  // alpha do not average their midpoint errors out: measured 0.994, 0.994 and 1.006 on three of
+  // the 200 cases, 1.00003, 1.00008 and 0.99987 at 600 x 600. A case off by more than 2.5e-3 is
+  // integrated again at 600 x 600, and that value is the one checked.
   Pcg32 rng(2021, 17);
   double worst = 0.0;
+  int refined = 0;
   for (int i = 0; i < 200; ++i) {
     GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::kNdfGgx, kernel::kMaskingSmith);
     parameters.alpha = glm::vec2(uniform(rng, 0.05f, 1.0f), uniform(rng, 0.05f, 1.0f));
     parameters.logDensity = uniform(rng, 15.0f, 40.0f);
     const SurfaceFootprint footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     const GlintBsdf bsdf(defaultDictionary(), parameters, footprint);
-    const double integral =
-        integrateOverWholeSlopePlane([&](glm::vec2 s) { return bsdf.p22(s); }, parameters.alpha, 250, 60.0f);
-    worst = std::max(worst, std::abs(integral - 1.0));
-    EXPECT_NEAR(integral, 1.0, 5e-3) << "case " << i << " log density " << parameters.logDensity;
+    const auto integral = [&](int cells) {
+      return integrateOverWholeSlopePlane([&](glm::vec2 s) { return bsdf.p22(s); }, parameters.alpha, cells, 60.0f);
+    };
+    double value = integral(250);
+    if (std::abs(value - 1.0) > 2.5e-3) {
+      value = integral(600);
+      ++refined;
+    }
+    worst = std::max(worst, std::abs(value - 1.0));
+    EXPECT_NEAR(value, 1.0, 5e-3) << "case " << i << " log density " << parameters.logDensity;
   }
-  std::printf("GGX P-NDF over 200 footprints: largest deviation of its integral from 1: %.2e\n", worst);
+  std::printf("GGX P-NDF over 200 footprints: largest deviation of its integral from 1: %.2e (%d cases refined)\n",
+              worst, refined);
 }
 
 TEST(GlintTargets, UnknownTargetsAndMaskingsAreRejectedByName) {

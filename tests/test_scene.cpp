@@ -855,6 +855,13 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
   // without a glint layer; extras.glint's ndf, masking and multiple_scattering choose another;
   // the built-in scenes keep the paper's Beckmann with V-cavity.
   const fs::path path = copyTextured("gltf_glint_target");
+  // The test scene was written by glint export, which names its layers' targets: left out here.
+  editJson(path, [](json& d) {
+    for (json& m : d["materials"]) {
+      if (!m.contains("extras") || !m["extras"].contains("glint")) continue;
+      for (const char* field : {"ndf", "masking", "multiple_scattering"}) m["extras"]["glint"].erase(field);
+    }
+  });
   const Scene plain = loadGltf(path);
   EXPECT_EQ(plain.materials[0].specular.ndf, kernel::kNdfGgx);
   EXPECT_EQ(plain.materials[0].specular.masking, kernel::kMaskingSmith);
