@@ -50,7 +50,7 @@ TEST(MicrofacetTargets, ProjectedAreaAndSmithMaskingHold) {
   //   integral of D(m) (wo . m) dm = wo . n               (the projected area, signed), and
   //   integral of G1(wo) <wo, m>+ D(m) dm = wo . n        (Smith's G1 = 1 / (1 + Lambda(wo)),
   // which holds exactly when Lambda is the target's). In slope space dm = m.z^3 ds. Within 1% (the
-  // issue's tolerance; the quadrature alone is good to 1e-4).
+  // issue's tolerance; the quadrature alone is good to 2e-4).
   double worst = 0.0;
   for (int ndf : kTargets) {
     for (glm::vec2 alpha : {glm::vec2(0.05f), glm::vec2(0.3f, 0.7f), glm::vec2(1.0f)}) {
@@ -63,13 +63,13 @@ TEST(MicrofacetTargets, ProjectedAreaAndSmithMaskingHold) {
                 const glm::vec3 m = sampling::normalFromSlope(s);
                 return kernel::targetP22(ndf, s, alpha, rho) * double(glm::dot(wo, m)) / m.z;
               },
-              alpha, 800);
+              alpha, 400);
           const double masked = g1 * integrateOverWholeSlopePlane(
                             [&](glm::vec2 s) {
                               const glm::vec3 m = sampling::normalFromSlope(s);
                               return kernel::targetP22(ndf, s, alpha, rho) * std::max(0.0, double(glm::dot(wo, m))) / m.z;
                             },
-                            alpha, 800);
+                            alpha, 400);
           worst = std::max({worst, std::abs(signedArea / wo.z - 1.0), std::abs(masked / wo.z - 1.0)});
           EXPECT_NEAR(signedArea / wo.z, 1.0, 0.01) << "ndf " << ndf << " " << degrees << " degrees";
           EXPECT_NEAR(masked / wo.z, 1.0, 0.01) << "ndf " << ndf << " alpha " << alpha.x << "," << alpha.y << " rho "
