@@ -1005,6 +1005,17 @@ class GltfReader {
       if (extras.is_object() && extras.contains("glint")) {
         m.glint = withContext("extras.glint: ", [&] { return glintLayer(extras["glint"], m); });
         m.specular = withContext("extras.glint: ", [&] { return specularTarget(extras["glint"], m.specular); });
+      } else if (extras.is_object() && extras.contains("glint_specular")) {
+        m.specular = withContext("extras.glint_specular: ", [&] {
+          const nlohmann::json& target = extras["glint_specular"];
+          if (!target.is_object()) throw error("must be an object");
+          for (const auto& item : target.items()) {
+            if (item.key() != "ndf" && item.key() != "masking" && item.key() != "multiple_scattering") {
+              throw error("unknown field '", item.key(), "' (known: ndf, masking, multiple_scattering)");
+            }
+          }
+          return specularTarget(target, m.specular);
+        });
       }
     }
     return m;
