@@ -19,7 +19,19 @@
 #define ZIRR_KAPLANYAN (SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN || SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE)
 // One slope per light; also the size of the light arrays below (a GLSL array cannot be empty).
 #define GLINT_SLOPE_COUNT (LIGHT_COUNT > 0 ? LIGHT_COUNT : 1)
+// The specular lobe's smooth target and masking (microfacet_targets.h), compiled in: the paper's
+// Beckmann with V-cavity unless the host defines them.
+#ifndef GLINT_NDF
+#define GLINT_NDF 0
+#endif
+#ifndef GLINT_MASKING
+#define GLINT_MASKING 0
+#endif
+#ifndef GLINT_MULTIPLE_SCATTERING
+#define GLINT_MULTIPLE_SCATTERING 0
+#endif
 #include "glint_brdf.h"
+#include "multiple_scattering.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
 #include "environment.glsl"
@@ -170,6 +182,9 @@ void main() {
   // A compile-time switch (one program per variant, src/gl/renderer.cpp): llvmpipe executes both
   // sides of a branch, so a uniform would make every glint material pay for the colours.
   params.colouredCells = GLINT_COLOURED_CELLS != 0;
+  params.ndf = GLINT_NDF;
+  params.masking = GLINT_MASKING;
+  params.multipleScattering = GLINT_MULTIPLE_SCATTERING != 0;
 #if GLINT_LEAN
   // The normal map's slope covariance over the footprint, measured in the tangent frame, added to
   // the glint layer's in the tilted shading frame (a small-tilt approximation, as the authors'),
@@ -231,6 +246,12 @@ void main() {
   }
 #endif
 
+#if GLINT_MULTIPLE_SCATTERING
+  // The multiple-scattering compensation (multiple_scattering.h): a smooth lobe, the same for glint
+  // and Cook-Torrance programs, with Schlick's average Fresnel.
+  vec3 multipleFresnel = multipleScatteringFresnel(
+      schlickAverageFresnel(f0), averageAlbedo(GLINT_NDF, GLINT_MASKING, compensationAlpha(specularAlpha)));
+#endif
   vec3 radiance = emissive;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 wi = lightDirection[i];
@@ -244,9 +265,9 @@ void main() {
     if (GLINT_LAYER) {
       vec4 p22 = glintLit[i] ? glintP22s.p22[i] : vec4(0.0f);
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
-      specular = fresnel * tint * microfacetReflectance(wo, wi, wh, ndfFromP22(p22.w, wh.z));
+      specular = fresnel * tint * glintMaskedReflectance(params, wo, wi, wh, ndfFromP22(p22.w, wh.z));
     } else {
-      specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
+      specular = fresnel * targetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, 0.0f, wo, wi);
     }
 #elif ZIRR_KAPLANYAN
     if (GLINT_LAYER) {
@@ -262,7 +283,11 @@ void main() {
       specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }
 #else
-    specular = fresnel * cookTorranceReflectance(specularAlpha, GLINT_LAYER ? params.rho : 0.0f, wo, wi);
+    specular = fresnel * targetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha,
+                                                       GLINT_LAYER ? params.rho : 0.0f, wo, wi);
+#endif
+#if GLINT_MULTIPLE_SCATTERING
+    specular += multipleFresnel * multipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, wo, wi);
 #endif
     radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
   }

@@ -1,4 +1,4 @@
-// One case of the CPU-versus-GPU kernel test: its inputs as six vec4s and its evaluation, shared by
+// One case of the CPU-versus-GPU kernel test: its inputs as seven vec4s and its evaluation, shared by
 // the compute shader of the desktop test (kernel_eval.comp, tests/test_gl_kernel.cpp) and the
 // fragment shader of the WebGL2 test (kernel_eval.frag, tests/test_web.cpp). Same functions, same
 // argument order as glint::GlintBsdf; with GLINT_FILTERED 1 the P-SDF is the anti-aliased one
@@ -6,7 +6,9 @@
 #ifndef KERNEL_EVAL_GLSL
 #define KERNEL_EVAL_GLSL
 
+#define GLINT_MULTIPLE_SCATTERING 1
 #include "glint_brdf.h"
+#include "multiple_scattering.h"
 
 struct KernelInput {
   vec4 uvAndDuvdx;           // uv.xy, duvdx.xy
@@ -15,6 +17,7 @@ struct KernelInput {
   vec4 wiAndRelativeArea;    // wi.xyz, relative area
   vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
   vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
+  vec4 target;               // ndf, masking (microfacet_targets.h), multiple scattering (0 or 1), as floats
 };
 
 // The case's parameters, footprint and directions.
@@ -28,6 +31,9 @@ void readCase(KernelInput data, out GlintParameters params, out vec2 uv, out vec
   params.patternSeed = uint(data.randomisationEtc.z);
   params.rho = data.randomisationEtc.w;
   params.colouredCells = false;
+  params.ndf = int(data.target.x);
+  params.masking = int(data.target.y);
+  params.multipleScattering = data.target.z > 0.5f;
   uv = data.uvAndDuvdx.xy;
   duvdx = data.uvAndDuvdx.zw;
   duvdy = data.duvdyAndAlpha.xy;
@@ -48,13 +54,16 @@ vec4 evaluateCase(KernelInput data) {
                                              data.slopeDerivatives)
                           : 0.0f;
   float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
-  float f = wo.z > 0.0f && wi.z > 0.0f ? microfacetReflectance(wo, wi, wh, d) : 0.0f;
+  float f = wo.z > 0.0f && wi.z > 0.0f ? glintMaskedReflectance(params, wo, wi, wh, d) : 0.0f;
 #else
   float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;
   float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
   float f = glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi);
 #endif
-  return vec4(f, d, p22, cookTorranceReflectance(params.alpha, params.rho, wo, wi));
+  // The compensation lobe with F = 1 (multiple_scattering.h), added to both BRDFs when the case has it.
+  float multiple = params.multipleScattering ? multipleScatteringReflectance(params.ndf, params.masking, params.alpha, wo, wi) : 0.0f;
+  return vec4(f + multiple, d, p22,
+              targetCookTorranceReflectance(params.ndf, params.masking, params.alpha, params.rho, wo, wi) + multiple);
 }
 
 #endif

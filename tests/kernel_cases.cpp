@@ -5,14 +5,27 @@
 
 #include <gtest/gtest.h>
 
+#include "kernel/multiple_scattering.h"
+
 namespace glint::test {
+
+namespace {
+
+// Cook-Torrance with the case's target and masking.
+float cookTorranceOnCpu(const KernelCase& c) {
+  return CookTorranceBsdf(c.parameters.alpha, c.parameters.rho, Fresnel::none(), Spectrum(1.0f),
+                          microfacetTarget(c.parameters))
+      .f(c.wo, c.wi)
+      .x;
+}
+
+}  // namespace
 
 KernelValues evaluateOnCpu(const KernelCase& c) {
   const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
   const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
-  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22,
-          CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22, cookTorranceOnCpu(c)};
 }
 
 std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
@@ -24,7 +37,8 @@ std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
                       {c.wo, p.logDensity},
                       {c.wi, p.relativeArea},
                       {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), p.rho},
-                      c.derivatives});
+                      c.derivatives,
+                      {static_cast<float>(p.ndf), static_cast<float>(p.masking), p.multipleScattering ? 1.0f : 0.0f, 0.0f}});
   }
   return inputs;
 }
@@ -32,16 +46,25 @@ std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
 // The anti-aliased P-SDF (glintFilteredP22) at the case's slope derivatives, on the CPU.
 KernelValues evaluateFilteredOnCpu(const KernelCase& c) {
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
-  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, cookTorranceOnCpu(c)};
   const float p22 = kernel::glintFilteredP22(defaultDictionary().view(), c.parameters, c.footprint.uv, c.footprint.duvdx,
                                              c.footprint.duvdy, kernel::slopeFromNormal(wh), c.derivatives);
   const float d = kernel::ndfFromP22(p22, wh.z);
-  const float f = c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::microfacetReflectance(c.wo, c.wi, wh, d) : 0.0f;
-  return {f, d, p22, CookTorranceBsdf(c.parameters.alpha, c.parameters.rho).f(c.wo, c.wi).x};
+  const float multiple = c.parameters.multipleScattering
+                             ? kernel::multipleScatteringReflectance(c.parameters.ndf, c.parameters.masking,
+                                                                     c.parameters.alpha, c.wo, c.wi)
+                             : 0.0f;
+  const float f =
+      (c.wo.z > 0.0f && c.wi.z > 0.0f ? kernel::glintMaskedReflectance(c.parameters, c.wo, c.wi, wh, d) : 0.0f) +
+      multiple;
+  return {f, d, p22, cookTorranceOnCpu(c)};
 }
 
 std::vector<KernelCase> randomKernelCases(int count) {
   Pcg32 rng(4242, 9);
+  // The targets from a stream of their own, so that the other draws are those of the cases before
+  // the targets existed.
+  Pcg32 targets(4242, 10);
   std::vector<KernelCase> cases;
   for (int i = 0; i < count; ++i) {
     KernelCase c;
@@ -51,6 +74,9 @@ std::vector<KernelCase> randomKernelCases(int count) {
     c.parameters.relativeArea = rng.nextBelow(3) == 0 ? uniform(rng, 0.05f, 1.0f) : 1.0f;
     c.parameters.patternSeed = rng.nextBelow(4);
     c.parameters.rho = rng.nextBelow(3) == 0 ? uniform(rng, -0.99f, 0.99f) : 0.0f;
+    c.parameters.ndf = static_cast<int>(targets.nextBelow(2));
+    c.parameters.masking = static_cast<int>(targets.nextBelow(2));
+    c.parameters.multipleScattering = targets.nextBelow(2) == 0;
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
     c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));
@@ -87,10 +113,12 @@ void expectCpuAndGpuAgree(const std::vector<KernelCase>& cases, bool filtered, c
   int disagreements = 0;
   int unexplained = 0;
   int nonZero = 0;
+  int nonZeroPerTarget[2][2] = {{0, 0}, {0, 0}};  // [ndf][masking]
   double largestRelative = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const KernelValues cpu = onCpu(cases[i]);
     nonZero += cpu.f > 1e-3f;
+    nonZeroPerTarget[cases[i].parameters.ndf][cases[i].parameters.masking] += cpu.f > 1e-3f;
     if (cpu.f > 1e-3f) largestRelative = std::max(largestRelative, std::abs(double(gpu[i].f) / cpu.f - 1.0));
     EXPECT_TRUE(cpuAndGpuAgree(gpu[i].cookTorrance, cpu.cookTorrance)) << "Cook-Torrance, case " << i;
     if (cpuAndGpuAgree(gpu[i].f, cpu.f) && cpuAndGpuAgree(gpu[i].d, cpu.d) && cpuAndGpuAgree(gpu[i].p22, cpu.p22)) continue;
@@ -103,6 +131,9 @@ void expectCpuAndGpuAgree(const std::vector<KernelCase>& cases, bool filtered, c
   }
   const int count = static_cast<int>(cases.size());
   EXPECT_GT(nonZero, count / 2);  // most cases see the lobe: the agreement is not between zeros
+  for (const auto& ndf : nonZeroPerTarget) {
+    for (int seen : ndf) EXPECT_GT(seen, count / 10);  // and every target with every masking
+  }
   EXPECT_LE(disagreements, count / 1000) << "99.9% of " << count << " must agree within 1e-3 relative";
   EXPECT_EQ(unexplained, 0);
   ::testing::Test::RecordProperty("disagreements", disagreements);

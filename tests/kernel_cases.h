@@ -13,7 +13,7 @@
 namespace glint::test {
 
 struct KernelInput {
-  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives;
+  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives, target;
 };
 struct KernelCase {
   GlintParameters parameters;
@@ -32,7 +32,8 @@ KernelValues evaluateFilteredOnCpu(const KernelCase& c);
 std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases);
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
-// smooth, relative areas, footprints from magnified to minified, directions down to grazing.
+// smooth, relative areas, footprints from magnified to minified, directions down to grazing, both
+// smooth targets, both maskings, with and without multiple scattering.
 std::vector<KernelCase> randomKernelCases(int count);
 // The same with slope derivatives, for the anti-aliased kernel: slope correlation in a third of the
 // cases, and derivatives from none to a few times the lobe's width, so that every mip level is read.
@@ -40,7 +41,8 @@ std::vector<KernelCase> randomFilteredKernelCases(int count);
 
 // The GPU's values of the cases (of the 2020 kernel, or the anti-aliased one) against the CPU's:
 // 99.9% must agree within cpuAndGpuAgree, every disagreement must be at a branch boundary
-// (onBranchBoundary), and more than half of the cases must see the lobe.
+// (onBranchBoundary), more than half of the cases must see the lobe, and a tenth of them with each
+// target and masking.
 void expectCpuAndGpuAgree(const std::vector<KernelCase>& cases, bool filtered, const std::vector<KernelValues>& gpu,
                           const char* gpuName);
 

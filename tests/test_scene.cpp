@@ -850,6 +850,43 @@ TEST(GltfGlint, AlphaDefaultsToRoughnessSquared) {
   EXPECT_EQ(alphaFromRoughness(0.05f), 0.01f);
 }
 
+TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
+  // glTF's metallic-roughness lobe (GGX, Smith, compensated) on every material of a file, with or
+  // without a glint layer; extras.glint's ndf, masking and multiple_scattering choose another;
+  // the built-in scenes keep the paper's Beckmann with V-cavity.
+  const fs::path path = copyTextured("gltf_glint_target");
+  // The test scene was written by glint export, which names its layers' targets: left out here.
+  editJson(path, [](json& d) {
+    for (json& m : d["materials"]) {
+      if (!m.contains("extras") || !m["extras"].contains("glint")) continue;
+      for (const char* field : {"ndf", "masking", "multiple_scattering"}) m["extras"]["glint"].erase(field);
+    }
+  });
+  const Scene plain = loadGltf(path);
+  EXPECT_EQ(plain.materials[0].specular.ndf, kernel::kNdfGgx);
+  EXPECT_EQ(plain.materials[0].specular.masking, kernel::kMaskingSmith);
+  EXPECT_TRUE(plain.materials[0].specular.multipleScattering);
+  editJson(path, [](json& d) {
+    d["materials"][0]["extras"] = {{"glint", {{"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multiple_scattering", false}}}};
+  });
+  const Scene paper = loadGltf(path);
+  EXPECT_EQ(paper.materials[0].specular.ndf, kernel::kNdfBeckmann);
+  EXPECT_EQ(paper.materials[0].specular.masking, kernel::kMaskingVCavity);
+  EXPECT_FALSE(paper.materials[0].specular.multipleScattering);
+  EXPECT_EQ(glintParameters(paper.materials[0].glint, paper.materials[0].specular).ndf, kernel::kNdfBeckmann);
+  for (const std::string& name : builtinSceneNames()) {
+    for (const Material& m : makeBuiltinScene(name).materials) {
+      EXPECT_EQ(m.specular.ndf, kernel::kNdfBeckmann) << name;
+      EXPECT_EQ(m.specular.masking, kernel::kMaskingVCavity) << name;
+      EXPECT_FALSE(m.specular.multipleScattering) << name;
+    }
+  }
+  editJson(path, [](json& d) { d["materials"][0]["extras"] = {{"glint", {{"ndf", "gxx"}}}}; });
+  expectLoadError(path, "extras.glint: ndf must be \"beckmann\" or \"ggx\", got \"gxx\"");
+  editJson(path, [](json& d) { d["materials"][0]["extras"] = {{"glint", {{"multiple_scattering", 1}}}}; });
+  expectLoadError(path, "multiple_scattering must be true or false");
+}
+
 // ---- Broken files -----------------------------------------------------------------------------
 
 TEST(GltfErrors, MissingFileAndBadJson) {

@@ -151,6 +151,17 @@ double meanNdfOverPositions(const GlintParameters& parameters, glm::vec3 m, int 
   return sum / positions;
 }
 
+double integrateOverWholeSlopePlane(const std::function<double(glm::vec2)>& g, glm::vec2 alpha, int cells,
+                                    float reach) {
+  const float limit = std::asinh(reach);
+  return integrateOverSlopes(
+      [&](glm::vec2 t) {
+        const glm::vec2 slope(alpha.x * std::sinh(t.x), alpha.y * std::sinh(t.y));
+        return g(slope) * double(alpha.x) * std::cosh(double(t.x)) * double(alpha.y) * std::cosh(double(t.y));
+      },
+      glm::vec2(limit), cells);
+}
+
 glm::vec2 glintSlopeExtent(const Dictionary& dictionary, glm::vec2 alpha, float rho) {
   const float support = dictionary.parameters().slopeDomain() * std::sqrt(2.0f) / dictionary.parameters().alpha;
   // A correlated cell maps the disc of that radius by M (glintCorrelatedScale): x reaches

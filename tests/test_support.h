@@ -72,6 +72,13 @@ double meanNdfOverPositions(const GlintParameters& parameters, glm::vec3 m, int 
 // parallel: the integral of a function of slope.
 double integrateOverSlopes(const std::function<double(glm::vec2)>& integrand, glm::vec2 extent, int cells);
 
+// The integral of g over the whole slope plane, substituted per axis as slope = alpha sinh(t),
+// t in [-T, T] with T = asinh(reach) (GGX keeps 1e-8 of its mass beyond 1e4 alpha), cells x cells
+// midpoints: fine near the peak, and relative to the slope out in the tail (where a GGX glint
+// cell's lobes are wide in proportion).
+double integrateOverWholeSlopePlane(const std::function<double(glm::vec2)>& g, glm::vec2 alpha, int cells,
+                                    float reach = 1e4f);
+
 // The slope extent outside of which a glint P22 of roughness alpha has no mass: the dictionary's
 // support 4 sigma_d, rotated (x sqrt 2) and scaled by alpha / alpha_d; beyond 4 alpha Beckmann cells
 // keep under 1e-7 of their mass.

@@ -46,7 +46,8 @@ bool same(const Material& a, const Material& b) {
          same(a.normalScale, b.normalScale) && same(a.emissive, b.emissive) && a.emissiveTexture == b.emissiveTexture &&
          a.occlusionTexture == b.occlusionTexture && same(a.occlusionStrength, b.occlusionStrength) &&
          a.doubleSided == b.doubleSided && a.alphaMode == b.alphaMode && same(a.alphaCutoff, b.alphaCutoff) &&
-         same(a.glint, b.glint);
+         same(a.glint, b.glint) && a.specular.ndf == b.specular.ndf && a.specular.masking == b.specular.masking &&
+         a.specular.multipleScattering == b.specular.multipleScattering;
 }
 bool same(const Light& a, const Light& b) {
   return a.type == b.type && same(a.position, b.position) && same(a.direction, b.direction) &&
@@ -104,16 +105,19 @@ TEST(ViewControls, EditingOneMaterialLeavesEveryOtherBitIdentical) {
     for (std::size_t k = 0; k < s.materials.size(); ++k) {
       if (!s.materials[k].glint.enabled) continue;
       scene::ViewControls controls = untouched;
-      controls.materials[k] = {{0.123f, 0.456f}, 0.25f, 31.5f, 0.375f};
+      controls.materials[k] = {{0.123f, 0.456f}, 0.25f, 31.5f, 0.375f, scene::kGltfSpecular};
       const Drawn d = drawn(s, controls);
       const scene::GlintLayer& edited = d.materials[k].glint;
       EXPECT_EQ(edited.alpha, glm::vec2(0.123f, 0.456f));
       EXPECT_EQ(edited.rho, 0.25f);
       EXPECT_EQ(edited.logDensity, 31.5f);
       EXPECT_EQ(edited.relativeArea, 0.375f);
-      // Only those four: the rest of the material, its glint textures included, is the scene's.
-      scene::Material restored = d.materials[k];
-      restored.glint = scene::applyMaterialControls(restored, untouched.materials[k]).glint;
+      EXPECT_EQ(d.materials[k].specular.ndf, kernel::kNdfGgx);
+      EXPECT_EQ(d.materials[k].specular.masking, kernel::kMaskingSmith);
+      EXPECT_TRUE(d.materials[k].specular.multipleScattering);
+      // Only those four and the specular target: the rest of the material, its glint textures
+      // included, is the scene's.
+      const scene::Material restored = scene::applyMaterialControls(d.materials[k], untouched.materials[k]);
       EXPECT_TRUE(same(restored, s.materials[k])) << name << " material " << k;
       for (std::size_t i = 0; i < s.materials.size(); ++i) {
         if (i != k) EXPECT_TRUE(same(d.materials[i], s.materials[i])) << name << ": editing " << k << " changed " << i;

@@ -31,20 +31,25 @@ struct BenchOptions {
   std::string camera = "default";
   CameraOptions cameraOptions;
   std::string antiAliasing = "ggaa+lean";
+  bool gltfTarget = false;
 };
 
 // What one column of the table times: a specular model under an anti-aliasing mode. With glint
 // anti-aliased, the 2020 model (glint-none) is timed in the same alternation, for the filter's cost.
+// With --gltf-target, glint is timed a second time with every material's specular lobe turned to
+// glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf.
 struct Variant {
   std::string label;
   gl::BrdfModel brdf;
   gl::AntiAliasing antiAliasing;
+  bool gltfTarget = false;
 };
 
-std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing) {
+std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget) {
   std::vector<Variant> variants;
   for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
   if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
+  if (gltfTarget) variants.push_back({"glint-gltf", gl::BrdfModel::Glint, antiAliasing, true});
   return variants;
 }
 
@@ -80,7 +85,8 @@ void runBench(const BenchOptions& options) {
   const gl::ContextInfo info = gl::currentContextInfo();
   gl::FrameTimer timer;
   const bool progress = isatty(STDERR_FILENO);
-  const std::vector<Variant> models = benchVariants(gl::antiAliasingFromString(options.antiAliasing));
+  const std::vector<Variant> models =
+      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
@@ -88,6 +94,13 @@ void runBench(const BenchOptions& options) {
     warnAboutUndrawnLights(scene);
     gl::Renderer renderer(scene, dictionary);
     printWarnings(renderer.warnings());
+    std::unique_ptr<gl::Renderer> gltfRenderer;
+    scene::Scene gltfScene;  // outlives its renderer
+    if (options.gltfTarget) {
+      gltfScene = scene;
+      for (scene::Material& m : gltfScene.materials) m.specular = scene::kGltfSpecular;
+      gltfRenderer = std::make_unique<gl::Renderer>(gltfScene, dictionary);
+    }
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
@@ -100,7 +113,8 @@ void runBench(const BenchOptions& options) {
         const Variant& variant = models[(k + static_cast<std::size_t>(round + options.warmup)) % models.size()];
         frame.brdf = variant.brdf;
         frame.antiAliasing = variant.antiAliasing;
-        const double ms = timer.milliseconds([&] { renderer.renderFrame(frame); });
+        gl::Renderer& drawing = variant.gltfTarget ? *gltfRenderer : renderer;
+        const double ms = timer.milliseconds([&] { drawing.renderFrame(frame); });
         if (round >= 0) times[variant.label].push_back(ms);
       }
       if (progress) std::fprintf(stderr, "\rglint: %s frame %d/%d   ", scene.name.c_str(), round + 1, options.frames);
@@ -182,6 +196,9 @@ void registerBenchCommand(CLI::App& app) {
                       "model is timed too (glint-none), for the filter's cost")
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  command->add_flag("--gltf-target", options->gltfTarget,
+                    "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
+                    "multiple-scattering compensation (glint-gltf)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
   command->callback([options] { runBench(*options); });
 }

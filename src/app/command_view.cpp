@@ -170,6 +170,15 @@ void materialSliders(Choices& choices, scene::ViewControls& controls) {
   ImGui::SliderFloat("relative area", &m.relativeArea, 0.01f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
   tooltip("The share of the surface's cells that hold microfacets, 0.01..1: below 1, some cells stay dark. A "
           "relative area texture multiplies it per texel.");
+  combo("smooth target", m.specular.ndf, {"Beckmann (the paper's)", "GGX (glTF's)"});
+  tooltip("The normal distribution the glints converge to at high density, and the material's Cook-Torrance: "
+          "Beckmann as in the 2020 paper, or GGX as glTF's metallic-roughness BRDF (docs/method.md section 6).");
+  combo("masking", m.specular.masking, {"V-cavity (the paper's)", "Smith (glTF's)"});
+  tooltip("The microfacets' masking and shadowing: V-cavity as in the 2020 paper, or height-correlated Smith with "
+          "the smooth target's Lambda.");
+  ImGui::Checkbox("multiple scattering", &m.specular.multipleScattering);
+  tooltip("Adds the energy a single bounce between the microfacets loses (Kulla & Conty 2017): rough surfaces "
+          "keep their brightness.");
 }
 
 // The sliders of the chosen light: its direction from the scene's centre and its strength.

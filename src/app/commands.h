@@ -15,5 +15,6 @@ void registerTraceCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
 void registerExportCommand(CLI::App& app);
 void registerAaErrorCommand(CLI::App& app);
+void registerAlbedoTablesCommand(CLI::App& app);
 
 }  // namespace glint::app

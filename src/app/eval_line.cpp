@@ -19,7 +19,8 @@ using nlohmann::json;
 const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy",          "wo",
                                        "wi",          "alpha",         "rho",            "brdf",
                                        "log_density", "relative_area", "density_randomisation",
-                                       "max_anisotropy", "pattern_seed"};
+                                       "max_anisotropy", "pattern_seed", "ndf",
+                                       "masking"};
 
 // An array of N finite numbers, read as T (a float value must be finite as a float).
 template <int N, typename T = float>
@@ -39,6 +40,14 @@ glm::vec<N, T> readVector(const json& object, const char* field, glm::vec<N, T> 
     if (!std::isfinite(value[i])) throw Error(std::string("field '") + field + "' must be finite");
   }
   return value;
+}
+
+// A string field, "" when absent.
+std::string readString(const json& object, const char* field) {
+  const auto it = object.find(field);
+  if (it == object.end()) return "";
+  if (!it->is_string()) throw Error(std::string("field '") + field + "' must be a string");
+  return it->get<std::string>();
 }
 
 float readNumber(const json& object, const char* field, float fallback) {
@@ -79,6 +88,10 @@ json evaluate(const json& input, const Dictionary& dictionary) {
     throw Error("field 'pattern_seed' must be an integer in [0, 2^32)");
   }
   parameters.patternSeed = static_cast<std::uint32_t>(seed);
+  if (const std::string ndf = readString(input, "ndf"); !ndf.empty()) parameters.ndf = ndfFromName("field 'ndf'", ndf);
+  if (const std::string masking = readString(input, "masking"); !masking.empty()) {
+    parameters.masking = maskingFromName("field 'masking'", masking);
+  }
   SurfaceFootprint footprint;
   footprint.uv = readVector<2>(input, "uv", footprint.uv);
   footprint.duvdx = readVector<2>(input, "duvdx", footprint.duvdx);
@@ -103,7 +116,8 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   if (brdf == "cook-torrance") {
     validateGlintParameters(parameters);  // the same inputs are accepted by both BRDFs
     validateFootprint(footprint);
-    return report(CookTorranceBsdf(parameters.alpha, parameters.rho));
+    return report(CookTorranceBsdf(parameters.alpha, parameters.rho, Fresnel::none(), Spectrum(1.0f),
+                                   microfacetTarget(parameters)));
   }
   throw Error("field 'brdf' must be \"glint\" or \"cook-torrance\", got \"" + brdf + "\"");
 }

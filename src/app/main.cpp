@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   glint::app::registerBenchCommand(app);
   glint::app::registerExportCommand(app);
   glint::app::registerAaErrorCommand(app);
+  glint::app::registerAlbedoTablesCommand(app);
   try {
     requireKnownCommand(app, argc, argv);
     app.parse(argc, argv);

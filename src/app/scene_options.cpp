@@ -30,6 +30,10 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
+  command.add_option("--ndf", ndf, "The smooth target of every material's specular lobe: beckmann or ggx");
+  command.add_option("--masking", masking, "The masking of every material's specular lobe: v-cavity or smith");
+  command.add_option("--multiple-scattering", multipleScattering,
+                     "Compensate the energy lost to multiple scattering on every material: true or false");
 }
 
 std::string describeDefaultGlintDensity(const scene::Scene& scene, const std::vector<std::size_t>& layered) {
@@ -62,6 +66,9 @@ scene::Scene SceneOptions::loadScene() const {
     s.environment = scene::skyEnvironment(*sky);
   }
   for (scene::Material& m : s.materials) {
+    if (ndf) m.specular.ndf = ndfFromName("--ndf", *ndf);
+    if (masking) m.specular.masking = maskingFromName("--masking", *masking);
+    if (multipleScattering) m.specular.multipleScattering = *multipleScattering;
     if (!m.glint.enabled) continue;
     if (!alpha.empty()) m.glint.alpha = glm::vec2(alpha.front(), alpha.back());
     if (rho) m.glint.rho = *rho;

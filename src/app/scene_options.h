@@ -27,6 +27,10 @@ struct SceneOptions {
   std::optional<float> relativeArea;
   std::optional<float> sky;
   CameraOptions cameraOptions;  // --look-from, --look-at, --up, --fov: applied to the chosen preset
+  // The specular target of every material (scene::Material::specular).
+  std::optional<std::string> ndf;
+  std::optional<std::string> masking;
+  std::optional<bool> multipleScattering;
 
   // All of the options below (render, view, trace).
   void addTo(CLI::App& command);

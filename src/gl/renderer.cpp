@@ -180,6 +180,12 @@ struct ForwardVariant {
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
   bool vertexColours;      // VERTEX_COLOURS: the mesh has COLOR_0 other than white
+  // GLINT_NDF, GLINT_MASKING, GLINT_MULTIPLE_SCATTERING: the material's specular target
+  // (scene::Material::specular), compiled in so that the paper's Beckmann with V-cavity pays
+  // nothing for the others.
+  int ndf;
+  int masking;
+  bool multipleScattering;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -197,7 +203,10 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
                         {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
                         {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
-                        {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"}});
+                        {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"},
+                        {"GLINT_NDF", std::to_string(variant.ndf)},
+                        {"GLINT_MASKING", std::to_string(variant.masking)},
+                        {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -223,8 +232,18 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
   const bool transforms = !(material.baseColourUv.identity() && material.metallicRoughnessUv.identity() &&
                             material.normalUv.identity() && material.occlusionUv.identity() &&
                             material.emissiveUv.identity());
-  return ForwardVariant{model,     coloured,      filtered,   lean, finest, lightCount, isMasked(material),
-                        transforms, mesh.vertexColours};
+  return ForwardVariant{model,
+                        coloured,
+                        filtered,
+                        lean,
+                        finest,
+                        lightCount,
+                        isMasked(material),
+                        transforms,
+                        mesh.vertexColours,
+                        material.specular.ndf,
+                        material.specular.masking,
+                        material.specular.multipleScattering};
 }
 
 struct Renderer::Gpu {

@@ -1,10 +1,12 @@
 #include "bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
 #include "error.h"
+#include "kernel/multiple_scattering.h"
 #include "microfacet_sampling.h"
 
 namespace glint {
@@ -39,8 +41,43 @@ GlintParameters defaultGlintParameters() {
   p.maxAnisotropy = 8.0f;
   p.patternSeed = 0u;
   p.colouredCells = false;
+  p.ndf = kernel::kNdfBeckmann;
+  p.masking = kernel::kMaskingVCavity;
+  p.multipleScattering = false;
   return p;
 }
+
+MicrofacetTarget microfacetTarget(const GlintParameters& parameters) {
+  return MicrofacetTarget{parameters.ndf, parameters.masking, parameters.multipleScattering};
+}
+
+int ndfFromName(const std::string& field, const std::string& name) {
+  if (name == "beckmann") return kernel::kNdfBeckmann;
+  if (name == "ggx") return kernel::kNdfGgx;
+  throw Error(field + " must be \"beckmann\" or \"ggx\", got \"" + name + "\"");
+}
+
+int maskingFromName(const std::string& field, const std::string& name) {
+  if (name == "v-cavity") return kernel::kMaskingVCavity;
+  if (name == "smith") return kernel::kMaskingSmith;
+  throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
+}
+
+const char* ndfName(int ndf) { return ndf == kernel::kNdfGgx ? "ggx" : "beckmann"; }
+const char* maskingName(int masking) { return masking == kernel::kMaskingSmith ? "smith" : "v-cavity"; }
+
+namespace {
+
+void validateTarget(const MicrofacetTarget& target) {
+  if (target.ndf != kernel::kNdfBeckmann && target.ndf != kernel::kNdfGgx) {
+    throw Error("ndf must be beckmann (0) or ggx (1), got " + std::to_string(target.ndf));
+  }
+  if (target.masking != kernel::kMaskingVCavity && target.masking != kernel::kMaskingSmith) {
+    throw Error("masking must be v-cavity (0) or smith (1), got " + std::to_string(target.masking));
+  }
+}
+
+}  // namespace
 
 void validateRoughness(glm::vec2 alpha) {
   requireRange("alpha_x", alpha.x, kMinRoughnessAlpha, kMaxRoughnessAlpha);
@@ -63,6 +100,7 @@ void validateGlintParameters(const GlintParameters& p) {
   }
   requireRange("density_randomisation", p.densityRandomisation, 0.0f, 10.0f);
   requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
+  validateTarget(microfacetTarget(p));
 }
 
 void validateFootprint(const SurfaceFootprint& footprint) {
@@ -102,23 +140,74 @@ Spectrum Fresnel::evaluate(float cosThetaI) const {
   return Spectrum(1.0f);
 }
 
-CookTorranceBsdf::CookTorranceBsdf(glm::vec2 alpha, float rho, Fresnel fresnel, Spectrum reflectance)
-    : alpha_(alpha), rho_(rho), fresnel_(fresnel), reflectance_(reflectance) {
+Spectrum Fresnel::average() const {
+  switch (kind_) {
+    case Kind::None: return Spectrum(1.0f);
+    case Kind::Schlick: return kernel::schlickAverageFresnel(a_);
+    case Kind::Conductor: {
+      // 2 integral of F(mu) mu dmu by 256 midpoints: F is smooth, the sum is exact to 1e-5.
+      constexpr int kPoints = 256;
+      Spectrum sum(0.0f);
+      for (int k = 0; k < kPoints; ++k) {
+        const float mu = (static_cast<float>(k) + 0.5f) / kPoints;
+        sum += kernel::fresnelConductor(a_, b_, mu) * mu;
+      }
+      return sum * (2.0f / kPoints);
+    }
+  }
+  return Spectrum(1.0f);
+}
+
+namespace {
+
+// The multiple-scattering compensation lobe (kernel/multiple_scattering.h) of a target at roughness
+// alpha: its Fresnel factor F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (0 without compensation) ...
+Spectrum compensationFresnel(const MicrofacetTarget& target, glm::vec2 alpha, const Fresnel& fresnel) {
+  if (!target.multipleScattering) return Spectrum(0.0f);
+  const float averageAlbedo = kernel::averageAlbedo(target.ndf, target.masking, kernel::compensationAlpha(alpha));
+  return kernel::multipleScatteringFresnel(fresnel.average(), averageAlbedo);
+}
+
+// ... its value, with that factor and the colour ...
+Spectrum compensation(const MicrofacetTarget& target, glm::vec2 alpha, Spectrum fresnelFactor, Spectrum reflectance,
+                      glm::vec3 wo, glm::vec3 wi) {
+  if (!target.multipleScattering) return Spectrum(0.0f);
+  return reflectance * fresnelFactor *
+         kernel::multipleScatteringReflectance(target.ndf, target.masking, alpha, wo, wi);
+}
+
+// ... and the probability that sample() draws it (cosine-weighted) rather than the microfacets:
+// the share of the energy it carries with F = 1, 1 - E(mu_o).
+float compensationProbability(const MicrofacetTarget& target, glm::vec2 alpha, glm::vec3 wo) {
+  if (!target.multipleScattering || wo.z <= 0.0f) return 0.0f;
+  return std::clamp(
+      1.0f - kernel::directionalAlbedo(target.ndf, target.masking, kernel::compensationAlpha(alpha), wo.z), 0.0f,
+      1.0f);
+}
+
+}  // namespace
+
+CookTorranceBsdf::CookTorranceBsdf(glm::vec2 alpha, float rho, Fresnel fresnel, Spectrum reflectance,
+                                   MicrofacetTarget target)
+    : alpha_(alpha), rho_(rho), fresnel_(fresnel), reflectance_(reflectance), target_(target) {
   validateRoughness(alpha);
   validateSlopeCorrelation(rho);
+  validateTarget(target);
+  compensationFresnel_ = compensationFresnel(target, alpha, fresnel);
 }
 
 Spectrum CookTorranceBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
-  const float value = kernel::cookTorranceReflectance(alpha_, rho_, wo, wi);
-  if (value == 0.0f) return Spectrum(0.0f);
-  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
+  const Spectrum multiple = compensation(target_, alpha_, compensationFresnel_, reflectance_, wo, wi);
+  const float value = kernel::targetCookTorranceReflectance(target_.ndf, target_.masking, alpha_, rho_, wo, wi);
+  if (value == 0.0f) return multiple;
+  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value + multiple;
 }
 
 float CookTorranceBsdf::ndf(glm::vec3 m) const {
   return m.z > 0.0f ? kernel::ndfFromP22(p22(kernel::slopeFromNormal(m)), m.z) : 0.0f;
 }
 
-float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::beckmannP22(slope, alpha_, rho_); }
+float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::targetP22(target_.ndf, slope, alpha_, rho_); }
 
 GlintBsdf::GlintBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
                      const SurfaceFootprint& footprint, Fresnel fresnel, Spectrum reflectance, GlintSampler sampler)
@@ -130,16 +219,17 @@ GlintBsdf::GlintBsdf(const Dictionary& dictionary, const GlintParameters& parame
       sampler_(sampler) {
   validateGlintParameters(parameters);
   validateFootprint(footprint);
+  compensationFresnel_ = compensationFresnel(microfacetTarget(parameters), parameters.alpha, fresnel);
 }
 
 namespace {
 
-// The Cook-Torrance frame around a value of the P-NDF at wh = normalize(wo + wi), with Fresnel and
-// colour: what kernel::glintReflectance computes, given the NDF value, so that sample() evaluates
-// the P-NDF once for both f and pdf.
-Spectrum glintReflection(const Fresnel& fresnel, Spectrum reflectance, glm::vec3 wo, glm::vec3 wi, glm::vec3 wh,
-                         float ndf) {
-  const float value = kernel::microfacetReflectance(wo, wi, wh, ndf);
+// The Cook-Torrance frame around a value of the P-NDF at wh = normalize(wo + wi), with the material's
+// masking, Fresnel and colour: what kernel::glintReflectance computes, given the NDF value, so that
+// sample() evaluates the P-NDF once for both f and pdf.
+Spectrum glintReflection(const GlintParameters& parameters, const Fresnel& fresnel, Spectrum reflectance,
+                         glm::vec3 wo, glm::vec3 wi, glm::vec3 wh, float ndf) {
+  const float value = kernel::glintMaskedReflectance(parameters, wo, wi, wh, ndf);
   if (value == 0.0f) return Spectrum(0.0f);
   return reflectance * fresnel.evaluate(glm::dot(wo, wh)) * value;
 }
@@ -164,7 +254,8 @@ Spectrum GlintBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return Spectrum(0.0f);
   const glm::vec3 wh = glm::normalize(wo + wi);
   const glm::vec4 d = colouredNdf(wh);
-  return glintReflection(fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d);
+  return glintReflection(parameters_, fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d) +
+         compensation(microfacetTarget(parameters_), parameters_.alpha, compensationFresnel_, reflectance_, wo, wi);
 }
 
 float GlintBsdf::ndf(glm::vec3 m) const {
@@ -183,15 +274,15 @@ namespace {
 // Mirror reflection of wo about a microfacet normal m: wi = 2 (wo.m) m - wo.
 glm::vec3 reflectAbout(glm::vec3 wo, glm::vec3 m) { return glm::normalize(2.0f * glm::dot(wo, m) * m - wo); }
 
-// A visible normal of the Beckmann lobe: a slope of its P22 (that is, m from D(m) m.z), then the
-// V-cavity's choice between m and its mirror (Heitz & d'Eon 2014, section 5).
-glm::vec3 sampleBeckmannVisibleNormal(glm::vec2 alpha, float rho, glm::vec3 wo, float& uChoice, glm::vec2 u) {
-  const glm::vec3 m = sampling::normalFromSlope(sampling::sampleBeckmannSlope(alpha, rho, u));
+// A visible normal of the smooth target's lobe: a slope of its P22 (that is, m from D(m) m.z), then
+// the V-cavity's choice between m and its mirror (Heitz & d'Eon 2014, section 5).
+glm::vec3 sampleTargetVisibleNormal(int ndf, glm::vec2 alpha, float rho, glm::vec3 wo, float& uChoice, glm::vec2 u) {
+  const glm::vec3 m = sampling::normalFromSlope(sampling::sampleTargetSlope(ndf, alpha, rho, u));
   return sampling::sampleVCavityVisibleNormal(wo, m, uChoice);
 }
 
-float beckmannNdf(glm::vec2 alpha, float rho, glm::vec3 m) {
-  return m.z > 0.0f ? kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha, rho), m.z) : 0.0f;
+float targetNdf(int ndf, glm::vec2 alpha, float rho, glm::vec3 m) {
+  return m.z > 0.0f ? kernel::ndfFromP22(kernel::targetP22(ndf, kernel::slopeFromNormal(m), alpha, rho), m.z) : 0.0f;
 }
 
 // Density of a direction reflected about visible normals: D_wo(wh) / (4 wo.wh), the Jacobian of
@@ -208,9 +299,19 @@ std::optional<BsdfSample> makeSample(Spectrum f, glm::vec3 wi, float pdf, bool t
 
 }  // namespace
 
+// With multiple scattering, sample() draws the compensation lobe with probability p
+// (compensationProbability), by the cosine, else the microfacets with uChoice rescaled; the pdf is
+// the mixture's, (1 - p) pdf_microfacets + p wi.z / pi. Without it p = 0 and nothing changes.
 std::optional<BsdfSample> CookTorranceBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
   if (wo.z <= 0.0f) return std::nullopt;
-  const glm::vec3 wi = reflectAbout(wo, sampleBeckmannVisibleNormal(alpha_, rho_, wo, uChoice, u));
+  const float p = compensationProbability(target_, alpha_, wo);
+  glm::vec3 wi;
+  if (uChoice < p) {
+    wi = sampling::sampleCosineHemisphere(u);
+  } else {
+    if (p > 0.0f) uChoice = sampling::remapUniform(uChoice, p, 1.0f - p);
+    wi = reflectAbout(wo, sampleTargetVisibleNormal(target_.ndf, alpha_, rho_, wo, uChoice, u));
+  }
   if (wi.z <= 0.0f) return std::nullopt;
   return makeSample(f(wo, wi), wi, pdf(wo, wi), false);
 }
@@ -218,11 +319,16 @@ std::optional<BsdfSample> CookTorranceBsdf::sample(glm::vec3 wo, float uChoice, 
 float CookTorranceBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 wh = glm::normalize(wo + wi);
-  return reflectionPdf(wo, wh, sampling::visibleNdf(wo, wh, beckmannNdf(alpha_, rho_, wh)));
+  const float microfacets =
+      reflectionPdf(wo, wh, sampling::visibleNdf(wo, wh, targetNdf(target_.ndf, alpha_, rho_, wh)));
+  const float p = compensationProbability(target_, alpha_, wo);
+  return p > 0.0f ? (1.0f - p) * microfacets + p * sampling::cosineHemispherePdf(wi.z) : microfacets;
 }
 
 std::optional<glm::vec3> GlintBsdf::sampleVisibleNormal(glm::vec3 wo, float& uChoice, glm::vec2 u) const {
-  if (sampler_ == GlintSampler::Gaussian) return sampleBeckmannVisibleNormal(parameters_.alpha, parameters_.rho, wo, uChoice, u);
+  if (sampler_ == GlintSampler::Gaussian) {
+    return sampleTargetVisibleNormal(parameters_.ndf, parameters_.alpha, parameters_.rho, wo, uChoice, u);
+  }
   const std::optional<glm::vec2> slope = sampling::sampleGlintSlope(
       dictionary_, parameters_, footprint_.uv, footprint_.duvdx, footprint_.duvdy, uChoice, u);
   if (!slope) return std::nullopt;  // a cell without microfacets
@@ -231,12 +337,22 @@ std::optional<glm::vec3> GlintBsdf::sampleVisibleNormal(glm::vec3 wo, float& uCh
 
 float GlintBsdf::visibleNormalPdf(glm::vec3 wo, glm::vec3 m) const {
   if (m.z <= 0.0f) return 0.0f;
-  const float d = sampler_ == GlintSampler::Gaussian ? beckmannNdf(parameters_.alpha, parameters_.rho, m) : ndf(m);
+  const float d =
+      sampler_ == GlintSampler::Gaussian ? targetNdf(parameters_.ndf, parameters_.alpha, parameters_.rho, m) : ndf(m);
   return sampling::visibleNdf(wo, m, d);
 }
 
 std::optional<BsdfSample> GlintBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
   if (wo.z <= 0.0f) return std::nullopt;
+  // The compensation lobe, as CookTorranceBsdf::sample.
+  const MicrofacetTarget target = microfacetTarget(parameters_);
+  const float p = compensationProbability(target, parameters_.alpha, wo);
+  if (uChoice < p) {
+    const glm::vec3 wi = sampling::sampleCosineHemisphere(u);
+    if (wi.z <= 0.0f) return std::nullopt;
+    return makeSample(f(wo, wi), wi, pdf(wo, wi), false);
+  }
+  if (p > 0.0f) uChoice = sampling::remapUniform(uChoice, p, 1.0f - p);
   const std::optional<glm::vec3> m = sampleVisibleNormal(wo, uChoice, u);
   if (!m) return std::nullopt;
   const glm::vec3 wi = reflectAbout(wo, *m);
@@ -247,14 +363,19 @@ std::optional<BsdfSample> GlintBsdf::sample(glm::vec3 wo, float uChoice, glm::ve
   const glm::vec4 d = colouredNdf(wh);
   const float visible =
       sampler_ == GlintSampler::Mixture ? sampling::visibleNdf(wo, wh, d.w) : visibleNormalPdf(wo, wh);
-  return makeSample(glintReflection(fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d), wi,
-                    reflectionPdf(wo, wh, visible), false);
+  const Spectrum value = glintReflection(parameters_, fresnel_, reflectance_, wo, wi, wh, d.w) * cellTint(d);
+  const float microfacets = reflectionPdf(wo, wh, visible);
+  if (!(p > 0.0f)) return makeSample(value, wi, microfacets, false);
+  return makeSample(value + compensation(target, parameters_.alpha, compensationFresnel_, reflectance_, wo, wi), wi,
+                    (1.0f - p) * microfacets + p * sampling::cosineHemispherePdf(wi.z), false);
 }
 
 float GlintBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 wh = glm::normalize(wo + wi);
-  return reflectionPdf(wo, wh, visibleNormalPdf(wo, wh));
+  const float microfacets = reflectionPdf(wo, wh, visibleNormalPdf(wo, wh));
+  const float p = compensationProbability(microfacetTarget(parameters_), parameters_.alpha, wo);
+  return p > 0.0f ? (1.0f - p) * microfacets + p * sampling::cosineHemispherePdf(wi.z) : microfacets;
 }
 
 GlintDielectricBsdf::GlintDielectricBsdf(const Dictionary& dictionary, const GlintParameters& parameters,

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -45,6 +46,9 @@ class Fresnel {
   static Fresnel schlick(Spectrum f0);
   static Fresnel conductor(Spectrum eta, Spectrum k);
   Spectrum evaluate(float cosThetaI) const;
+  // The cosine-weighted hemispherical mean 2 integral of F(mu) mu dmu (the multiple-scattering
+  // lobe's F_avg).
+  Spectrum average() const;
 
  private:
   enum class Kind { None, Schlick, Conductor };
@@ -76,16 +80,32 @@ struct BsdfSample {
 // lobe of the same roughness, the baseline (low cost, high variance for glints).
 enum class GlintSampler { Mixture, Gaussian };
 
-// Cook-Torrance with a Beckmann NDF (roughness alpha, slope correlation rho) and V-cavity masking:
+// The smooth target and masking of a microfacet BRDF (kernel/microfacet_targets.h): the 2020
+// paper's Beckmann with V-cavity by default; glTF's is GGX with Smith.
+struct MicrofacetTarget {
+  int ndf = kernel::kNdfBeckmann;
+  int masking = kernel::kMaskingVCavity;
+  bool multipleScattering = false;  // the compensation lobe of kernel/multiple_scattering.h
+};
+MicrofacetTarget microfacetTarget(const GlintParameters& parameters);
+// The accepted names, as extras.glint and glint eval spell them: "beckmann" | "ggx",
+// "v-cavity" | "smith". Throws Error naming the field and the value otherwise.
+int ndfFromName(const std::string& field, const std::string& name);
+int maskingFromName(const std::string& field, const std::string& name);
+const char* ndfName(int ndf);
+const char* maskingName(int masking);
+
+// Cook-Torrance with the target's NDF (roughness alpha, slope correlation rho) and masking:
 // the baseline, and the glint BRDF's limit.
 class CookTorranceBsdf {
  public:
   CookTorranceBsdf(glm::vec2 alpha, float rho = 0.0f, Fresnel fresnel = Fresnel::none(),
-                   Spectrum reflectance = Spectrum(1.0f));
+                   Spectrum reflectance = Spectrum(1.0f), MicrofacetTarget target = MicrofacetTarget());
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
-  float ndf(glm::vec3 m) const;    // Beckmann D(m)
+  float ndf(glm::vec3 m) const;    // the target's D(m)
   float p22(glm::vec2 slope) const;
-  // Visible normals of Beckmann with V-cavity (Heitz & d'Eon 2014); uChoice, u in [0, 1).
+  // Slopes of the target, then the V-cavity's visible normals (Heitz & d'Eon 2014), whatever the
+  // masking of f; uChoice, u in [0, 1).
   std::optional<BsdfSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
   float pdf(glm::vec3 wo, glm::vec3 wi) const;
 
@@ -94,6 +114,8 @@ class CookTorranceBsdf {
   float rho_;
   Fresnel fresnel_;
   Spectrum reflectance_;
+  MicrofacetTarget target_;
+  Spectrum compensationFresnel_;  // F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), with multiple scattering
 };
 
 // The glint BRDF (method.md sections 2-3) at one shading point. Holds a reference to the
@@ -128,6 +150,7 @@ class GlintBsdf {
   Fresnel fresnel_;
   Spectrum reflectance_;
   GlintSampler sampler_;
+  Spectrum compensationFresnel_;  // as CookTorranceBsdf's
 };
 
 // A glittering dielectric (Chermain et al. 2021, EGSR): the glint microfacets reflect

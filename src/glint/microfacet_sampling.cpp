@@ -9,17 +9,72 @@ float remapUniform(float u, float low, float width) {
   return std::clamp((u - low) / width, 0.0f, kOneMinusEpsilon);
 }
 
+glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
+  // Shirley & Chiu's concentric map keeps strata compact (pbrt-v3, ConcentricSampleDisk).
+  const glm::vec2 offset = 2.0f * u - glm::vec2(1.0f);
+  glm::vec2 d(0.0f);
+  if (offset.x != 0.0f || offset.y != 0.0f) {
+    float r;
+    float theta;
+    if (std::abs(offset.x) > std::abs(offset.y)) {
+      r = offset.x;
+      theta = 0.25f * kernel::kPi * (offset.y / offset.x);
+    } else {
+      r = offset.y;
+      theta = 0.5f * kernel::kPi - 0.25f * kernel::kPi * (offset.x / offset.y);
+    }
+    d = r * glm::vec2(std::cos(theta), std::sin(theta));
+  }
+  const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  return {d.x, d.y, z};
+}
+
 glm::vec3 normalFromSlope(glm::vec2 slope) { return glm::normalize(glm::vec3(-slope.x, -slope.y, 1.0f)); }
 
-glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
-  // Box-Muller: radius sqrt(-2 ln(1 - u.x)) of a unit Gaussian pair z = radius (cos, sin), angle
-  // 2 pi u.y; then the covariance's Cholesky factor: sigma_x (sqrt(1 - rho^2) z.x + rho z.y),
-  // sigma_y z.y, sigma = alpha / sqrt(2) (exactly the uncorrelated sigma z when rho = 0).
-  const float radius = std::sqrt(-2.0f * std::log1p(-std::min(u.x, kOneMinusEpsilon)));
-  const float phi = 2.0f * kernel::kPi * u.y;
+namespace {
+
+// The slope sigma L z of a whitened pair z = radius (cos, sin), angle 2 pi v: the covariance's
+// Cholesky factor, sigma_x (sqrt(1 - rho^2) z.x + rho z.y), sigma_y z.y, sigma = alpha / sqrt(2)
+// (exactly the uncorrelated sigma z when rho = 0). Beckmann, GGX and its remainder are all
+// elliptical with this scale matrix: only their radius differs.
+glm::vec2 ellipticalSlope(glm::vec2 alpha, float rho, float radius, float v) {
+  const float phi = 2.0f * kernel::kPi * v;
   const float c = std::cos(phi);
   const float s = std::sin(phi);
   return alpha * 0.70710678f * radius * glm::vec2(std::sqrt(1.0f - rho * rho) * c + rho * s, s);
+}
+
+}  // namespace
+
+glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
+  // Box-Muller: radius sqrt(-2 ln(1 - u.x)) of a unit Gaussian pair.
+  return ellipticalSlope(alpha, rho, std::sqrt(-2.0f * std::log1p(-std::min(u.x, kOneMinusEpsilon))), u.y);
+}
+
+glm::vec2 sampleGgxSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
+  // Whitened, the density of t = |z|^2 / 2 is (1 + t)^-2: t = u / (1 - u), radius sqrt(2 t).
+  const double x = std::min(u.x, kOneMinusEpsilon);
+  return ellipticalSlope(alpha, rho, static_cast<float>(std::sqrt(2.0 * x / (1.0 - x))), u.y);
+}
+
+glm::vec2 sampleGgxTailSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
+  // Solve S(y) = v for y = 1 + t, S(y) = (1 - e^(-y W)) / (y (1 - e^-W)), decreasing from S(1) = 1;
+  // S(y) <= 1 / (y (1 - e^-W)) bounds the root by 1 / (v (1 - e^-W)).
+  const double w = kernel::kGgxTailPrecision;
+  const double mass = -std::expm1(-w);
+  const double v = 1.0 - std::min(u.x, kOneMinusEpsilon);
+  double low = 1.0;
+  double high = std::max(1.0, 1.0 / (v * mass));
+  for (int i = 0; i < 200 && high - low > 1e-12 * high; ++i) {
+    const double y = 0.5 * (low + high);
+    (-std::expm1(-y * w) / (y * mass) > v ? low : high) = y;
+  }
+  const double t = 0.5 * (low + high) - 1.0;
+  return ellipticalSlope(alpha, rho, static_cast<float>(std::sqrt(2.0 * std::max(t, 0.0))), u.y);
+}
+
+glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u) {
+  return ndf == kernel::kNdfGgx ? sampleGgxSlope(alpha, rho, u) : sampleBeckmannSlope(alpha, rho, u);
 }
 
 float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u) {
@@ -64,7 +119,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
                                           glm::vec2 u) {
   const kernel::GlintFootprint footprint =
       kernel::glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
-  if (footprint.degenerate) return sampleBeckmannSlope(params.alpha, params.rho, u);
+  if (footprint.degenerate) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
   // P22_P = (1 - w) P22_il + w P22_il+1 (method.md 2.3): level il + 1 with probability w.
   int level = kernel::glintLodLevel(footprint);
   const float blend = kernel::glintLodBlend(footprint);
@@ -115,7 +170,8 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them.
   const kernel::GlintCell drawn = kernel::glintCell(
       dict, params, kernel::glintLevelDraw(dict, params, footprint.logDensity, level), cell.x, cell.y, level);
-  if (drawn.smoothLimit) return sampleBeckmannSlope(params.alpha, params.rho, u);
+  if (drawn.smoothLimit) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
+  if (drawn.ggxTail) return sampleGgxTailSlope(params.alpha, params.rho, u);
   if (!drawn.readsDictionary) return std::nullopt;
   const glm::uvec4 hash = drawn.hash;
   const int dictLevel = drawn.dictionaryLevel;
@@ -123,11 +179,12 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   // Tensor product: x' and y' independent, each from its marginal (method.md 2.5).
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
   const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
-  // Back from the dictionary's space: slope = M R(theta) (x', y'), the inverse of
-  // glintDictionarySlope(glintUnscaledSlope(slope))'s (x', y') = R(-theta) M^-1 slope.
+  // Back from the dictionary's space: slope = M R(theta) (x', y') / sqrt(w), the inverse of
+  // glintDictionarySlope(glintUnscaledSlope(slope) sqrt(w))'s (x', y') = R(-theta) M^-1 slope
+  // sqrt(w) (w = 1 but for GGX cells).
   const glm::vec2 rotation = kernel::glintCellRotation(hash);
   const glm::vec2 rotated(rotation.x * x - rotation.y * y, rotation.y * x + rotation.x * y);
-  return kernel::glintScaledSlope(dict, params, rotated);
+  return kernel::glintScaledSlope(dict, params, rotated / drawn.unscale);
 }
 
 glm::vec3 sampleVCavityVisibleNormal(glm::vec3 wo, glm::vec3 m, float& u) {

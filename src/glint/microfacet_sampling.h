@@ -24,6 +24,11 @@ inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 // A uniform u that fell in [low, low + width) rescaled to [0, 1).
 float remapUniform(float u, float low, float width);
 
+// Cosine-weighted direction about +z (Malley's method on a concentric disk); pdf = z / pi. The
+// diffuse lobe of the path tracer's materials and the multiple-scattering compensation lobe.
+glm::vec3 sampleCosineHemisphere(glm::vec2 u);
+inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0.0f ? cosTheta / 3.14159265358979f : 0.0f; }
+
 // A microfacet normal from its slope: m = (-x, -y, 1) / sqrt(1 + x^2 + y^2) (method.md, notation).
 glm::vec3 normalFromSlope(glm::vec2 slope);
 
@@ -31,6 +36,18 @@ glm::vec3 normalFromSlope(glm::vec2 slope);
 // centred Gaussian of std alpha / sqrt(2) per axis and correlation rho, by the Box-Muller transform
 // and the covariance's Cholesky factor.
 glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u);
+
+// A slope of the GGX P22 (kernel/microfacet_targets.h, ggxP22): the Student t's radius t = q / 2
+// has the CDF 1 - 1 / (1 + t), inverted, then the same angle and Cholesky factor as Beckmann's.
+glm::vec2 sampleGgxSlope(glm::vec2 alpha, float rho, glm::vec2 u);
+
+// A slope of the GGX scale mixture's smooth remainder (studentTailSlopeP22): its radius t = q / 2
+// has P(T > t) = (1 - e^(-(1 + t) W)) / ((1 + t) (1 - e^-W)), W = kGgxTailPrecision, inverted by
+// bisection in double.
+glm::vec2 sampleGgxTailSlope(glm::vec2 alpha, float rho, glm::vec2 u);
+
+// A slope of the smooth target (kernel::kNdfBeckmann or kNdfGgx).
+glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u);
 
 // A signed dictionary-space slope of distribution `distribution` at level `level`, by inverting
 // the CDF of the kernel's piecewise-linear marginal (glintMarginal: texel k at slope k 4 sigma_d / R,
@@ -42,8 +59,9 @@ float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distr
 // A slope of the P-SDF P22_P (method.md 2.3-2.5, section 5): the LOD il or il + 1 by the blend
 // weight, a cell of that level by its normalised EWA weight (the cells glintLevelP22 visits, with
 // its weights), the cell's random properties regenerated with the kernel's own functions, then a
-// slope of that cell's P22: Beckmann in the smooth limit, else the tensor product of two marginals,
-// rotated and scaled. Returns nullopt when the chosen cell holds no microfacets (relative area
+// slope of that cell's P22: the smooth target in the smooth limit, the GGX remainder in a GGX tail
+// cell, else the tensor product of two marginals, rotated and scaled (for GGX, by the cell's own
+// scale too). Returns nullopt when the chosen cell holds no microfacets (relative area
 // mask) or the level has no cell: with probability 1 - integral of P22_P. `uChoice` makes the
 // discrete choices and comes back rescaled to [0, 1), for the caller's next choice.
 std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const kernel::GlintParameters& params,

@@ -330,10 +330,10 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
 // Texture coordinates glint accepts, in magnitude.
 constexpr float kLargestUv = 1e6f;
 
-const std::array<const char*, 13> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
+const std::array<const char*, 16> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
                                                   "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
                                                   "roughness_texture", "log_density_texture", "log_density_range",
-                                                  "relative_area_texture"};
+                                                  "relative_area_texture", "ndf", "masking", "multiple_scattering"};
 
 float numberField(const nlohmann::json& value, const std::string& field) {
   if (!value.is_number()) throw error(field, " must be a number");
@@ -869,6 +869,7 @@ class GltfReader {
       fallback.baseColour = glm::vec4(1.0f);
       fallback.metallic = 1.0f;
       fallback.roughness = 1.0f;
+      fallback.specular = kGltfSpecular;
       defaultMaterial_ = static_cast<int>(scene_.materials.size());
       scene_.materials.push_back(fallback);
     }
@@ -941,6 +942,7 @@ class GltfReader {
 
   Material material(const tinygltf::Material& source, int index) {
     Material m;
+    m.specular = kGltfSpecular;
     m.name = source.name.empty() ? "material " + std::to_string(index) : source.name;
     const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
     if (pbr.baseColorFactor.size() == 4) {
@@ -1002,6 +1004,18 @@ class GltfReader {
       const nlohmann::json extras = nlohmann::json::parse(source.extras_json_string, nullptr, false);
       if (extras.is_object() && extras.contains("glint")) {
         m.glint = withContext("extras.glint: ", [&] { return glintLayer(extras["glint"], m); });
+        m.specular = withContext("extras.glint: ", [&] { return specularTarget(extras["glint"], m.specular); });
+      } else if (extras.is_object() && extras.contains("glint_specular")) {
+        m.specular = withContext("extras.glint_specular: ", [&] {
+          const nlohmann::json& target = extras["glint_specular"];
+          if (!target.is_object()) throw error("must be an object");
+          for (const auto& item : target.items()) {
+            if (item.key() != "ndf" && item.key() != "masking" && item.key() != "multiple_scattering") {
+              throw error("unknown field '", item.key(), "' (known: ndf, masking, multiple_scattering)");
+            }
+          }
+          return specularTarget(target, m.specular);
+        });
       }
     }
     return m;
@@ -1059,6 +1073,24 @@ class GltfReader {
     }
     validateGlintLayer(layer, scene_.textures.size());
     return layer;
+  }
+
+  // The material's specular target as extras.glint may set it: ndf, masking, multiple_scattering
+  // (docs/scenes.md), each defaulting to glTF's.
+  static MicrofacetTarget specularTarget(const nlohmann::json& glint, MicrofacetTarget target) {
+    if (glint.contains("ndf")) {
+      if (!glint["ndf"].is_string()) throw error("ndf must be \"beckmann\" or \"ggx\"");
+      target.ndf = ndfFromName("ndf", glint["ndf"].get<std::string>());
+    }
+    if (glint.contains("masking")) {
+      if (!glint["masking"].is_string()) throw error("masking must be \"v-cavity\" or \"smith\"");
+      target.masking = maskingFromName("masking", glint["masking"].get<std::string>());
+    }
+    if (glint.contains("multiple_scattering")) {
+      if (!glint["multiple_scattering"].is_boolean()) throw error("multiple_scattering must be true or false");
+      target.multipleScattering = glint["multiple_scattering"].get<bool>();
+    }
+    return target;
   }
 
   struct FileCamera {

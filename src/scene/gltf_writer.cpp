@@ -39,8 +39,16 @@ tinygltf::Value pair(glm::vec2 value) {
 
 // The glint layer exactly as the loader reads it (docs/scenes.md, "Glint parameters in glTF
 // extras"): every field, so that the file does not depend on the loader's defaults.
-tinygltf::Value glintExtras(const GlintLayer& layer) {
+// A material's specular target as extras.glint and extras.glint_specular spell it.
+void writeSpecularTarget(tinygltf::Value::Object& fields, const MicrofacetTarget& specular) {
+  fields["ndf"] = tinygltf::Value(std::string(ndfName(specular.ndf)));
+  fields["masking"] = tinygltf::Value(std::string(maskingName(specular.masking)));
+  fields["multiple_scattering"] = tinygltf::Value(specular.multipleScattering);
+}
+
+tinygltf::Value glintExtras(const GlintLayer& layer, const MicrofacetTarget& specular) {
   tinygltf::Value::Object glint;
+  writeSpecularTarget(glint, specular);
   glint["alpha"] = pair(layer.alpha);
   glint["rho"] = number(layer.rho);
   glint["log_density"] = number(layer.logDensity);
@@ -242,7 +250,16 @@ class GltfWriter {
       for (int t : {m.glint.roughnessTexture, m.glint.logDensityTexture, m.glint.relativeAreaTexture}) {
         textureIndex(t, "glint texture", m);
       }
-      out.extras = glintExtras(m.glint);
+      out.extras = glintExtras(m.glint, m.specular);
+    } else if (m.specular.ndf != kGltfSpecular.ndf || m.specular.masking != kGltfSpecular.masking ||
+               m.specular.multipleScattering != kGltfSpecular.multipleScattering) {
+      // A material without a glint layer whose lobe is not glTF's (a built-in scene's): said in
+      // extras.glint_specular, so that the file renders as the scene did.
+      tinygltf::Value::Object target;
+      writeSpecularTarget(target, m.specular);
+      tinygltf::Value::Object extras;
+      extras["glint_specular"] = tinygltf::Value(std::move(target));
+      out.extras = tinygltf::Value(std::move(extras));
     }
     model_.materials.push_back(std::move(out));
   }

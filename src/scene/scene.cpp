@@ -28,8 +28,11 @@ glm::vec3 Scene::boundsMax() const {
 
 float alphaFromRoughness(float roughness) { return std::max(roughness * roughness, 0.01f); }
 
-GlintParameters glintParameters(const GlintLayer& layer) {
+GlintParameters glintParameters(const GlintLayer& layer, const MicrofacetTarget& target) {
   GlintParameters p = defaultGlintParameters();
+  p.ndf = target.ndf;
+  p.masking = target.masking;
+  p.multipleScattering = target.multipleScattering;
   p.alpha = layer.alpha;
   p.rho = layer.rho;
   p.logDensity = layer.logDensity;

@@ -107,7 +107,16 @@ struct Material {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   GlintLayer glint;
+  // The specular lobe's smooth target, masking and multiple-scattering compensation
+  // (kernel/microfacet_targets.h, kernel/multiple_scattering.h), with or without a glint layer (the
+  // layer converges to it): a glTF file's materials get glTF's, GGX with Smith masking and the
+  // compensation (kGltfSpecular); the built-in scenes the 2020 paper's, Beckmann with V-cavity.
+  MicrofacetTarget specular;
 };
+
+// glTF's metallic-roughness specular lobe: GGX, height-correlated Smith, and the compensation of
+// the energy its single scattering loses.
+inline constexpr MicrofacetTarget kGltfSpecular{kernel::kNdfGgx, kernel::kMaskingSmith, true};
 
 struct Light {
   enum class Type { Point, Directional, Spot };
@@ -176,8 +185,9 @@ struct Scene {
 // convention), at least 0.01 so the glint BRDF stays within its dictionary.
 float alphaFromRoughness(float roughness);
 
-// The kernel parameters of a glint layer (its constants; textures are applied per shading point).
-GlintParameters glintParameters(const GlintLayer& layer);
+// The kernel parameters of a glint layer (its constants; textures are applied per shading point)
+// converging to the material's specular target.
+GlintParameters glintParameters(const GlintLayer& layer, const MicrofacetTarget& target = MicrofacetTarget());
 
 // Throws Error naming the first field out of range: the kernel's ranges through
 // glint::validateGlintParameters (one place for them), uv_scale > 0, both ends of

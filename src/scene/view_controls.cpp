@@ -26,7 +26,7 @@ float strengthOf(glm::vec3 intensity) { return std::max({intensity.x, intensity.
 
 MaterialControls materialControls(const Material& material) {
   const GlintLayer& layer = material.glint;
-  return {layer.alpha, layer.rho, layer.logDensity, layer.relativeArea};
+  return {layer.alpha, layer.rho, layer.logDensity, layer.relativeArea, material.specular};
 }
 
 Material applyMaterialControls(const Material& material, const MaterialControls& controls) {
@@ -35,6 +35,7 @@ Material applyMaterialControls(const Material& material, const MaterialControls&
   edited.glint.rho = controls.rho;
   edited.glint.logDensity = controls.logDensity;
   edited.glint.relativeArea = controls.relativeArea;
+  edited.specular = controls.specular;
   return edited;
 }
 

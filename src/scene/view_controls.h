@@ -12,13 +12,14 @@
 
 namespace glint::scene {
 
-// The constants of a glint layer that the sliders edit; the layer's textures (which multiply or
-// replace them) and its other fields stay as the scene has them.
+// The constants of a glint layer that the sliders edit, and the material's specular target; the
+// layer's textures (which multiply or replace them) and its other fields stay as the scene has them.
 struct MaterialControls {
   glm::vec2 alpha{0.5f};  // Beckmann roughness alpha_x, alpha_y
   float rho = 0.0f;
   float logDensity = 27.0f;
   float relativeArea = 1.0f;
+  MicrofacetTarget specular;  // Material::specular
 };
 
 // A light as seen from a pivot (the scene's centre): the direction from the pivot towards it, as

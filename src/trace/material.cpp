@@ -190,12 +190,13 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const Spectrum specularAlbedo = fresnel.evaluate(wo.z);
 
   if (!layer.enabled) {
-    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), 0.0f, fresnel);
+    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), 0.0f, fresnel,
+                                    Spectrum(1.0f), m.specular);
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
   }
 
   // The glint layer's parameters, textures applied as in the shader.
-  GlintParameters params = glintParameters(layer);
+  GlintParameters params = glintParameters(layer, m.specular);
   params.alpha = glm::clamp(layer.alpha * texture(layer.roughnessTexture, uv, footprint).r, 0.01f, 2.0f);
   if (layer.logDensityTexture >= 0) {
     params.logDensity = glm::mix(layer.logDensityRange.x, layer.logDensityRange.y,
@@ -207,7 +208,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   params.alpha = glm::vec2(leanRoughness);
   params.rho = leanRoughness.z;
   if (model_ == SpecularModel::CookTorrance) {
-    const CookTorranceBsdf specular(params.alpha, params.rho, fresnel);
+    const CookTorranceBsdf specular(params.alpha, params.rho, fresnel, Spectrum(1.0f), m.specular);
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
   }
   // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives.

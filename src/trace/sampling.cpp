@@ -38,26 +38,6 @@ Pcg32 sampleStream(std::uint32_t pixel, std::uint32_t sample) {
   return Pcg32(mix64((static_cast<std::uint64_t>(sample) << 32) | pixel), 0x7261637465ull);
 }
 
-glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
-  // Shirley & Chiu's concentric map keeps strata compact (pbrt-v3, ConcentricSampleDisk).
-  const glm::vec2 offset = 2.0f * u - glm::vec2(1.0f);
-  glm::vec2 d(0.0f);
-  if (offset.x != 0.0f || offset.y != 0.0f) {
-    float r;
-    float theta;
-    if (std::abs(offset.x) > std::abs(offset.y)) {
-      r = offset.x;
-      theta = 0.25f * kPi * (offset.y / offset.x);
-    } else {
-      r = offset.y;
-      theta = 0.5f * kPi - 0.25f * kPi * (offset.x / offset.y);
-    }
-    d = r * glm::vec2(std::cos(theta), std::sin(theta));
-  }
-  const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
-  return {d.x, d.y, z};
-}
-
 Distribution1D::Distribution1D(const std::vector<float>& weights) : weights_(weights) {
   const std::size_t n = weights_.size();
   cdf_.assign(n + 1, 0.0f);

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "glint/microfacet_sampling.h"
 #include "glint/pcg.h"
 
 namespace glint::trace {
@@ -24,9 +25,9 @@ inline glm::vec2 uniformFloat2(Pcg32& rng) {
   return {a, uniformFloat(rng)};
 }
 
-// Cosine-weighted direction about +z (Malley's method on a concentric disk); pdf = z / pi.
-glm::vec3 sampleCosineHemisphere(glm::vec2 u);
-inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0.0f ? cosTheta / kPi : 0.0f; }
+// Cosine-weighted directions about +z: the BSDFs' (glint/microfacet_sampling.h).
+using sampling::cosineHemispherePdf;
+using sampling::sampleCosineHemisphere;
 
 // Veach's power heuristic (beta = 2) for one sample from each of two strategies.
 inline float powerHeuristic(float pdfA, float pdfB) {

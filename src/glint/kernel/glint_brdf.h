@@ -13,6 +13,7 @@
 #include "microfacet.h"
 #include "dictionary_lookup.h"
 #include "glint_antialiasing.h"
+#include "microfacet_targets.h"
 
 GLINT_KERNEL_BEGIN
 
@@ -33,6 +34,11 @@ struct GlintParameters {
   float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
   uint patternSeed;            // selects an independent glint pattern for the same uv
   bool colouredCells;          // each cell reflects a random hue (car paint's coloured flakes)
+  int ndf;                     // the smooth target: kNdfBeckmann (the paper's) or kNdfGgx (microfacet_targets.h)
+  int masking;                 // kMaskingVCavity (the paper's) or kMaskingSmith
+  // Adds the smooth target's multiple-scattering compensation lobe (multiple_scattering.h); the
+  // BRDF's users add it (the host's BSDFs, the renderer), the P-SDF does not see it.
+  bool multipleScattering;
 };
 
 // The pixel footprint as an ellipse in uv space with its continuous level of detail.
@@ -263,9 +269,11 @@ GLINT_FN bool glintBeyondEveryRotatedSupport(DictionaryView dict, vec2 unscaled)
 // = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for
 // that light, and skips the walk of the footprint's cells when no light is left. The CPU BSDF
 // keeps the exact value: its sampler can draw such a slope from a smooth cell and must find a
-// non-zero pdf there.
+// non-zero pdf there. With the GGX target the widest cell reaches kGgxWidestCell = 10 times
+// further, a slope of 40 alpha, where the smooth GGX P22 (and its remainder) is below
+// (1 + 1600)^-2 = 3.9e-7 of its peak.
 GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params, vec2 slope) {
-  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope));
+  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / targetWidestCell(params.ndf));
 }
 
 // One cell's contribution to P22 (method.md 2.5), split so that what is the same for every cell of
@@ -277,7 +285,12 @@ struct GlintCell {
   uvec4 hash;
   bool readsDictionary;
   bool smoothLimit;
+  bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
   int dictionaryLevel;  // when it reads the dictionary
+  // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
+  // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
+  float scalePrecision;
+  float unscale;
 };
 
 GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
@@ -286,12 +299,24 @@ GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintL
   cell.hash = glintCellHash(params, cellX, cellY, level);
   cell.readsDictionary = false;
   cell.smoothLimit = false;
+  cell.ggxTail = false;
   cell.dictionaryLevel = 0;
+  cell.scalePrecision = 1.0f;
+  cell.unscale = 1.0f;
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
     cell.readsDictionary = !cell.smoothLimit;
+    if (params.ndf == kNdfGgx && cell.readsDictionary) {
+      // The GGX scale mixture (microfacet_targets.h): glints of roughness alpha / sqrt(w), or the
+      // smooth remainder below the cut.
+      float w = glintCellPrecision(cell.hash);
+      cell.ggxTail = w < kGgxTailPrecision;
+      cell.readsDictionary = !cell.ggxTail;
+      cell.scalePrecision = w;
+      cell.unscale = sqrt(w);
+    }
   }
   return cell;
 }
@@ -320,6 +345,16 @@ GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLev
   }
   return glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.x, abs(local.x)) *
          glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.y, abs(local.y));
+}
+
+// The smooth target's P22 convolved with the anti-aliasing kernel of slope covariance K: for
+// Beckmann exactly glintFilteredBeckmannP22; for GGX the Student t of scale covariance Sigma + K, an
+// approximation (a t convolved with a Gaussian is no t), exact where there is no kernel.
+GLINT_FN float glintFilteredTargetP22(GlintParameters params, vec2 slope, vec3 kernelCovariance) {
+  if (params.ndf != kNdfGgx) {
+    return glintFilteredBeckmannP22(slope, params.alpha, params.rho, kernelCovariance);
+  }
+  return studentSlopeP22(slope, beckmannSlopeCovariance(params.alpha, params.rho) + kernelCovariance);
 }
 
 // The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
@@ -443,24 +478,28 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // filtered lookups.
   vec3 slopeKernel[GLINT_SLOPE_COUNT];
   GlintMarginalFilter kernelFilter[GLINT_SLOPE_COUNT];
+  float kernelVariance[GLINT_SLOPE_COUNT];  // GGX cells filter at their own scale
   bool anyDerivative = false;
+  // A GGX cell's support reaches kGgxWidestCell times further (exactly 1 for Beckmann).
+  float widestUnscale = 1.0f / targetWidestCell(params.ndf);
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
     colouredSum[k] = vec3(0.0f);
-    inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k]);
+    inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k] * widestUnscale);
     anyInSupport = anyInSupport || inSupport[k];
     vec4 d = slopes.derivatives[k];
     slopeKernel[k] = glintKernelCovariance(d);
     vec2 ux = glintUnscaledSlope(dict, params, vec2(d.x, d.y));
     vec2 uy = glintUnscaledSlope(dict, params, vec2(d.z, d.w));
-    kernelFilter[k] =
-        glintMarginalFilter(dict, glintMarginalLod(dict, glintKernelVariance(glintKernelCovariance(vec4(ux, uy)))));
+    kernelVariance[k] = glintKernelVariance(glintKernelCovariance(vec4(ux, uy)));
+    kernelFilter[k] = glintMarginalFilter(dict, glintMarginalLod(dict, kernelVariance[k]));
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
+  float tailWeightSum = 0.0f;
   // One loop over the cells, moving to the next line when a line is done, rather than a loop over
   // lines around a loop over a line's cells: pixels shaded in lockstep (llvmpipe's SIMD lanes, GPU
   // warps) then pay for the most cells any of them visits, not for the longest line of any of them,
@@ -483,6 +522,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
       weightSum += weight;
       GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
       smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
+      tailWeightSum += cell.ggxTail ? weight : 0.0f;
       if (cell.readsDictionary && anyInSupport) {
         vec2 rotation = glintCellRotation(cell.hash);
         ivec2 distributions = glintCellDistributions(dict, cell.hash);
@@ -490,9 +530,15 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
         for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
           float p = 0.0f;
           if (inSupport[k]) {
+            vec2 cellUnscaled = unscaled[k] * cell.unscale;
+            GlintMarginalFilter cellFilter = kernelFilter[k];
+            if (filtering && params.ndf == kNdfGgx) {
+              cellFilter = glintMarginalFilter(dict, glintMarginalLod(dict, cell.scalePrecision * kernelVariance[k]));
+            }
             p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
-                                                       unscaled[k], kernelFilter[k])
-                          : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, unscaled[k]);
+                                                       cellUnscaled, cellFilter)
+                          : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, cellUnscaled);
+            p *= cell.scalePrecision;
           }
           dictionarySum[k] += weight * p;
           if (params.colouredCells) {
@@ -509,9 +555,13 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
       vec3 colourWeighted = params.colouredCells ? colouredSum[k] : vec3(dictionarySum[k]);
       p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
-        float smoothP22 = filtering ? glintFilteredBeckmannP22(slopes.slope[k], params.alpha, params.rho, slopeKernel[k])
-                                 : beckmannP22(slopes.slope[k], params.alpha, params.rho);
+        float smoothP22 = filtering ? glintFilteredTargetP22(params, slopes.slope[k], slopeKernel[k])
+                                 : targetP22(params.ndf, slopes.slope[k], params.alpha, params.rho);
         p22.p22[k] += vec4(smoothWeightSum * smoothP22);
+      }
+      if (tailWeightSum > 0.0f) {
+        vec3 covariance = beckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : vec3(0.0f));
+        p22.p22[k] += vec4(tailWeightSum * studentTailSlopeP22(slopes.slope[k], covariance));
       }
       p22.p22[k] = p22.p22[k] / weightSum;
     }
@@ -545,8 +595,7 @@ GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, ve
   GlintP22Set p22;
   if (footprint.degenerate) {
     for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-      p22.p22[k] = vec4(glintFilteredBeckmannP22(slopes.slope[k], params.alpha, params.rho,
-                                                 glintKernelCovariance(slopes.derivatives[k])));
+      p22.p22[k] = vec4(glintFilteredTargetP22(params, slopes.slope[k], glintKernelCovariance(slopes.derivatives[k])));
     }
     return p22;
   }
@@ -594,6 +643,12 @@ GLINT_FN float glintNdf(DictionaryView dict, GlintParameters params, vec2 uv, ve
   return ndfFromP22(glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(m)), m.z);
 }
 
+// The Cook-Torrance frame around a P-NDF value with the material's masking (microfacet_targets.h):
+// V-cavity is the paper's, Smith takes the smooth target's Lambda.
+GLINT_FN float glintMaskedReflectance(GlintParameters params, vec3 wo, vec3 wi, vec3 wh, float ndf) {
+  return maskedMicrofacetReflectance(params.masking, params.ndf, params.alpha, params.rho, wo, wi, wh, ndf);
+}
+
 // The glint BRDF without Fresnel and colour (F = 1), without the cosine.
 GLINT_FN float glintReflectance(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec3 wo, vec3 wi) {
@@ -601,7 +656,7 @@ GLINT_FN float glintReflectance(DictionaryView dict, GlintParameters params, vec
     return 0.0f;
   }
   vec3 wh = normalize(wo + wi);
-  return microfacetReflectance(wo, wi, wh, glintNdf(dict, params, uv, duvdx, duvdy, wh));
+  return glintMaskedReflectance(params, wo, wi, wh, glintNdf(dict, params, uv, duvdx, duvdy, wh));
 }
 
 GLINT_KERNEL_END

@@ -1,0 +1,106 @@
+// Multiple scattering between the microfacets, as a compensation lobe: Kulla & Conty 2017,
+// "Revisiting Physically Based Shading at Imageworks" (SIGGRAPH course "Physically Based Shading
+// in Theory and Practice"), after Jakob et al. 2014 and Turquin 2019's form of the energy lost:
+//   f_ms(wo, wi) = (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg)),
+// E(mu) the directional albedo of the single-scattering lobe (F = 1) and E_avg = 2 integral of
+// E(mu) mu dmu, so that with F = 1 the albedo of f + f_ms is 1 at every view angle. With Fresnel,
+// f_ms is multiplied by F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg the cosine-weighted
+// hemispherical mean of F (the light that leaves after one more bounce, each bounce keeping F_avg).
+// E and E_avg are tabulated by glint for each smooth target and masking (kernel/albedo_tables.h,
+// written by `glint albedo-tables`), for isotropic roughness; an anisotropic or correlated lobe
+// takes the table of alpha = sqrt(alpha_x alpha_y). The glint BRDF adds the same lobe as its smooth
+// target: its mean over positions has the target's albedo, so the mean is compensated.
+// Shared by the CPU library and the GLSL renderer (a GLSL program includes the tables only when
+// compiled with GLINT_MULTIPLE_SCATTERING 1): see prelude.h for the rules.
+#ifndef GLINT_KERNEL_MULTIPLE_SCATTERING_H
+#define GLINT_KERNEL_MULTIPLE_SCATTERING_H
+
+#include "prelude.h"
+#include "microfacet.h"
+#include "microfacet_targets.h"
+
+GLINT_KERNEL_BEGIN
+
+// The tables' grid: mu_j = (j / 31)^2 and alpha_i = 2 (i / 31)^2, denser towards grazing views and
+// smooth surfaces, where E changes fastest; read with bilinear interpolation in (sqrt(mu),
+// sqrt(alpha / 2)), clamped to the grid (alpha above 2 reads alpha = 2).
+GLINT_CONST int kAlbedoMuNodes = 32;
+GLINT_CONST int kAlbedoAlphaNodes = 32;
+GLINT_CONST float kAlbedoMaxAlpha = 2.0f;
+
+// The table of a target and masking: 2 ndf + masking.
+GLINT_FN int albedoTableIndex(int ndf, int masking) {
+  return 2 * ndf + masking;
+}
+
+// The grid coordinates of mu and alpha, in nodes.
+GLINT_FN float albedoMuCoordinate(float mu) {
+  return sqrt(clamp(mu, 0.0f, 1.0f)) * float(kAlbedoMuNodes - 1);
+}
+
+GLINT_FN float albedoAlphaCoordinate(float alpha) {
+  return sqrt(clamp(alpha, 0.0f, kAlbedoMaxAlpha) / kAlbedoMaxAlpha) * float(kAlbedoAlphaNodes - 1);
+}
+
+// The isotropic roughness whose table an anisotropic, correlated lobe reads.
+GLINT_FN float compensationAlpha(vec2 alpha) {
+  return sqrt(alpha.x * alpha.y);
+}
+
+// Fresnel's cosine-weighted hemispherical mean for Schlick's approximation: 2 integral of
+// (f0 + (1 - f0)(1 - mu)^5) mu dmu = f0 + (1 - f0) / 21.
+GLINT_FN vec3 schlickAverageFresnel(vec3 f0) {
+  return f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f);
+}
+
+// The Fresnel factor of the compensation lobe: F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (1 with F = 1).
+GLINT_FN vec3 multipleScatteringFresnel(vec3 averageFresnel, float averageAlbedo) {
+  return averageFresnel * averageFresnel * averageAlbedo /
+         (vec3(1.0f) - averageFresnel * (1.0f - averageAlbedo));
+}
+
+GLINT_KERNEL_END
+
+#if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING
+#include "albedo_tables.h"
+
+GLINT_KERNEL_BEGIN
+
+// E(mu) of the single-scattering lobe of roughness alpha (isotropic), F = 1.
+GLINT_FN float directionalAlbedo(int ndf, int masking, float alpha, float mu) {
+  float x = albedoMuCoordinate(mu);
+  float y = albedoAlphaCoordinate(alpha);
+  int i = min(int(y), kAlbedoAlphaNodes - 2);
+  int j = min(int(x), kAlbedoMuNodes - 2);
+  float fy = y - float(i);
+  float fx = x - float(j);
+  int base = (albedoTableIndex(ndf, masking) * kAlbedoAlphaNodes + i) * kAlbedoMuNodes + j;
+  float low = mix(kAlbedoTable[base], kAlbedoTable[base + 1], fx);
+  float high = mix(kAlbedoTable[base + kAlbedoMuNodes], kAlbedoTable[base + kAlbedoMuNodes + 1], fx);
+  return mix(low, high, fy);
+}
+
+// E_avg of the lobe of roughness alpha.
+GLINT_FN float averageAlbedo(int ndf, int masking, float alpha) {
+  float y = albedoAlphaCoordinate(alpha);
+  int i = min(int(y), kAlbedoAlphaNodes - 2);
+  int base = albedoTableIndex(ndf, masking) * kAlbedoAlphaNodes + i;
+  return mix(kAverageAlbedoTable[base], kAverageAlbedoTable[base + 1], y - float(i));
+}
+
+// f_ms(wo, wi) with F = 1, without the cosine; 0 below either horizon.
+GLINT_FN float multipleScatteringReflectance(int ndf, int masking, vec2 alpha, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    return 0.0f;
+  }
+  float a = compensationAlpha(alpha);
+  float average = averageAlbedo(ndf, masking, a);
+  return (1.0f - directionalAlbedo(ndf, masking, a, wo.z)) * (1.0f - directionalAlbedo(ndf, masking, a, wi.z)) /
+         (kPi * max(1.0f - average, 1e-6f));
+}
+
+GLINT_KERNEL_END
+
+#endif
+
+#endif
