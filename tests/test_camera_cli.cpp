@@ -8,6 +8,8 @@
 
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_writer.h"
+#include "scene_support.h"
 #include "test_support.h"
 
 namespace glint {
@@ -83,6 +85,64 @@ TEST(CameraCli, FovAndUpChangeTheView) {
   EXPECT_GT(differingShare(folder / "rolled.png", folder / "preset.png"), 0.2);
 }
 
+TEST(CameraCli, FlagsReproduceAGltfCameraExactly) {
+  // A glTF file's camera, rolled (its up is not +y) and with its own field of view: the values the
+  // loader reads from its node and projection, given as --look-from, --look-at, --up and --fov,
+  // render the image of --camera NAME byte for byte, in both renderers.
+  const auto folder = temporaryFolder("camera_gltf");
+  scene::Scene written = texturedTestScene();
+  scene::Camera tilted;
+  tilted.position = {1.3f, 0.9f, 2.2f};
+  tilted.target = {-0.1f, 0.35f, 0.05f};
+  tilted.up = glm::normalize(glm::vec3(0.3f, 1.0f, -0.1f));
+  tilted.verticalFovDegrees = 33.0f;
+  written.cameras["tilted"] = tilted;
+  scene::writeGltf(folder / "scene.glb", written);
+  const scene::Camera loaded = scene::loadScene((folder / "scene.glb").string()).cameras.at("tilted");
+  ASSERT_GT(std::abs(loaded.up.x), 0.1f);  // the roll survived the file
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.9g", loaded.verticalFovDegrees);
+  const std::string flags = " --look-from " + triple(loaded.position) + " --look-at " + triple(loaded.target) +
+                            " --up " + triple(loaded.up) + " --fov " + fov;
+  for (const std::string command : {"render scene.glb --size 64x48", "trace scene.glb --size 24x16 --spp 2"}) {
+    const std::string extension = command.rfind("render", 0) == 0 ? ".png" : ".exr";
+    RunResult result = runGlint(folder, command + " --camera tilted -o named" + extension);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    result = runGlint(folder, command + flags + " -o flags" + extension);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    result = runGlint(folder, command + " -o preset" + extension);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(slurp(folder / ("flags" + extension)), slurp(folder / ("named" + extension))) << command;
+    EXPECT_NE(slurp(folder / ("preset" + extension)), slurp(folder / ("named" + extension))) << command;
+  }
+}
+
+TEST(CameraCli, AnOrbitOfEightFramesIsTheSameOnEveryRun) {
+  // Two runs of --orbit 8 into two folders: eight numbered frames each (no ninth), byte for byte the
+  // same, and each frame a different view.
+  for (const std::string command : {"render sphere --size 40x32 -o spin.png", "trace sphere --size 16x12 --spp 2 -o spin.exr"}) {
+    const std::string extension = command.substr(command.size() - 4);
+    std::vector<std::string> runs[2];
+    for (int run = 0; run < 2; ++run) {
+      const auto folder = temporaryFolder("camera_orbit8_" + std::to_string(run));
+      const RunResult result = runGlint(folder, command + " --orbit 8");
+      ASSERT_EQ(result.exitCode, 0) << result.err;
+      for (int frame = 0; frame < 8; ++frame) {
+        char name[32];
+        std::snprintf(name, sizeof name, "spin-%04d%s", frame, extension.c_str());
+        ASSERT_TRUE(std::filesystem::exists(folder / name)) << command << ": " << name;
+        runs[run].push_back(slurp(folder / name));
+      }
+      EXPECT_FALSE(std::filesystem::exists(folder / ("spin-0008" + extension))) << command;
+      EXPECT_FALSE(std::filesystem::exists(folder / ("spin" + extension))) << command;
+    }
+    for (int frame = 0; frame < 8; ++frame) {
+      EXPECT_EQ(runs[0][frame], runs[1][frame]) << command << ", frame " << frame;
+      if (frame > 0) EXPECT_NE(runs[0][frame], runs[0][frame - 1]) << command << ", frame " << frame;
+    }
+  }
+}
+
 TEST(CameraCli, BadCamerasAndSequencesAreOneLineErrors) {
   const auto folder = temporaryFolder("camera_errors");
   const std::pair<std::string, std::string> cases[] = {
@@ -92,8 +152,10 @@ TEST(CameraCli, BadCamerasAndSequencesAreOneLineErrors) {
       {"--look-from 0,0,3 --look-at 0,0,3", "position and look-at point are the same"},
       {"--look-from 0,2,0 --look-at 0,0,0 --up 0,1,0", "up vector is along its view direction"},
       {"--fov 0", "--fov must be in (0, 180)"},
+      {"--fov -30", "--fov must be in (0, 180)"},
       {"--fov 180", "--fov must be in (0, 180)"},
       {"--orbit 0", "--orbit must be in [1, 100000]"},
+      {"--orbit -8", "--orbit must be in [1, 100000]"},
       {"--orbit-degrees 90", "--orbit-degrees needs --orbit N"},
       {"--orbit 3 --orbit-degrees inf", "--orbit-degrees must be a number"},
   };
@@ -102,6 +164,16 @@ TEST(CameraCli, BadCamerasAndSequencesAreOneLineErrors) {
     expectOneLineError(result, problem);
     EXPECT_FALSE(std::filesystem::exists(folder / "out.png")) << arguments;
     EXPECT_FALSE(std::filesystem::exists(folder / "out-0000.png")) << arguments;
+  }
+  // The same for the path tracer, which writes an EXR and a PNG per frame.
+  for (const auto& [arguments, problem] : {std::pair<std::string, std::string>{"--fov -30", "--fov must be in (0, 180)"},
+                                           {"--look-from 1,1,1 --look-at 1,1,1", "position and look-at point are the same"},
+                                           {"--orbit -8", "--orbit must be in [1, 100000]"},
+                                           {"--orbit 0", "--orbit must be in [1, 100000]"}}) {
+    expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 -o out.exr " + arguments), problem);
+    for (const char* file : {"out.exr", "out.png", "out-0000.exr", "out-0000.png"}) {
+      EXPECT_FALSE(std::filesystem::exists(folder / file)) << arguments << ": " << file;
+    }
   }
   expectOneLineError(runGlint(folder, "render sphere --size 32x32 -o out.mp4"), "out.mp4: a video (.mp4) needs --orbit N");
   expectOneLineError(runGlint(folder, "trace sphere --size 32x32 -o out.mp4"), "out.mp4: a video (.mp4) needs --orbit N");

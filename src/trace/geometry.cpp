@@ -102,6 +102,7 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       shared = std::move(alpha);
       return shared;
     };
+    maskOfMesh_.assign(scene.meshes.size(), nullptr);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
       const scene::Mesh& mesh = scene.meshes[m];
       if (mesh.indices.size() < 3) continue;
@@ -110,6 +111,7 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       const scene::Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
       if (material.alphaMode == scene::Material::AlphaMode::Mask) {
         mask = masks_.emplace_back(std::make_unique<AlphaMask>()).get();
+        maskOfMesh_[m] = mask;
         mask->uvs.reserve(mesh.indices.size() / 3 * 3);
         mask->vertexAlpha.reserve(mesh.indices.size() / 3 * 3);
         for (std::size_t i = 0; i < mesh.indices.size() / 3 * 3; ++i) {
@@ -192,6 +194,11 @@ bool SceneGeometry::occluded(const Ray& ray, float tMax) const {
   rtcOccluded1(scene_, &context, &r);
   // Embree sets tfar to -inf when the ray is blocked.
   return r.tfar < 0.0f;
+}
+
+bool SceneGeometry::maskedOut(const Hit& at) const {
+  const AlphaMask* mask = at.mesh < maskOfMesh_.size() ? maskOfMesh_[at.mesh] : nullptr;
+  return mask && !mask->keeps(at.triangle, at.barycentric.x, at.barycentric.y);
 }
 
 SurfacePoint surfacePoint(const scene::Scene& scene, const Hit& hit) {

@@ -39,12 +39,16 @@ class SceneGeometry {
   std::optional<Hit> intersect(const Ray& ray, float tMax = std::numeric_limits<float>::infinity()) const;
   // Whether anything lies along the ray within (0, tMax). Thread-safe.
   bool occluded(const Ray& ray, float tMax) const;
+  // Whether glTF alphaMode MASK cuts the surface away at this point of a triangle (where rays go
+  // through it): for points that no ray found, such as a light's samples.
+  bool maskedOut(const Hit& at) const;
 
  private:
   struct AlphaMask;  // glTF alphaMode MASK: what an Embree filter needs to drop a hit
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::unique_ptr<AlphaMask>> masks_;  // the filters' user data, one per masked mesh
+  std::vector<const AlphaMask*> maskOfMesh_;         // per mesh, null when it has none
 };
 
 // The surface at a hit: vertex attributes interpolated with the hit's barycentrics, as the

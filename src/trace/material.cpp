@@ -11,8 +11,6 @@ namespace glint::trace {
 
 namespace {
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 // The smallest alpha the CPU BSDFs accept (validateRoughness); the shader's roughness clamp at
 // 0.03 allows alpha = 0.0009, which only glTF materials with roughness below 0.07 reach.
 constexpr float kMinimumAlpha = 0.005f;
@@ -130,6 +128,14 @@ glm::vec3 SceneMaterials::texture(int index, const scene::UvTransform& transform
   return texture(index, lookup.uv, lookup.footprint);
 }
 
+Spectrum SceneMaterials::emission(const SurfacePoint& point, const UvDerivatives& footprint,
+                                  glm::vec3 towardsViewer) const {
+  const scene::Material& m = scene_.materials[static_cast<std::size_t>(point.material)];
+  if (m.emissive == glm::vec3(0.0f)) return Spectrum(0.0f);
+  if (!m.doubleSided && !(glm::dot(point.geometricNormal, towardsViewer) > 0.0f)) return Spectrum(0.0f);
+  return m.emissive * texture(m.emissiveTexture, m.emissiveUv, point.uv, footprint);
+}
+
 ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
                                   glm::vec3 towardsViewer) const {
   const scene::Material& m = scene_.materials[static_cast<std::size_t>(point.material)];
@@ -142,7 +148,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, m.metallicRoughnessUv, uv, footprint);
   const float metallic = m.metallic * metallicRoughness.b;
   const float roughness = std::clamp(m.roughness * metallicRoughness.g, 0.03f, 1.0f);
-  const Spectrum emitted = m.emissive * texture(m.emissiveTexture, m.emissiveUv, uv, footprint);
+  const Spectrum emitted = emission(point, footprint, towardsViewer);
 
   // Shading frame: the normal map's normal, the tangent re-orthogonalised against it, the normal
   // turned towards the viewer for sheets seen from behind.

@@ -23,6 +23,9 @@
 
 namespace glint::trace {
 
+// Rec. 709 luminance of linear RGB: how lobes and emitters are weighed against each other.
+inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 // The specular lobe of materials with a glint layer (`--brdf`); the real-time renderer's BrdfModel.
 enum class SpecularModel { Glint, CookTorrance };
 
@@ -85,7 +88,7 @@ class SurfaceMaterial {
 struct ShadedPoint {
   ShadingFrame frame;
   glm::vec3 wo;       // towards the viewer, local; wo.z at least 1e-4 as in the shader
-  Spectrum emitted;   // emissive factor times texture
+  Spectrum emitted;   // towards the viewer: SceneMaterials::emission
   SurfaceMaterial material;
 };
 
@@ -101,6 +104,13 @@ class SceneMaterials {
   // mesh-uv derivatives of the footprint (textures' level of detail; times the layer's uv_scale,
   // the glint footprint).
   ShadedPoint shade(const SurfacePoint& point, const UvDerivatives& footprint, glm::vec3 towardsViewer) const;
+
+  // Radiance emitted at a surface point towards `towardsViewer` (world): the emissive factor
+  // (times KHR_materials_emissive_strength) times the emissive texture at the footprint, as the
+  // shader adds it. From the front face (counter-clockwise) only, unless the material is
+  // doubleSided: glTF culls the back of a single-sided surface, so nothing sees it glow, and
+  // draws a double-sided one's back with the same emission.
+  Spectrum emission(const SurfacePoint& point, const UvDerivatives& footprint, glm::vec3 towardsViewer) const;
 
  private:
   glm::vec3 texture(int index, glm::vec2 uv, const UvDerivatives& footprint) const;

@@ -91,7 +91,9 @@ PathTracer::PathTracer(const scene::Scene& scene, const Dictionary& dictionary, 
       geometry_(scene),
       materials_(scene, dictionary, settings.brdf, settings.sampler, settings.normalMapFiltering),
       environment_(scene.environment),
-      useEnvironment_(!settings.directOnly && !environment_.black()) {}
+      useEnvironment_(!settings.directOnly && !environment_.black()),
+      emitters_(scene, materials_),
+      useEmitters_(!settings.directOnly && !emitters_.empty()) {}
 
 glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& shaded) const {
   glm::vec3 sum(0.0f);
@@ -125,6 +127,47 @@ glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& 
   return sum;
 }
 
+glm::vec3 PathTracer::emitterLight(const SurfacePoint& point, const ShadedPoint& shaded, Pcg32& rng) const {
+  const float uTriangle = uniformFloat(rng);
+  const glm::vec2 uPoint = uniformFloat2(rng);
+  const EmitterSample sample = emitters_.sample(uTriangle, uPoint);
+  if (!(sample.areaPdf > 0.0f) || geometry_.maskedOut(sample.at)) return glm::vec3(0.0f);
+  const SurfacePoint light = surfacePoint(scene_, sample.at);
+  glm::vec3 toLight = light.position - point.position;
+  const float distance2 = glm::dot(toLight, toLight);
+  if (!(distance2 > 0.0f)) return glm::vec3(0.0f);
+  const float distance = std::sqrt(distance2);
+  toLight /= distance;
+  const glm::vec3 wi = shaded.frame.toLocal(toLight);
+  const float cosLight = std::abs(glm::dot(light.geometricNormal, toLight));
+  if (!(wi.z > 0.0f) || !(cosLight > 0.0f)) return glm::vec3(0.0f);
+  // Emissive textures at the footprint a camera pixel has there, as where a path hits them.
+  const bool textured = scene_.materials[static_cast<std::size_t>(light.material)].emissiveTexture >= 0;
+  const Spectrum emitted = materials_.emission(
+      light, textured ? uvDerivatives(light, camera_.approximateRays(light.position)) : UvDerivatives{}, -toLight);
+  if (isBlack(emitted)) return glm::vec3(0.0f);
+  // Area density to solid angle (pbrt-v3, equation 5.6): dA = r^2 / cos(theta_light) d omega.
+  const float pdf = sample.areaPdf * distance2 / cosLight;
+  if (!(pdf > 0.0f) || !std::isfinite(pdf)) return glm::vec3(0.0f);
+  // The shadow ray runs between both points, each pushed off its surface towards the other, so
+  // that it finds neither the shaded triangle nor the emitting one.
+  const glm::vec3 from = spawnRay(point, toLight).origin;
+  const glm::vec3 to = spawnRay(light, -toLight).origin;
+  const float length = glm::length(to - from);
+  if (!(length > 0.0f) || geometry_.occluded(Ray{from, (to - from) / length}, length)) return glm::vec3(0.0f);
+  const Spectrum f = shaded.material.f(shaded.wo, wi);
+  if (isBlack(f)) return glm::vec3(0.0f);
+  const float weight = powerHeuristic(pdf, shaded.material.pdf(shaded.wo, wi));
+  return f * emitted * (wi.z * weight / pdf);
+}
+
+float PathTracer::emitterPdf(const Hit& hit, const SurfacePoint& emitterPoint, glm::vec3 direction) const {
+  if (!useEmitters_) return 0.0f;
+  const float cosLight = std::abs(glm::dot(emitterPoint.geometricNormal, direction));
+  const float pdf = emitters_.areaPdf(hit.mesh, hit.triangle) * hit.t * hit.t / cosLight;
+  return std::isfinite(pdf) ? pdf : 0.0f;
+}
+
 glm::vec3 PathTracer::radiance(const RayDifferential& cameraRay, Pcg32& rng) const {
   glm::vec3 result(0.0f);
   glm::vec3 throughput(1.0f);
@@ -148,12 +191,17 @@ glm::vec3 PathTracer::radiance(const RayDifferential& cameraRay, Pcg32& rng) con
     const UvDerivatives footprint =
         uvDerivatives(point, depth == 0 ? cameraRay : camera_.approximateRays(point.position));
     const ShadedPoint shaded = materials_.shade(point, footprint, -ray.direction);
-    // Emissive surfaces are not sampled as lights, so what a path finds of them counts fully.
-    result += throughput * shaded.emitted;
+    if (!isBlack(shaded.emitted)) {
+      // Seen directly, or found by BSDF sampling: weighed against the emitter sample that could
+      // have found it too.
+      const float weight = depth == 0 ? 1.0f : powerHeuristic(previousPdf, emitterPdf(*hit, point, ray.direction));
+      result += throughput * shaded.emitted * weight;
+    }
     if (depth == settings_.maxDepth) break;
 
     result += throughput * deltaLights(point, shaded);
     if (settings_.directOnly) break;
+    if (useEmitters_) result += throughput * emitterLight(point, shaded, rng);
 
     if (useEnvironment_) {
       const glm::vec2 uLight = uniformFloat2(rng);

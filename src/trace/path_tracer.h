@@ -1,7 +1,7 @@
 // `glint trace`: a CPU Monte Carlo path tracer of a scene::Scene with the glint BSDF (docs/trace.md).
 // Unidirectional path tracing with next-event estimation: point and directional lights (delta
-// lights, no MIS) and the environment (importance-sampled, combined with BSDF sampling by the
-// power heuristic); Russian roulette after depth 3. Direct light matches the real-time renderer's
+// lights, no MIS), the environment and emissive triangles (importance-sampled, each combined with
+// BSDF sampling by the power heuristic); Russian roulette after depth 3. Direct light matches the real-time renderer's
 // shading (shaders/forward.frag) with the footprint of each camera ray from its ray differentials.
 // Deterministic: every sample draws from its own PCG32 stream seeded by (pixel, sample), so the
 // image is the same for any number of threads.
@@ -17,6 +17,7 @@
 #include "glint/image_io.h"
 #include "scene/scene.h"
 #include "trace/camera.h"
+#include "trace/emitters.h"
 #include "trace/environment.h"
 #include "trace/geometry.h"
 #include "trace/material.h"
@@ -30,7 +31,7 @@ struct TraceSettings {
   int maxDepth = 4;          // bounces: 1 is direct light only (plus what BSDF sampling finds of the environment)
   SpecularModel brdf = SpecularModel::Glint;
   GlintSampler sampler = GlintSampler::Mixture;
-  bool directOnly = false;   // only point and directional lights at the first hit, no environment, no bounces
+  bool directOnly = false;   // only point and directional lights at the first hit, no environment, no emitters, no bounces
   bool pixelCentres = false; // every sample through its pixel's centre (the rasteriser's footprint)
   // Normal maps filtered as the rasteriser's --aa ggaa+lean does (kernel/normal_map_filtering.h):
   // at each hit's footprint, the mean of the normal map's slopes tilts the normal and their
@@ -70,6 +71,12 @@ class PathTracer {
  private:
   // Light from the point and directional lights at a shaded point, shadow rays included.
   glm::vec3 deltaLights(const SurfacePoint& point, const ShadedPoint& shaded) const;
+  // One sample of the light of the emissive triangles at a shaded point, shadow ray included,
+  // weighted by the power heuristic against the material's pdf.
+  glm::vec3 emitterLight(const SurfacePoint& point, const ShadedPoint& shaded, Pcg32& rng) const;
+  // The solid-angle density with which emitterLight() samples the direction of a unit ray that
+  // hit an emitter (at hit.t).
+  float emitterPdf(const Hit& hit, const SurfacePoint& emitterPoint, glm::vec3 direction) const;
 
   const scene::Scene& scene_;
   TraceSettings settings_;
@@ -78,6 +85,8 @@ class PathTracer {
   SceneMaterials materials_;
   EnvironmentLight environment_;
   bool useEnvironment_;
+  EmissiveTriangles emitters_;
+  bool useEmitters_;
   mutable std::atomic<std::uint64_t> nonFinite_{0};
 };
 

@@ -44,6 +44,7 @@ class Distribution1D {
   // A continuous sample in [0, 1), its density, and the cell it fell in.
   float sample(float u, float* pdf, int* cell) const;
   float pdf(float x) const;     // density at x in [0, 1)
+  float cellProbability(int cell) const { return cdf_[cell + 1] - cdf_[cell]; }  // of sample()'s cell
   float integral() const { return integral_; }  // mean of the weights
   int size() const { return static_cast<int>(weights_.size()); }
 
