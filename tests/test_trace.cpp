@@ -581,6 +581,29 @@ Estimate lambertianTerm(const trace::PathTracer& tracer, glm::ivec2 pixel, int s
   return {mean, std::max(sum2 / samples - mean * mean, 0.0), samples};
 }
 
+TEST(Trace, EmissionIsOneSidedUnlessTheMaterialIsDoubleSided) {
+  // The lamp faces down: seen from below it glows, from above only when double-sided (glTF culls
+  // a single-sided surface's back and draws a double-sided one's with the same emission).
+  scene::Scene scene = lampScene(1.0f, false);
+  for (const bool doubleSided : {false, true}) {
+    scene.materials[1].doubleSided = doubleSided;
+    trace::TraceSettings settings = lampSettings(scene, glm::vec3(0.0f));
+    const trace::PathTracer tracer(scene, defaultDictionary(), settings);
+    for (const float side : {-1.0f, 1.0f}) {
+      // From 0.5 m below or above the lamp, straight at it (from below past nothing but air).
+      const trace::Ray ray{glm::vec3(0.2f, 1.0f + 0.5f * side, 0.1f), glm::vec3(0.0f, -side, 0.0f)};
+      const auto hit = tracer.geometry().intersect(ray);
+      ASSERT_TRUE(hit.has_value());
+      ASSERT_EQ(hit->mesh, 1u);
+      const trace::SurfacePoint point = trace::surfacePoint(scene, *hit);
+      const glm::vec3 emitted = tracer.materials().emission(point, {}, -ray.direction);
+      const bool front = side < 0.0f;
+      EXPECT_EQ(emitted, front || doubleSided ? glm::vec3(kLampRadiance) : glm::vec3(0.0f))
+          << (doubleSided ? "double-sided" : "single-sided") << (front ? ", front" : ", back");
+    }
+  }
+}
+
 TEST(TraceStat, AnEmissiveSquareGivesTheAnalyticIrradiance) {
   const scene::Scene scene = lampScene();
   for (const float px : {0.0f, 0.6f}) {
