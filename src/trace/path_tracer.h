@@ -1,8 +1,9 @@
 // `glint trace`: a CPU Monte Carlo path tracer of a scene::Scene with the glint BSDF (docs/trace.md).
 // Unidirectional path tracing with next-event estimation: point and directional lights (delta
 // lights, no MIS), the environment and emissive triangles (importance-sampled, each combined with
-// BSDF sampling by the power heuristic); Russian roulette after depth 3. Direct light matches the real-time renderer's
-// shading (shaders/forward.frag) with the footprint of each camera ray from its ray differentials.
+// BSDF sampling by the power heuristic); Russian roulette after depth 3. Direct light matches the
+// real-time renderer's shading (shaders/forward.frag) with the footprint of each camera ray from
+// its ray differentials.
 // Deterministic: every sample draws from its own PCG32 stream seeded by (pixel, sample), so the
 // image is the same for any number of threads.
 #pragma once
@@ -28,7 +29,7 @@ struct TraceSettings {
   int width = 256;
   int height = 256;
   int spp = 16;
-  int maxDepth = 4;          // bounces: 1 is direct light only (plus what BSDF sampling finds of the environment)
+  int maxDepth = 4;          // bounces: 1 is direct light only (plus what BSDF sampling finds of the environment and emitters)
   SpecularModel brdf = SpecularModel::Glint;
   GlintSampler sampler = GlintSampler::Mixture;
   bool directOnly = false;   // only point and directional lights at the first hit, no environment, no emitters, no bounces
