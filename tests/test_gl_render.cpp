@@ -720,6 +720,60 @@ TEST(RenderGl, BackgroundIsTheEnvironmentTheTracerSees) {
   std::printf("background: %d sky pixels, largest relative difference to the tracer's sky %.2e\n", sky, largest);
 }
 
+// Anti-aliased edges: at 1 spp, the sphere's silhouette against the sky, pixel by pixel, against
+// a 64-frame reference (`glint render --spp 64` at one sample a pixel). The edge pixels are those
+// that the sphere covers partly: a coverage frame (the scene with every material black and
+// emitting 1, no lights, a black sky, averaged over the reference's 64 jittered frames) between
+// 5% and 95%. The error there is the RMSE relative to the reference's mean over them.
+TEST(RenderGl, MultisampledEdgesHalveTheSilhouetteError) {
+  const scene::Scene scene = scene::makeBuiltinScene("sphere");
+  scene::Scene coverageScene = scene;
+  for (scene::Material& m : coverageScene.materials) {
+    m = scene::Material{};
+    m.baseColour = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    m.emissive = glm::vec3(1.0f);
+  }
+  coverageScene.lights.clear();
+  coverageScene.environment = scene::Environment{};
+  useGlContext();
+  constexpr int kSide = 128;
+  constexpr int kReferenceFrames = 64;
+  gl::FrameSettings frame;
+  frame.width = kSide;
+  frame.height = kSide;
+  frame.camera = scene.cameras.at("default");
+  frame.msaa = 1;
+  gl::Renderer coverageRenderer(coverageScene, defaultDictionary());
+  const ImageRgbF coverage = gl::renderSupersampled(coverageRenderer, frame, kReferenceFrames);
+  gl::Renderer renderer(scene, defaultDictionary());
+  const ImageRgbF reference = gl::renderSupersampled(renderer, frame, kReferenceFrames);
+  auto edgeError = [&](int msaa) {
+    frame.msaa = msaa;
+    const ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    double squared = 0.0, mean = 0.0;
+    int count = 0;
+    for (std::size_t p = 0; p < image.pixels.size(); ++p) {
+      if (!(coverage.pixels[p].r > 0.05f && coverage.pixels[p].r < 0.95f)) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double d = image.pixels[p][c] - reference.pixels[p][c];
+        squared += d * d;
+        mean += reference.pixels[p][c];
+      }
+      ++count;
+    }
+    EXPECT_GT(count, 100);
+    return std::sqrt(squared / (3.0 * count)) / (mean / (3.0 * count));
+  };
+  const double one = edgeError(1);
+  const int most = renderer.maxMsaaSamples();
+  const double many = edgeError(most);
+  std::printf("silhouette pixels, relative RMSE against %d frames: %.3f at 1 sample, %.3f at %d samples (%.2fx)\n",
+              kReferenceFrames, one, many, most, one / many);
+  ASSERT_GE(most, 4) << "this OpenGL multisamples at fewer than 4 samples a pixel";
+  EXPECT_GT(one, 2.0 * many);
+}
+
 TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
   const scene::Scene scene = scene::makeBuiltinScene("sphere");
   const ImageRgbF a = render(scene, gl::BrdfModel::Glint);

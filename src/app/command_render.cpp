@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/display.h"
@@ -27,6 +28,7 @@ struct RenderOptions {
   int reference = 0;
   float exposure = 1.0f;
   OrbitOptions orbit;
+  RasterOptions raster;
 };
 
 void runRender(const RenderOptions& options) {
@@ -67,6 +69,7 @@ void runRender(const RenderOptions& options) {
   frame.antiAliasing = antiAliasing;
   frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
+  options.raster.applyTo(frame, renderer);
   const std::vector<scene::Camera> cameras =
       options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
   const int frames = static_cast<int>(cameras.size());
@@ -125,6 +128,7 @@ void registerRenderCommand(CLI::App& app) {
                       "normal maps at their finest level");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   options->orbit.addTo(*command);
+  options->raster.addTo(*command);
   command->callback([options] { runRender(*options); });
 }
 
