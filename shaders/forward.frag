@@ -40,9 +40,18 @@
 #include "zirr_kaplanyan.h"
 #endif
 
-in vec3 vPosition;
-in vec3 vNormal;
-in vec4 vTangent;
+// With several samples a pixel (CENTROID_SHADING = 1, src/gl/renderer.cpp) a surface that covers
+// only some of them, on an edge, is shaded at their centroid, inside it, not at the pixel's centre
+// beyond its silhouette, where the normal would have turned away from the camera; the uv stays at
+// the centre, so that the glint footprint, its screen derivatives, is the one-sample frame's.
+#if CENTROID_SHADING
+#define SHADING_POINT centroid
+#else
+#define SHADING_POINT
+#endif
+SHADING_POINT in vec3 vPosition;
+SHADING_POINT in vec3 vNormal;
+SHADING_POINT in vec4 vTangent;
 in vec2 vUv;
 in vec4 vColour;  // glTF COLOR_0
 

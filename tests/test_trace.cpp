@@ -765,33 +765,41 @@ TEST(TraceGl, APointBehindAnOccluderIsDarkUnderASpotLight) { expectTheShadowBehi
 
 TEST(TraceGl, APointBehindAnOccluderIsDarkUnderAPointLight) { expectTheShadowBehindThePlate(scene::Light::Type::Point); }
 
-// Measured: see the test. Bound: TBD.
-constexpr double kShadowedRelMseBound = 1e-2;
-
 TEST(TraceGl, ShadowedDirectLightMatchesTheTracer) {
   // The occluder scene under each light type, and the showroom under its key light (the sphere and
-  // its stage shadow the parquet): relMSE of the tracer's direct light against the rasteriser's,
-  // with its shadows and without (the tracer always has them).
+  // its stage shadow the parquet, the car the floor): relMSE of the tracer's direct light against
+  // the rasteriser's at 128 x 128, pixel centres, with the rasteriser's shadows and without (the
+  // tracer always has them). Measured 2026-12-02 on Mesa llvmpipe (LLVM 15), with / without:
+  //   occluder, directional  1.2e-14 / 1.4e-2  (2 mm texels: no pixel centre falls in a ramp)
+  //   occluder, spot         1.9e-4  / 2.7e-2
+  //   occluder, point        2.0e-3  / 2.7e-2  (the cube's texels are 3 times the spot map's)
+  //   showroom, key light    Cook-Torrance 1.5e-4 / 5.3e-3, glint 5.7e-4 / 5.7e-3
+  // What remains is the filtered edges' ramp (two texels wide where the tracer's edge is hard)
+  // and, on the showroom, what the unshadowed check has too (TraceGl.DirectLightMatches...).
+  // Bounds: about three times the measurements, and at least three times below what the
+  // rasteriser without shadows gives, so that each case fails without them.
   struct Case {
     std::string label;
     scene::Scene scene;
+    double bound;
   };
   std::vector<Case> cases;
-  for (const scene::Light::Type type :
-       {scene::Light::Type::Directional, scene::Light::Type::Spot, scene::Light::Type::Point}) {
-    cases.push_back({std::string("occluder, ") + lightTypeName(type) + " light", occluderScene(type)});
+  const std::pair<scene::Light::Type, double> types[] = {
+      {scene::Light::Type::Directional, 1e-4}, {scene::Light::Type::Spot, 1e-3}, {scene::Light::Type::Point, 6e-3}};
+  for (const auto& [type, bound] : types) {
+    cases.push_back({std::string("occluder, ") + lightTypeName(type) + " light", occluderScene(type), bound});
   }
   scene::Scene showroom = scene::makeBuiltinScene("showroom");
   showroom.lights.resize(1);  // the key light
   showroom.environment = scene::Environment{};
-  cases.push_back({"showroom, key light", showroom});
+  cases.push_back({"showroom, key light", showroom, 1.7e-3});
   for (const Case& c : cases) {
     const CrossCheck with = compareRenderers(c.scene, c.label, c.scene.cameras.at("default"), false, true);
     const CrossCheck without = compareRenderers(c.scene, c.label, c.scene.cameras.at("default"), false, false);
-    std::printf("%s: relMSE Cook-Torrance %.2e with shadows, %.2e without; glint %.2e, %.2e\n", c.label.c_str(),
-                with.cookTorrance, without.cookTorrance, with.glint, without.glint);
-    EXPECT_LT(with.cookTorrance, kShadowedRelMseBound) << c.label;
-    EXPECT_LT(with.glint, kShadowedRelMseBound) << c.label;
+    std::printf("%s: relMSE Cook-Torrance %.2e with shadows, %.2e without; glint %.2e, %.2e (bound %.1e)\n",
+                c.label.c_str(), with.cookTorrance, without.cookTorrance, with.glint, without.glint, c.bound);
+    EXPECT_LT(with.cookTorrance, c.bound) << c.label;
+    EXPECT_LT(with.glint, c.bound) << c.label;
   }
 }
 

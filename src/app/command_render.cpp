@@ -94,9 +94,10 @@ void runRender(const RenderOptions& options) {
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
-  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",
-               written.c_str(), options.scene.scene.c_str(), width, height, spp,
-               gl::toString(brdf), gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
+               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               gl::toString(antiAliasing), frame.shadows ? "on" : "off", frame.msaa, seconds,
+               gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());
 }
 

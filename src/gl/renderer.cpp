@@ -189,6 +189,7 @@ struct ForwardVariant {
   bool multipleScattering;
   bool shadows;     // SHADOWS: the lights cast shadows (shaders/shadows.glsl)
   int shadowCubes;  // SHADOW_CUBES: bit i, light i's shadow map is a cube
+  bool centroid;    // CENTROID_SHADING: several samples a pixel, edges shaded inside the surface
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -211,7 +212,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"GLINT_MASKING", std::to_string(variant.masking)},
                         {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"},
                         {"SHADOWS", variant.shadows ? "1" : "0"},
-                        {"SHADOW_CUBES", std::to_string(variant.shadowCubes)}});
+                        {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
+                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -251,7 +253,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         material.specular.masking,
                         material.specular.multipleScattering,
                         settings.shadows && lightCount > 0,
-                        settings.shadows ? shadowCubes : 0};
+                        settings.shadows ? shadowCubes : 0,
+                        settings.msaa > 1};
 }
 
 struct Renderer::Gpu {
