@@ -54,9 +54,10 @@ struct FrameSettings {
   // shadow rays find them.
   bool shadows = true;
   // Samples a pixel of the geometry (docs/renderer.md, "Anti-aliased edges"): depth and coverage
-  // per sample, each surface in the pixel shaded once at the pixel's centre, the samples averaged.
-  // 1: one sample, at the centre; at most maxMsaaSamples().
-  int msaa = 4;
+  // per sample, each surface in the pixel shaded once, the samples averaged. 1: one sample, at the
+  // centre; at most maxMsaaSamples(). Off by default: 4 samples cost llvmpipe 1.5 to 2.3 times the
+  // frame (docs/benchmarks.md, "Shadows and anti-aliased edges").
+  int msaa = 1;
 };
 
 class Renderer {
