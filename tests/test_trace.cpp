@@ -661,11 +661,15 @@ TEST(TraceGl, NormalMapFilteringMakesTheRenderersAgreeOnNormalMappedGlints) {
   // tracer from its ray differentials), and at such a roughness a highlight follows the normal so
   // closely that their pixels disagree (measured 2026-12-01: relMSE glint 9.75, Cook-Torrance 1.11).
   // With normal-map filtering in both, the slopes' variance, which both measure alike, replaces
-  // what neither resolves: relMSE glint 6.5e-2, 150 times closer. Bound: 0.2 and 20 times closer.
+  // what neither resolves: relMSE glint 6.5e-2, 150 times closer. With the rasteriser's shadows
+  // (2026-12-02): 9.85 and 0.208, 47 times closer: the low sun's shadows of the snowman and the
+  // ornament fall on the snow in both renderers, the rasteriser's from a directional map fit to
+  // the whole 64 m field (3 cm texels), whose filtered edges are some 30 cm wide on the ground at
+  // the sun's 12 degrees where the tracer's are hard. Bound: 0.3 and 20 times closer.
   const CrossCheck unfiltered = crossRendererRelMse("arctic");
   const CrossCheck filtered = crossRendererRelMse("arctic", false, false, false, false, false, true);
   std::printf("arctic: relMSE glint %.3g unfiltered, %.3g with normal maps filtered\n", unfiltered.glint, filtered.glint);
-  EXPECT_LT(filtered.glint, 0.2);
+  EXPECT_LT(filtered.glint, 0.3);
   EXPECT_LT(20.0 * filtered.glint, unfiltered.glint);
 }
 
