@@ -11,7 +11,8 @@
 // glTF alphaMode MASK materials (ALPHA_MASK = 1), materials with KHR_texture_transform
 // (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
 // compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
-// walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes).
+// walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes). With SHADOWS = 1 the
+// lights cast shadows (shadows.glsl).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -39,9 +40,18 @@
 #include "zirr_kaplanyan.h"
 #endif
 
-in vec3 vPosition;
-in vec3 vNormal;
-in vec4 vTangent;
+// With several samples a pixel (CENTROID_SHADING = 1, src/gl/renderer.cpp) a surface that covers
+// only some of them, on an edge, is shaded at their centroid, inside it, not at the pixel's centre
+// beyond its silhouette, where the normal would have turned away from the camera; the uv stays at
+// the centre, so that the glint footprint, its screen derivatives, is the one-sample frame's.
+#if CENTROID_SHADING
+#define SHADING_POINT centroid
+#else
+#define SHADING_POINT
+#endif
+SHADING_POINT in vec3 vPosition;
+SHADING_POINT in vec3 vNormal;
+SHADING_POINT in vec4 vTangent;
 in vec2 vUv;
 in vec4 vColour;  // glTF COLOR_0
 
@@ -105,6 +115,7 @@ uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
 uniform vec3 uSpotAxis[GLINT_SLOPE_COUNT];  // the direction a spot shines along (kernel/lights.h)
 uniform vec2 uSpotCone[GLINT_SLOPE_COUNT];  // spotConeScaleOffset; (0, 1) for lights without a cone
 uniform float uLightInverseRange[GLINT_SLOPE_COUNT];  // 1 / range (rangeWindow); 0 for lights without a range
+#include "shadows.glsl"
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
 
@@ -213,6 +224,9 @@ void main() {
     vec3 l = normalize(toLight);
     lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
     lightFalloff[i] = spotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * rangeWindow(lightDistance2[i], uLightInverseRange[i]);
+#if SHADOWS
+    lightFalloff[i] *= shadowVisibility(i, vPosition, normalize(vNormal), l, sqrt(lightDistance2[i]));
+#endif
   }
 
 #if SPECULAR_MODEL == SPECULAR_GLINT

@@ -299,6 +299,9 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectRenderFails(folder, "sphere --log-density nan", "log_density");
   expectRenderFails(folder, "sphere --relative-area 2", "relative_area");
   expectRenderFails(folder, "sphere --dict missing.gdict", "missing.gdict: cannot open");
+  expectRenderFails(folder, "sphere --shadows maybe", "--shadows must be on or off, got 'maybe'");
+  expectRenderFails(folder, "sphere --msaa 3", "--msaa must be a power of two");
+  expectRenderFails(folder, "sphere --msaa 4096", "--msaa must be a power of two");
   const RunResult wrongExtension = runGlint(folder, "render sphere -o out.jpg --size 32x32");
   expectOneLineError(wrongExtension, "out.jpg: the output must end in .png or .exr");
 }

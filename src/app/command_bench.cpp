@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/frame_timer.h"
@@ -32,24 +33,37 @@ struct BenchOptions {
   CameraOptions cameraOptions;
   std::string antiAliasing = "ggaa+lean";
   bool gltfTarget = false;
+  RasterOptions raster;
+  bool featureCost = false;
 };
 
 // What one column of the table times: a specular model under an anti-aliasing mode. With glint
 // anti-aliased, the 2020 model (glint-none) is timed in the same alternation, for the filter's cost.
 // With --gltf-target, glint is timed a second time with every material's specular lobe turned to
-// glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf.
+// glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf. With
+// --feature-cost, glint is timed without shadows (glint-no-shadows), at one sample a pixel
+// (glint-msaa1), and with its shadow maps drawn again every frame (glint-moving-lights: the
+// renderer keeps them while the lights stay, so the other columns only read them).
 struct Variant {
   std::string label;
   gl::BrdfModel brdf;
   gl::AntiAliasing antiAliasing;
   bool gltfTarget = false;
+  bool noShadows = false;
+  bool oneSample = false;
+  bool movingLights = false;
 };
 
-std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget) {
+std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool featureCost) {
   std::vector<Variant> variants;
   for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
   if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
   if (gltfTarget) variants.push_back({"glint-gltf", gl::BrdfModel::Glint, antiAliasing, true});
+  if (featureCost) {
+    variants.push_back({"glint-no-shadows", gl::BrdfModel::Glint, antiAliasing, false, true});
+    variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, true});
+    variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
+  }
   return variants;
 }
 
@@ -86,7 +100,7 @@ void runBench(const BenchOptions& options) {
   gl::FrameTimer timer;
   const bool progress = isatty(STDERR_FILENO);
   const std::vector<Variant> models =
-      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget);
+      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget, options.featureCost);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
@@ -105,6 +119,8 @@ void runBench(const BenchOptions& options) {
     frame.width = width;
     frame.height = height;
     frame.camera = scene.cameras.at(options.camera);
+    options.raster.applyTo(frame, renderer);
+    const gl::FrameSettings timed = frame;
     std::map<std::string, std::vector<double>> times;
     // Models alternate frame by frame, starting with a different one each round, so that machine
     // noise and warm caches fall on all of them alike.
@@ -113,7 +129,11 @@ void runBench(const BenchOptions& options) {
         const Variant& variant = models[(k + static_cast<std::size_t>(round + options.warmup)) % models.size()];
         frame.brdf = variant.brdf;
         frame.antiAliasing = variant.antiAliasing;
+        frame.shadows = timed.shadows && !variant.noShadows;
+        frame.msaa = variant.oneSample ? 1 : timed.msaa;
         gl::Renderer& drawing = variant.gltfTarget ? *gltfRenderer : renderer;
+        // A light that moved by a hair since the last frame: its shadow maps are drawn again.
+        if (variant.movingLights && !drawing.lights().empty()) drawing.lights()[0].direction.x += round % 2 ? 1e-6f : -1e-6f;
         const double ms = timer.milliseconds([&] { drawing.renderFrame(frame); });
         if (round >= 0) times[variant.label].push_back(ms);
       }
@@ -151,9 +171,10 @@ void runBench(const BenchOptions& options) {
     std::cout << report.dump() << std::endl;
     return;
   }
-  std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max), anti-aliasing %s\n", width,
-              height, info.renderer.c_str(), timer.method(), options.frames, options.frames == 1 ? "" : "s",
-              options.warmup, options.antiAliasing.c_str());
+  std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max), anti-aliasing %s, shadows %s, "
+              "msaa %d\n",
+              width, height, info.renderer.c_str(), timer.method(), options.frames, options.frames == 1 ? "" : "s",
+              options.warmup, options.antiAliasing.c_str(), options.raster.shadows.c_str(), options.raster.msaa);
   std::printf("%-16s", "scene");
   for (const Variant& model : models) std::printf("  %-26s", model.label.c_str());
   for (const Variant& model : models) {
@@ -199,6 +220,10 @@ void registerBenchCommand(CLI::App& app) {
   command->add_flag("--gltf-target", options->gltfTarget,
                     "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
                     "multiple-scattering compensation (glint-gltf)");
+  options->raster.addTo(*command);
+  command->add_flag("--feature-cost", options->featureCost,
+                    "Also time glint without shadows (glint-no-shadows), at one sample a pixel (glint-msaa1) and "
+                    "with its shadow maps drawn again every frame, as when a light moves (glint-moving-lights)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
   command->callback([options] { runBench(*options); });
 }

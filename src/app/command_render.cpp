@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/display.h"
@@ -27,6 +28,7 @@ struct RenderOptions {
   int reference = 0;
   float exposure = 1.0f;
   OrbitOptions orbit;
+  RasterOptions raster;
 };
 
 void runRender(const RenderOptions& options) {
@@ -67,6 +69,7 @@ void runRender(const RenderOptions& options) {
   frame.antiAliasing = antiAliasing;
   frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
+  options.raster.applyTo(frame, renderer);
   const std::vector<scene::Camera> cameras =
       options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
   const int frames = static_cast<int>(cameras.size());
@@ -91,9 +94,10 @@ void runRender(const RenderOptions& options) {
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
-  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, %.2f s on %s)\n",
-               written.c_str(), options.scene.scene.c_str(), width, height, spp,
-               gl::toString(brdf), gl::toString(antiAliasing), seconds, gl::currentContextInfo().renderer.c_str());
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
+               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               gl::toString(antiAliasing), frame.shadows ? "on" : "off", frame.msaa, seconds,
+               gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());
 }
 
@@ -125,6 +129,7 @@ void registerRenderCommand(CLI::App& app) {
                       "normal maps at their finest level");
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   options->orbit.addTo(*command);
+  options->raster.addTo(*command);
   command->callback([options] { runRender(*options); });
 }
 

@@ -15,6 +15,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/display.h"
@@ -37,6 +38,7 @@ struct ViewOptions {
   std::string screenshot;  // written after the last frame
   std::string antiAliasing = "ggaa+lean";
   bool hidePanel = false;  // start without the panel (H shows it)
+  RasterOptions raster;
 };
 
 // What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
@@ -46,6 +48,8 @@ struct FrameControls {
   int antiAliasing = 2;  // index into gl::allAntiAliasingModes()
   float exposure = 1.0f;  // times the scene's exposure
   int camera = 0;
+  bool shadows = true;
+  int msaa = 0;  // samples a pixel: 2^msaa
 };
 
 class ImGuiSession {
@@ -229,6 +233,8 @@ void runView(const ViewOptions& options) {
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   printWarnings(renderer.warnings());
+  gl::FrameSettings startSettings;  // --shadows and --msaa; the panel changes them
+  options.raster.applyTo(startSettings, renderer);
   const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
@@ -240,6 +246,12 @@ void runView(const ViewOptions& options) {
   scene::ViewControls controls = sceneControls;
   Choices choices = choicesOf(scene);
   FrameControls frameControls;
+  frameControls.shadows = startSettings.shadows;
+  std::vector<std::string> msaaNames;
+  for (int samples = 1; samples <= renderer.maxMsaaSamples(); samples *= 2) {
+    if (samples == startSettings.msaa) frameControls.msaa = static_cast<int>(msaaNames.size());
+    msaaNames.push_back(std::to_string(samples));
+  }
   const gl::AntiAliasing initialAntiAliasing = gl::antiAliasingFromString(options.antiAliasing);
   const std::vector<gl::AntiAliasing> antiAliasingModes = gl::allAntiAliasingModes();
   frameControls.antiAliasing = static_cast<int>(
@@ -275,6 +287,8 @@ void runView(const ViewOptions& options) {
     frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(frameControls.brdf)];
     frame.antiAliasing = antiAliasingModes[static_cast<std::size_t>(frameControls.antiAliasing)];
     frame.camera = viewCamera;
+    frame.shadows = frameControls.shadows;
+    frame.msaa = 1 << frameControls.msaa;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -300,6 +314,11 @@ void runView(const ViewOptions& options) {
       combo("anti-aliasing", frameControls.antiAliasing, antiAliasingNames);
       tooltip("ggaa+lean: glints filtered by the half vector's variation over the pixel and by the normal map's "
               "slope variance; ggaa: the first only; none: the 2020 model.");
+      ImGui::Checkbox("shadows", &frameControls.shadows);
+      tooltip("The lights' shadows, from shadow maps, as `glint render --shadows`.");
+      combo("msaa", frameControls.msaa, msaaNames);
+      tooltip("Samples a pixel of the geometry, for anti-aliased edges; each surface in a pixel is shaded once, "
+              "as `glint render --msaa`.");
       ImGui::SliderFloat("exposure", &frameControls.exposure, 0.05f, 20.0f, "%.2f",
                          ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
       tooltip("0.05..20, logarithmic: multiplies the scene's exposure before the tone curve, as `glint render "
@@ -349,6 +368,7 @@ void registerViewCommand(CLI::App& app) {
   command->add_option("--screenshot", options->screenshot,
                       "With --frames N: write frame N as the window shows it (the panel too, unless hidden) to a PNG");
   command->add_flag("--hide-panel", options->hidePanel, "Start with the panel hidden (H shows and hides it)");
+  options->raster.addTo(*command);
   command->callback([options] { runView(*options); });
 }
 

@@ -13,6 +13,7 @@
 #include "gl/dictionary_texture.h"
 #include "gl/environment.h"
 #include "gl/shader.h"
+#include "gl/shadow_maps.h"
 #include "glint/error.h"
 #include "glint/image_io.h"
 #include "scene/normal_map_moments.h"
@@ -186,6 +187,9 @@ struct ForwardVariant {
   int ndf;
   int masking;
   bool multipleScattering;
+  bool shadows;     // SHADOWS: the lights cast shadows (shaders/shadows.glsl)
+  int shadowCubes;  // SHADOW_CUBES: bit i, light i's shadow map is a cube
+  bool centroid;    // CENTROID_SHADING: several samples a pixel, edges shaded inside the surface
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -206,14 +210,18 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"},
                         {"GLINT_NDF", std::to_string(variant.ndf)},
                         {"GLINT_MASKING", std::to_string(variant.masking)},
-                        {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"}});
+                        {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"},
+                        {"SHADOWS", variant.shadows ? "1" : "0"},
+                        {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
+                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
 // out. The plain one has no discard, so the rasteriser can test and write depth before shading.
-ShaderProgram depthPrepassProgram(bool alphaMask) {
+// With linearDepth, the shadow maps' (shadow_maps.h): depth is the distance from a light.
+ShaderProgram depthPrepassProgram(bool alphaMask, bool linearDepth) {
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "depth_prepass.frag"}},
-                       {{"ALPHA_MASK", alphaMask ? "1" : "0"}});
+                       {{"ALPHA_MASK", alphaMask ? "1" : "0"}, {"LINEAR_DEPTH", linearDepth ? "1" : "0"}});
 }
 
 bool isMasked(const scene::Material& material) { return material.alphaMode == scene::Material::AlphaMode::Mask; }
@@ -222,7 +230,7 @@ bool isMasked(const scene::Material& material) { return material.alphaMode == sc
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
-                              int lightCount) {
+                              int lightCount, int shadowCubes) {
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
   const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
   const bool filtered = model == BrdfModel::Glint && settings.antiAliasing != AntiAliasing::None;
@@ -243,13 +251,18 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         mesh.vertexColours,
                         material.specular.ndf,
                         material.specular.masking,
-                        material.specular.multipleScattering};
+                        material.specular.multipleScattering,
+                        settings.shadows && lightCount > 0,
+                        settings.shadows ? shadowCubes : 0,
+                        settings.msaa > 1};
 }
 
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<ShaderProgram> background;        // likewise
-  std::array<std::unique_ptr<ShaderProgram>, 2> depthPrepass;  // likewise; [1]: alphaMode MASK
+  // Likewise; [alphaMode MASK + 2 * linear depth (the shadow maps of positional lights)].
+  std::array<std::unique_ptr<ShaderProgram>, 4> depthPrepass;
+  ShadowMaps shadowMaps;
   GLuint emptyVertexArray = 0;                      // the background's triangle has no attributes
   std::unique_ptr<DictionaryTexture> dictionary;
   std::vector<GpuMesh> meshes;
@@ -264,8 +277,13 @@ struct Renderer::Gpu {
   GLuint framebuffer = 0;
   GLuint radiance = 0;
   GLuint depth = 0;
+  // With several samples a pixel, the frame is drawn into these and resolved into `radiance`.
+  GLuint multisampleFramebuffer = 0;
+  GLuint multisampleRadiance = 0;
+  GLuint multisampleDepth = 0;
   int width = 0;
   int height = 0;
+  int samples = 1;
 
   ~Gpu() {
     for (const GpuMesh& m : meshes) {
@@ -286,14 +304,21 @@ struct Renderer::Gpu {
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteTextures(1, &radiance);
     glDeleteRenderbuffers(1, &depth);
-    framebuffer = radiance = depth = 0;
+    glDeleteFramebuffers(1, &multisampleFramebuffer);
+    glDeleteRenderbuffers(1, &multisampleRadiance);
+    glDeleteRenderbuffers(1, &multisampleDepth);
+    framebuffer = radiance = depth = multisampleFramebuffer = multisampleRadiance = multisampleDepth = 0;
   }
 
-  void resizeTarget(int w, int h) {
-    if (w == width && h == height && framebuffer) return;
+  // The framebuffer a frame is drawn into: `framebuffer` at one sample a pixel.
+  GLuint drawFramebuffer() const { return samples > 1 ? multisampleFramebuffer : framebuffer; }
+
+  void resizeTarget(int w, int h, int s) {
+    if (w == width && h == height && s == samples && framebuffer) return;
     releaseTarget();
     width = w;
     height = h;
+    samples = s;
     glCreateTextures(GL_TEXTURE_2D, 1, &radiance);
     glTextureStorage2D(radiance, 1, GL_RGBA32F, w, h);
     glTextureParameteri(radiance, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -305,6 +330,18 @@ struct Renderer::Gpu {
     glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
     if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
       throw Error("OpenGL: cannot make a " + std::to_string(w) + "x" + std::to_string(h) + " RGBA32F render target");
+    }
+    if (s == 1) return;
+    glCreateRenderbuffers(1, &multisampleRadiance);
+    glNamedRenderbufferStorageMultisample(multisampleRadiance, s, GL_RGBA32F, w, h);
+    glCreateRenderbuffers(1, &multisampleDepth);
+    glNamedRenderbufferStorageMultisample(multisampleDepth, s, GL_DEPTH24_STENCIL8, w, h);
+    glCreateFramebuffers(1, &multisampleFramebuffer);
+    glNamedFramebufferRenderbuffer(multisampleFramebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, multisampleRadiance);
+    glNamedFramebufferRenderbuffer(multisampleFramebuffer, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, multisampleDepth);
+    if (glCheckNamedFramebufferStatus(multisampleFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw Error("OpenGL: cannot make a " + std::to_string(w) + "x" + std::to_string(h) + " RGBA32F render target of " +
+                  std::to_string(s) + " samples a pixel");
     }
   }
 };
@@ -385,18 +422,34 @@ Renderer::~Renderer() = default;
 
 GLuint Renderer::radianceTexture() const { return gpu_->radiance; }
 
+int Renderer::maxMsaaSamples() const {
+  // The renderbuffer's own limit: RGBA32F may allow fewer samples than GL_MAX_SAMPLES.
+  GLint samples = 1;
+  glGetInternalformativ(GL_RENDERBUFFER, GL_RGBA32F, GL_SAMPLES, 1, &samples);
+  GLint maxSamples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  int powerOfTwo = 1;
+  while (2 * powerOfTwo <= std::min(samples, maxSamples)) powerOfTwo *= 2;
+  return powerOfTwo;
+}
+
 void Renderer::renderFrame(const FrameSettings& settings) {
   Gpu& g = *gpu_;
-  g.resizeTarget(settings.width, settings.height);
-  glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer);
+  if (settings.msaa < 1 || (settings.msaa & (settings.msaa - 1)) != 0 || settings.msaa > maxMsaaSamples()) {
+    throw Error("multisampling: " + std::to_string(settings.msaa) + " samples a pixel; this OpenGL takes 1, 2, ... " +
+                std::to_string(maxMsaaSamples()) + " (powers of two)");
+  }
+  g.resizeTarget(settings.width, settings.height, settings.msaa);
+  const GLuint target = g.drawFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
   glViewport(0, 0, settings.width, settings.height);
   glEnable(GL_DEPTH_TEST);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
   const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-  glClearNamedFramebufferfv(g.framebuffer, GL_COLOR, 0, clear);
-  glClearNamedFramebufferfi(g.framebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glClearNamedFramebufferfv(target, GL_COLOR, 0, clear);
+  glClearNamedFramebufferfi(target, GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
   const glm::mat4 projection = viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
                                               scene_.boundsMin(), scene_.boundsMax());
@@ -419,11 +472,6 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
                                                                       : fallback;
   };
-  // Depth pre-pass: every mesh's depth first, without colour, so that the shading passes below run
-  // the forward shader only for the fragment that stays visible in each pixel. Without it every
-  // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
-  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "Sixth round").
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // glTF: back faces of single-sided materials are culled; double-sided ones (curtains) are drawn
   // from both sides.
   auto setCulling = [&](const GpuMesh& mesh) {
@@ -433,22 +481,70 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glEnable(GL_CULL_FACE);
     }
   };
-  for (const GpuMesh& mesh : g.meshes) {
-    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    std::unique_ptr<ShaderProgram>& program = g.depthPrepass[isMasked(m) ? 1 : 0];
-    if (!program) program = std::make_unique<ShaderProgram>(depthPrepassProgram(isMasked(m)));
-    glUseProgram(program->id());
-    glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
-    if (isMasked(m)) {
-      glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
-      setUvTransform(*program, "uBaseColourUv", m.baseColourUv);
-      glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
-      glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+  // Every mesh's depth, alpha masks applied: the pre-pass's (culled as shaded), or a shadow map's
+  // (both sides: linearDepth for positional lights, shadow_maps.h).
+  auto drawDepths = [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale,
+                        bool cull) {
+    for (const GpuMesh& mesh : g.meshes) {
+      const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+      std::unique_ptr<ShaderProgram>& program = g.depthPrepass[(isMasked(m) ? 1 : 0) + (linearDepth ? 2 : 0)];
+      if (!program) program = std::make_unique<ShaderProgram>(depthPrepassProgram(isMasked(m), linearDepth));
+      glUseProgram(program->id());
+      glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &viewProjection[0][0]);
+      if (linearDepth) {
+        glUniform3fv(program->uniform("uDepthOrigin"), 1, &origin.x);
+        glUniform1f(program->uniform("uDepthScale"), depthScale);
+      }
+      if (isMasked(m)) {
+        glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
+        setUvTransform(*program, "uBaseColourUv", m.baseColourUv);
+        glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
+        glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
+      }
+      if (cull) setCulling(mesh);
+      glBindVertexArray(mesh.vertexArray);
+      glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
-    setCulling(mesh);
-    glBindVertexArray(mesh.vertexArray);
-    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+  };
+  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights
+  // and the alpha masks (the meshes do not move).
+  const bool shadows = settings.shadows && lightCount > 0;
+  glm::mat4 shadowMatrices[kMaxLights];
+  float shadowLayers[kMaxLights];
+  float shadowDepthScales[kMaxLights];
+  float shadowTexels[kMaxLights];
+  if (shadows) {
+    const std::vector<scene::Light> casting(lights_.begin(), lights_.begin() + lightCount);
+    std::vector<float> key;
+    for (const scene::Light& l : casting) {
+      key.insert(key.end(), {static_cast<float>(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
+                             l.direction.y, l.direction.z, l.outerConeAngle});
+    }
+    for (const scene::Material& m : materials_) {
+      key.insert(key.end(), {static_cast<float>(m.alphaMode), m.alphaCutoff, m.baseColour.a,
+                             static_cast<float>(m.baseColourTexture)});
+    }
+    g.shadowMaps.update(casting, scene_.boundsMin(), scene_.boundsMax(), key,
+                        [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
+                          drawDepths(viewProjection, linearDepth, origin, depthScale, false);
+                        });
+    for (int i = 0; i < lightCount; ++i) {
+      const ShadowLookup& lookup = g.shadowMaps.lookups()[static_cast<std::size_t>(i)];
+      shadowMatrices[i] = lookup.matrix;
+      shadowLayers[i] = static_cast<float>(lookup.layer);
+      shadowDepthScales[i] = lookup.depthScale;
+      shadowTexels[i] = lookup.texel;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, target);
+    glViewport(0, 0, settings.width, settings.height);
   }
+  const int shadowCubes = shadows ? g.shadowMaps.cubeMask() : 0;
+  // Depth pre-pass: every mesh's depth first, without colour, so that the shading passes below run
+  // the forward shader only for the fragment that stays visible in each pixel. Without it every
+  // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
+  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "Sixth round").
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  drawDepths(projection, false, glm::vec3(0.0f), 0.0f, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   // Shading pass: a fragment is shaded where its depth is the one the pre-pass kept and no fragment
   // of that pixel has been shaded yet (stencil 0, then 1). Where several fragments share the
@@ -484,11 +580,18 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
     glBindTextureUnit(9, g.environment);
+    if (shadows) {
+      g.shadowMaps.bind();
+      glUniformMatrix4fv(p.uniform("uShadowMatrix"), lightCount, GL_FALSE, &shadowMatrices[0][0][0]);
+      glUniform1fv(p.uniform("uShadowLayer"), lightCount, shadowLayers);
+      glUniform1fv(p.uniform("uShadowDepthScale"), lightCount, shadowDepthScales);
+      glUniform1fv(p.uniform("uShadowTexel"), lightCount, shadowTexels);
+    }
   };
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings, m, mesh, lightCount);
+    const ForwardVariant variant = forwardVariant(settings, m, mesh, lightCount, shadowCubes);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
@@ -573,6 +676,11 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (settings.msaa > 1) {
+    // The resolve: each pixel the mean of its samples.
+    glBlitNamedFramebuffer(g.multisampleFramebuffer, g.framebuffer, 0, 0, settings.width, settings.height, 0, 0,
+                           settings.width, settings.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
 }
 
 ImageRgbF renderSupersampled(Renderer& renderer, FrameSettings frame, int spp, const std::function<void(int)>& onSample) {

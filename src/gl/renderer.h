@@ -50,6 +50,14 @@ struct FrameSettings {
   float filterScale = 1.0f;
   scene::Camera camera;
   glm::vec2 jitter{0.0f};  // sub-pixel offset of the frame, in pixels (supersampling)
+  // The lights cast shadows, from shadow maps (docs/renderer.md, "Shadows"), as the path tracer's
+  // shadow rays find them.
+  bool shadows = true;
+  // Samples a pixel of the geometry (docs/renderer.md, "Anti-aliased edges"): depth and coverage
+  // per sample, each surface in the pixel shaded once, the samples averaged. 1: one sample, at the
+  // centre; at most maxMsaaSamples(). Off by default: 4 samples cost llvmpipe 1.5 to 2.3 times the
+  // frame (docs/benchmarks.md, "Shadows and anti-aliased edges").
+  int msaa = 1;
 };
 
 class Renderer {
@@ -69,6 +77,8 @@ class Renderer {
   // What the renderer draws otherwise than the scene says, one line each, for the commands to warn
   // about (a texture larger than this OpenGL's limit, drawn downscaled).
   const std::vector<std::string>& warnings() const { return warnings_; }
+  // The most samples a pixel FrameSettings::msaa may ask for on this OpenGL (a power of two).
+  int maxMsaaSamples() const;
 
   // Materials and lights as drawn; the viewer edits them between frames.
   std::vector<scene::Material>& materials() { return materials_; }

@@ -1,0 +1,28 @@
+#include "app/raster_options.h"
+
+#include "glint/error.h"
+
+namespace glint::app {
+
+void RasterOptions::addTo(CLI::App& command) {
+  command.add_option("--shadows", shadows,
+                     "Shadows of the lights (shadow maps, filtered edges): on or off")
+      ->capture_default_str();
+  command.add_option("--msaa", msaa,
+                     "Samples a pixel of the geometry, for anti-aliased edges: each surface in a pixel is still "
+                     "shaded once, at its centre; 1 turns it off")
+      ->capture_default_str();
+}
+
+void RasterOptions::applyTo(gl::FrameSettings& frame, const gl::Renderer& renderer) const {
+  if (shadows != "on" && shadows != "off") throw Error("--shadows must be on or off, got '" + shadows + "'");
+  const int most = renderer.maxMsaaSamples();
+  if (msaa < 1 || (msaa & (msaa - 1)) != 0 || msaa > most) {
+    throw Error("--msaa must be a power of two from 1 to " + std::to_string(most) + " (this OpenGL's most), got " +
+                std::to_string(msaa));
+  }
+  frame.shadows = shadows == "on";
+  frame.msaa = msaa;
+}
+
+}  // namespace glint::app

@@ -1,0 +1,24 @@
+// The rasteriser's shadows and anti-aliased edges from the command line (render, view, bench,
+// aa-error): --shadows on|off and --msaa N (docs/cli.md, docs/renderer.md).
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "gl/renderer.h"
+
+namespace glint::app {
+
+struct RasterOptions {
+  std::string shadows = gl::FrameSettings{}.shadows ? "on" : "off";
+  int msaa = gl::FrameSettings{}.msaa;
+
+  void addTo(CLI::App& command);
+  // Sets the frame's shadows and samples a pixel; throws Error with one line for --shadows other
+  // than on or off and for --msaa other than a power of two that this OpenGL draws (the
+  // renderer's maxMsaaSamples).
+  void applyTo(gl::FrameSettings& frame, const gl::Renderer& renderer) const;
+};
+
+}  // namespace glint::app
