@@ -32,24 +32,32 @@ struct BenchOptions {
   CameraOptions cameraOptions;
   std::string antiAliasing = "ggaa+lean";
   bool gltfTarget = false;
+  EnvironmentOptions environment;
+  bool compareEnvironmentLights = false;
 };
 
 // What one column of the table times: a specular model under an anti-aliasing mode. With glint
 // anti-aliased, the 2020 model (glint-none) is timed in the same alternation, for the filter's cost.
 // With --gltf-target, glint is timed a second time with every material's specular lobe turned to
-// glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf.
+// glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf. With
+// --compare-env-lights, glint is timed a second time without the directional lights taken out of
+// the environment map (scene::Environment::rasterLights 0), glint-no-env-lights.
 struct Variant {
   std::string label;
   gl::BrdfModel brdf;
   gl::AntiAliasing antiAliasing;
   bool gltfTarget = false;
+  bool withoutEnvironmentLights = false;
 };
 
-std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget) {
+std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights) {
   std::vector<Variant> variants;
   for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
   if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
   if (gltfTarget) variants.push_back({"glint-gltf", gl::BrdfModel::Glint, antiAliasing, true});
+  if (compareEnvironmentLights) {
+    variants.push_back({"glint-no-env-lights", gl::BrdfModel::Glint, antiAliasing, false, true});
+  }
   return variants;
 }
 
@@ -75,6 +83,7 @@ void runBench(const BenchOptions& options) {
     sceneOptions.scene = name;
     sceneOptions.camera = options.camera;
     sceneOptions.cameraOptions = options.cameraOptions;
+    sceneOptions.environment = options.environment;
     scenes.push_back(sceneOptions.loadScene());
   }
   SceneOptions dictionaryOptions;
@@ -86,7 +95,7 @@ void runBench(const BenchOptions& options) {
   gl::FrameTimer timer;
   const bool progress = isatty(STDERR_FILENO);
   const std::vector<Variant> models =
-      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget);
+      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget, options.compareEnvironmentLights);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
@@ -101,6 +110,13 @@ void runBench(const BenchOptions& options) {
       for (scene::Material& m : gltfScene.materials) m.specular = scene::kGltfSpecular;
       gltfRenderer = std::make_unique<gl::Renderer>(gltfScene, dictionary);
     }
+    std::unique_ptr<gl::Renderer> unlitRenderer;
+    scene::Scene unlitScene;  // outlives its renderer
+    if (options.compareEnvironmentLights) {
+      unlitScene = scene;
+      unlitScene.environment.rasterLights = 0;
+      unlitRenderer = std::make_unique<gl::Renderer>(unlitScene, dictionary);
+    }
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
@@ -113,7 +129,9 @@ void runBench(const BenchOptions& options) {
         const Variant& variant = models[(k + static_cast<std::size_t>(round + options.warmup)) % models.size()];
         frame.brdf = variant.brdf;
         frame.antiAliasing = variant.antiAliasing;
-        gl::Renderer& drawing = variant.gltfTarget ? *gltfRenderer : renderer;
+        gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
+                                : variant.withoutEnvironmentLights ? *unlitRenderer
+                                                                   : renderer;
         const double ms = timer.milliseconds([&] { drawing.renderFrame(frame); });
         if (round >= 0) times[variant.label].push_back(ms);
       }
@@ -199,6 +217,9 @@ void registerBenchCommand(CLI::App& app) {
   command->add_flag("--gltf-target", options->gltfTarget,
                     "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
                     "multiple-scattering compensation (glint-gltf)");
+  options->environment.addTo(*command);
+  command->add_flag("--compare-env-lights", options->compareEnvironmentLights,
+                    "Also time glint without the lights taken out of the environment map (glint-no-env-lights)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
   command->callback([options] { runBench(*options); });
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "glint/error.h"
+#include "scene/environment_map.h"
 
 namespace glint::trace {
 
@@ -23,15 +24,9 @@ void basisAround(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
 
 }  // namespace
 
-glm::vec2 equirectFromDirection(glm::vec3 d) {
-  return {std::atan2(d.x, -d.z) / (2.0f * kPi) + 0.5f, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
-}
+glm::vec2 equirectFromDirection(glm::vec3 d) { return scene::equirectFromDirection(d); }
 
-glm::vec3 directionFromEquirect(glm::vec2 uv) {
-  const float phi = (uv.x - 0.5f) * 2.0f * kPi;
-  const float theta = uv.y * kPi;
-  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
-}
+glm::vec3 directionFromEquirect(glm::vec2 uv) { return scene::directionFromEquirect(uv); }
 
 EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
     : environment_(environment), uniform_(environment.pixels.empty()) {
@@ -60,7 +55,7 @@ EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
 glm::vec3 EnvironmentLight::radiance(glm::vec3 d) const {
   if (black_) return glm::vec3(0.0f);
   if (uniform_) return environment_.uniform * environment_.intensity;
-  const glm::vec2 uv = equirectFromDirection(d);
+  const glm::vec2 uv = equirectFromDirection(environment_.mapDirection(d));
   const int w = environment_.width;
   const int h = environment_.height;
   // Bilinear between texel centres: u wraps around, v stops at the poles.
@@ -95,7 +90,7 @@ std::optional<EnvironmentLight::Sample> EnvironmentLight::sample(glm::vec2 u, gl
     const glm::vec2 uv = distribution_->sample(u, &uvPdf);
     const float sinTheta = std::sin(uv.y * kPi);
     if (!(sinTheta > 0.0f) || !(uvPdf > 0.0f)) return std::nullopt;
-    s.direction = directionFromEquirect(uv);
+    s.direction = environment_.worldDirection(directionFromEquirect(uv));
     // (u, v) -> (phi, theta) stretches by 2pi x pi; d(omega) = sin(theta) d(theta) d(phi).
     s.pdf = uvPdf / (2.0f * kPi * kPi * sinTheta);
   }
@@ -107,7 +102,7 @@ std::optional<EnvironmentLight::Sample> EnvironmentLight::sample(glm::vec2 u, gl
 float EnvironmentLight::pdf(glm::vec3 d, glm::vec3 normal) const {
   if (black_) return 0.0f;
   if (uniform_) return cosineHemispherePdf(glm::dot(d, normal));
-  const glm::vec2 uv = equirectFromDirection(d);
+  const glm::vec2 uv = equirectFromDirection(environment_.mapDirection(d));
   const float sinTheta = std::sin(uv.y * kPi);
   if (!(sinTheta > 0.0f)) return 0.0f;
   return distribution_->pdf(uv) / (2.0f * kPi * kPi * sinTheta);
