@@ -126,7 +126,8 @@ TEST(EnvironmentMap, CorruptFilesAreRefusedNamingTheFileAndTheProblem) {
   const std::string badHeader = "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 2\n";
   const std::string badOrientation = "#?RADIANCE\n\n+X 2 -Y 2\n";
   const Case cases[] = {
-      {write("cut.hdr", std::span(hdr).first(hdr.size() / 2)), "fewer bytes than 64 scanlines need"},
+      {write("cut.hdr", std::span(hdr).first(hdr.size() / 2)), "is cut short"},
+      {write("short.hdr", std::span(hdr).first(200)), "fewer bytes than 64 scanlines need"},
       {write("header.hdr", std::span(hdr).first(12)), "the header ends before the resolution line"},
       {write("xyze.hdr", std::as_bytes(std::span(badHeader))), "unsupported Radiance HDR format '32-bit_rle_xyze'"},
       {write("orientation.hdr", std::as_bytes(std::span(badOrientation))), "unsupported Radiance HDR orientation"},
@@ -188,56 +189,52 @@ TEST(EnvironmentTrace, RotationTurnsTheMapAboutUp) {
   environment.rotation = glm::radians(90.0f);
   const trace::EnvironmentLight turned(environment);
   // Turned counter-clockwise seen from +y by 90 degrees: what lay towards -z now lies towards -x.
-  EXPECT_EQ(turned.radiance(glm::normalize(glm::vec3(-1.0f, 0.3f, 0.0f))),
-            still.radiance(glm::normalize(glm::vec3(0.0f, 0.3f, -1.0f))));
+  const glm::vec3 expected = still.radiance(glm::normalize(glm::vec3(0.0f, 0.3f, -1.0f)));
+  EXPECT_LT(glm::length(turned.radiance(glm::normalize(glm::vec3(-1.0f, 0.3f, 0.0f))) - expected),
+            1e-4f * glm::length(expected));
   const glm::vec3 sun = scene::sunSkyDirection(testSky());
   EXPECT_GT(luminance(turned.radiance(environment.worldDirection(sun))), 100.0f);
 }
 
-// Pearson's chi-square of the sampler's directions against its pdf, over bins of the world's sphere
-// (cos theta x phi, so that a map turned by 1 radian crosses them): 200,000 samples of a sun-sky
-// map (2.6e3 bins, expected counts from a 8 x 8 midpoint quadrature of pdf() in each; bins below 5
-// expected merged). Wilson-Hilferty's normal approximation of the statistic, rejected beyond
-// z = 3.1 (p = 1e-3, fixed seed).
+// Pearson's chi-square of the sampler's directions against its pdf: 200,000 samples of a sun-sky
+// map turned by 1 radian, binned by where they fall on the map (2 x 2 texels a bin, 2,048 bins, so
+// that pdf() times sin(theta) is constant within each: the expected counts are exact up to float
+// rounding); bins below 5 expected merged. Wilson-Hilferty's normal approximation of the statistic,
+// rejected beyond z = 3.1 (p = 1e-3, fixed seed). pdf() is called with the world's directions, so a
+// sampler and a pdf that turn the map differently, or disagree on the sin(theta) of the mapping,
+// fail it.
 TEST(EnvironmentTraceStat, SamplerPassesAChiSquareTestAgainstItsPdf) {
   scene::Environment environment = scene::sunSkyEnvironment(testSky());
   environment.rotation = 1.0f;
   const trace::EnvironmentLight light(environment);
   const glm::vec3 normal(0, 1, 0);
-  constexpr int kThetaBins = 40;
-  constexpr int kPhiBins = 80;
+  const int binsU = environment.width / 2;
+  const int binsV = environment.height / 2;
   constexpr int kSamples = 200000;
-  auto binOf = [&](glm::vec3 d) {
-    const int i = std::clamp(static_cast<int>((d.y + 1.0f) * 0.5f * kThetaBins), 0, kThetaBins - 1);
-    const float phi = std::atan2(d.z, d.x) + static_cast<float>(M_PI);
-    const int j = std::clamp(static_cast<int>(phi / (2.0f * static_cast<float>(M_PI)) * kPhiBins), 0, kPhiBins - 1);
-    return i * kPhiBins + j;
-  };
-  std::vector<double> observed(kThetaBins * kPhiBins, 0.0);
+  std::vector<double> observed(static_cast<std::size_t>(binsU * binsV), 0.0);
   Pcg32 rng(2026, 12);
   for (int k = 0; k < kSamples; ++k) {
     const auto s = light.sample(trace::uniformFloat2(rng), normal);
     ASSERT_TRUE(s.has_value());
-    observed[static_cast<std::size_t>(binOf(s->direction))] += 1.0;
+    const glm::vec2 uv = scene::equirectFromDirection(environment.mapDirection(s->direction));
+    const int i = std::clamp(static_cast<int>(uv.x * binsU), 0, binsU - 1);
+    const int j = std::clamp(static_cast<int>(uv.y * binsV), 0, binsV - 1);
+    observed[static_cast<std::size_t>(j * binsU + i)] += 1.0;
   }
+  // d(omega) = 2 pi^2 sin(theta) du dv; 4 x 4 midpoints a bin.
+  constexpr int kSub = 4;
   std::vector<double> expected(observed.size(), 0.0);
-  constexpr int kSub = 8;
-  for (int i = 0; i < kThetaBins; ++i) {
-    for (int j = 0; j < kPhiBins; ++j) {
+  for (int j = 0; j < binsV; ++j) {
+    for (int i = 0; i < binsU; ++i) {
       double integral = 0.0;
       for (int a = 0; a < kSub; ++a) {
         for (int b = 0; b < kSub; ++b) {
-          const double cosTheta = -1.0 + 2.0 * (i + (a + 0.5) / kSub) / kThetaBins;
-          const double phi = 2.0 * M_PI * (j + (b + 0.5) / kSub) / kPhiBins - M_PI;
-          const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-          const glm::vec3 d(static_cast<float>(sinTheta * std::cos(phi)), static_cast<float>(cosTheta),
-                            static_cast<float>(sinTheta * std::sin(phi)));
-          integral += light.pdf(d, normal);
+          const glm::vec2 uv((i + (b + 0.5f) / kSub) / binsU, (j + (a + 0.5f) / kSub) / binsV);
+          const glm::vec3 d = environment.worldDirection(scene::directionFromEquirect(uv));
+          integral += light.pdf(d, normal) * 2.0 * M_PI * M_PI * std::sin(M_PI * uv.y);
         }
       }
-      // d(omega) = d(cos theta) d(phi): each bin 2 / kThetaBins x 2 pi / kPhiBins.
-      expected[static_cast<std::size_t>(i * kPhiBins + j)] =
-          kSamples * integral / (kSub * kSub) * (2.0 / kThetaBins) * (2.0 * M_PI / kPhiBins);
+      expected[static_cast<std::size_t>(j * binsU + i)] = kSamples * integral / (kSub * kSub) / (binsU * binsV);
     }
   }
   double chiSquare = 0.0;
@@ -285,9 +282,9 @@ TEST(EnvironmentTraceStat, ConstantEnvironmentGivesADiffuseSphereAlbedoTimesRadi
     for (int k = 0; k < 2; ++k) {
       const scene::Scene s = sphereUnder(*environment, plainMaterial(k == 0 ? albedo : glm::vec3(0.0f), 0.0f, 0.5f));
       trace::TraceSettings settings;
-      settings.width = 48;
-      settings.height = 48;
-      settings.spp = 64;
+      settings.width = 40;
+      settings.height = 40;
+      settings.spp = 32;
       settings.camera = s.cameras.at("default");
       const trace::PathTracer tracer(s, defaultDictionary(), settings);
       const ImageRgbF image = tracer.render();
@@ -298,7 +295,7 @@ TEST(EnvironmentTraceStat, ConstantEnvironmentGivesADiffuseSphereAlbedoTimesRadi
           // Pixels whose whole square lies on the sphere (no silhouette pixels): all four corners hit.
           bool inside = true;
           for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(1, 1)}) {
-            inside = inside && tracer.geometry().intersect(tracer.camera().generateRay(glm::vec2(x, y) + corner).ray);
+            inside = inside && tracer.geometry().intersect(tracer.camera().generateRay(glm::vec2(x, y) + corner).ray).has_value();
           }
           if (!inside) continue;
           sums[k] += glm::dvec3(image.at(x, y));
@@ -306,7 +303,7 @@ TEST(EnvironmentTraceStat, ConstantEnvironmentGivesADiffuseSphereAlbedoTimesRadi
         }
       }
     }
-    ASSERT_GT(covered, 500);
+    ASSERT_GT(covered, 400);
     const glm::dvec3 diffuse = (sums[0] - sums[1]) / static_cast<double>(covered);
     const glm::dvec3 expected = glm::dvec3(albedo * radiance);
     std::printf("%s environment: diffuse sphere %.4f %.4f %.4f, albedo x L %.4f %.4f %.4f (%d pixels)\n",
@@ -329,7 +326,7 @@ TEST(EnvironmentTraceStat, ASmallBrightRegionConvergesFasterWithEnvironmentSampl
   const scene::Scene s = sphereUnder(environment, plainMaterial(glm::vec3(0.8f), 0.0f, 0.8f));
   double variance[2];
   double mean[2];
-  constexpr int kSamples = 4096;
+  constexpr int kSamples = 16384;
   for (int sampled = 0; sampled < 2; ++sampled) {
     trace::TraceSettings settings;
     settings.width = 32;
@@ -398,8 +395,12 @@ TEST(EnvironmentGl, RasteriserMatchesTheTracerUnderAnHdri) {
     scene::Material material;
     double bound;
   };
-  for (const Case& c : {Case{"diffuse", plainMaterial(glm::vec3(0.7f, 0.5f, 0.3f), 0.0f, 1.0f), 1.0},
-                        Case{"Cook-Torrance", plainMaterial(glm::vec3(0.9f, 0.7f, 0.4f), 1.0f, 0.5f), 1.0}}) {
+  // Measured 2026-12-02 on llvmpipe: relMSE diffuse 0.0094 (0.036 with the sun left in the map),
+  // Cook-Torrance 0.015 (0.175). What remains: the 9 SH coefficients' ringing, the mip chain's box
+  // filter and the sun as one direction. Bounds about twice the measurements, below the map without
+  // lights.
+  for (const Case& c : {Case{"diffuse", plainMaterial(glm::vec3(0.7f, 0.5f, 0.3f), 0.0f, 1.0f), 0.02},
+                        Case{"Cook-Torrance", plainMaterial(glm::vec3(0.9f, 0.7f, 0.4f), 1.0f, 0.5f), 0.03}}) {
     for (const int lights : {4, 0}) {
       environment.rasterLights = lights;
       const RenderPair pair = renderBoth(sphereUnder(environment, c.material), gl::BrdfModel::CookTorrance, 96, 256);
@@ -424,7 +425,16 @@ double sparkleFraction(const ImageRgbF& glint, const ImageRgbF& cookTorrance) {
 TEST(EnvironmentGl, GlintsSparkleUnderAnHdriSunInBothRenderers) {
   scene::Scene s = scene::makeBuiltinScene("sphere");
   s.lights.clear();
-  s.environment = scene::sunSkyEnvironment(testSky());
+  // A sun of 2 degrees on a 256 x 128 map (nearly the rasteriser's single direction), bright
+  // against the sky, on a dark red glint layer, so that glints stand out of the diffuse and smooth
+  // light around them.
+  scene::SunSky sky = testSky();
+  sky.width = 256;
+  sky.height = 128;
+  sky.sunDiameterDegrees = 2.0f;
+  sky.sunIrradiance = 40.0f;
+  s.environment = scene::sunSkyEnvironment(sky);
+  s.materials.at(0).baseColour = glm::vec4(0.08f, 0.01f, 0.01f, 1.0f);
   double fractions[2][2];  // [lights taken out][raster, traced]
   for (const int lights : {4, 0}) {
     s.environment.rasterLights = lights;

@@ -39,7 +39,10 @@ struct Reader {
     while (true) {
       if (position >= bytes.size()) fail("the header ends before the resolution line");
       const char c = static_cast<char>(byteAt(bytes, position++));
-      if (c == '\n') return text;
+      if (c == '\n') {
+        if (!text.empty() && text.back() == '\r') text.pop_back();  // a header written with CRLF lines
+        return text;
+      }
       if (text.size() > 4096) fail("a header line longer than 4096 characters");
       text += c;
     }
