@@ -35,6 +35,8 @@ struct BenchOptions {
   bool gltfTarget = false;
   RasterOptions raster;
   bool featureCost = false;
+  EnvironmentOptions environment;
+  bool compareEnvironmentLights = false;
 };
 
 // What one column of the table times: a specular model under an anti-aliasing mode. With glint
@@ -44,25 +46,32 @@ struct BenchOptions {
 // --feature-cost, glint is timed without shadows (glint-no-shadows), at one sample a pixel
 // (glint-msaa1), and with its shadow maps drawn again every frame (glint-moving-lights: the
 // renderer keeps them while the lights stay, so the other columns only read them).
+// --compare-env-lights, glint is timed a second time without the directional lights taken out of
+// the environment map (scene::Environment::rasterLights 0), glint-no-env-lights.
 struct Variant {
   std::string label;
   gl::BrdfModel brdf;
   gl::AntiAliasing antiAliasing;
   bool gltfTarget = false;
+  bool withoutEnvironmentLights = false;
   bool noShadows = false;
   bool oneSample = false;
   bool movingLights = false;
 };
 
-std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool featureCost) {
+std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights,
+                                   bool featureCost) {
   std::vector<Variant> variants;
   for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
   if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
   if (gltfTarget) variants.push_back({"glint-gltf", gl::BrdfModel::Glint, antiAliasing, true});
+  if (compareEnvironmentLights) {
+    variants.push_back({"glint-no-env-lights", gl::BrdfModel::Glint, antiAliasing, false, true});
+  }
   if (featureCost) {
-    variants.push_back({"glint-no-shadows", gl::BrdfModel::Glint, antiAliasing, false, true});
-    variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, true});
-    variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
+    variants.push_back({"glint-no-shadows", gl::BrdfModel::Glint, antiAliasing, false, false, true});
+    variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
+    variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, true});
   }
   return variants;
 }
@@ -89,6 +98,7 @@ void runBench(const BenchOptions& options) {
     sceneOptions.scene = name;
     sceneOptions.camera = options.camera;
     sceneOptions.cameraOptions = options.cameraOptions;
+    sceneOptions.environment = options.environment;
     scenes.push_back(sceneOptions.loadScene());
   }
   SceneOptions dictionaryOptions;
@@ -100,7 +110,8 @@ void runBench(const BenchOptions& options) {
   gl::FrameTimer timer;
   const bool progress = isatty(STDERR_FILENO);
   const std::vector<Variant> models =
-      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget, options.featureCost);
+      benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget,
+                    options.compareEnvironmentLights, options.featureCost);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
@@ -114,6 +125,13 @@ void runBench(const BenchOptions& options) {
       gltfScene = scene;
       for (scene::Material& m : gltfScene.materials) m.specular = scene::kGltfSpecular;
       gltfRenderer = std::make_unique<gl::Renderer>(gltfScene, dictionary);
+    }
+    std::unique_ptr<gl::Renderer> unlitRenderer;
+    scene::Scene unlitScene;  // outlives its renderer
+    if (options.compareEnvironmentLights) {
+      unlitScene = scene;
+      unlitScene.environment.rasterLights = 0;
+      unlitRenderer = std::make_unique<gl::Renderer>(unlitScene, dictionary);
     }
     gl::FrameSettings frame;
     frame.width = width;
@@ -131,7 +149,9 @@ void runBench(const BenchOptions& options) {
         frame.antiAliasing = variant.antiAliasing;
         frame.shadows = timed.shadows && !variant.noShadows;
         frame.msaa = variant.oneSample ? 1 : timed.msaa;
-        gl::Renderer& drawing = variant.gltfTarget ? *gltfRenderer : renderer;
+        gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
+                                : variant.withoutEnvironmentLights ? *unlitRenderer
+                                                                   : renderer;
         // A light that moved by a hair since the last frame: its shadow maps are drawn again.
         if (variant.movingLights && !drawing.lights().empty()) drawing.lights()[0].direction.x += round % 2 ? 1e-6f : -1e-6f;
         const double ms = timer.milliseconds([&] { drawing.renderFrame(frame); });
@@ -224,6 +244,9 @@ void registerBenchCommand(CLI::App& app) {
   command->add_flag("--feature-cost", options->featureCost,
                     "Also time glint without shadows (glint-no-shadows), at one sample a pixel (glint-msaa1) and "
                     "with its shadow maps drawn again every frame, as when a light moves (glint-moving-lights)");
+  options->environment.addTo(*command);
+  command->add_flag("--compare-env-lights", options->compareEnvironmentLights,
+                    "Also time glint without the lights taken out of the environment map (glint-no-env-lights)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
   command->callback([options] { runBench(*options); });
 }

@@ -16,5 +16,6 @@ void registerBenchCommand(CLI::App& app);
 void registerExportCommand(CLI::App& app);
 void registerAaErrorCommand(CLI::App& app);
 void registerAlbedoTablesCommand(CLI::App& app);
+void registerHdriCommand(CLI::App& app);
 
 }  // namespace glint::app

@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   glint::app::registerTraceCommand(app);
   glint::app::registerBenchCommand(app);
   glint::app::registerExportCommand(app);
+  glint::app::registerHdriCommand(app);
   glint::app::registerAaErrorCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   try {

@@ -7,6 +7,7 @@
 #include "gl/renderer.h"
 #include "glint/error.h"
 #include "scene/builtin_scenes.h"
+#include "scene/environment_map.h"
 #include "scene/gltf_loader.h"
 
 namespace glint::app {
@@ -18,6 +19,40 @@ void SceneOptions::addTo(CLI::App& command) {
   command.add_option("--dict", dictionary,
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
+  environment.addTo(command);
+}
+
+void EnvironmentOptions::addTo(CLI::App& command) {
+  command.add_option("--env", file, "Replace the scene's environment by this equirectangular .hdr or .exr map");
+  command.add_option("--env-intensity", intensity, "Scale the environment's radiance by K (>= 0)");
+  command.add_option("--env-rotation", rotationDegrees, "Turn the environment about +y by DEG (counter-clockwise from above)");
+  command.add_option("--env-lights", rasterLights,
+                     "The rasteriser draws the map's N brightest small regions as directional lights (0-8, default 4)");
+}
+
+void EnvironmentOptions::applyTo(scene::Scene& scene) const {
+  const auto text = [](float value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", static_cast<double>(value));
+    return std::string(buffer);
+  };
+  if (intensity && !(std::isfinite(*intensity) && *intensity >= 0.0f)) {
+    throw Error("--env-intensity must be a finite number >= 0, got " + text(*intensity));
+  }
+  if (rotationDegrees && !std::isfinite(*rotationDegrees)) {
+    throw Error("--env-rotation must be a finite angle in degrees, got " + text(*rotationDegrees));
+  }
+  if (rasterLights && !(*rasterLights >= 0 && *rasterLights <= gl::kMaxLights)) {
+    throw Error("--env-lights must be in [0, " + std::to_string(gl::kMaxLights) + "], got " + std::to_string(*rasterLights));
+  }
+  if (!file.empty()) {
+    const int lights = scene.environment.rasterLights;
+    scene.environment = scene::loadEnvironmentMap(file);
+    scene.environment.rasterLights = lights;
+  }
+  if (intensity) scene.environment.intensity *= *intensity;
+  if (rotationDegrees) scene.environment.rotation += glm::radians(*rotationDegrees);
+  if (rasterLights) scene.environment.rasterLights = *rasterLights;
 }
 
 void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
@@ -63,8 +98,10 @@ scene::Scene SceneOptions::loadScene() const {
   if (alpha.size() > 2) throw Error("--alpha takes one or two values");
   if (sky) {
     if (!(*sky >= 0.0f && *sky <= 100.0f)) throw Error("--sky must be in [0, 100]");
+    if (!environment.file.empty()) throw Error("--sky and --env both replace the environment; give one");
     s.environment = scene::skyEnvironment(*sky);
   }
+  environment.applyTo(s);
   for (scene::Material& m : s.materials) {
     if (ndf) m.specular.ndf = ndfFromName("--ndf", *ndf);
     if (masking) m.specular.masking = maskingFromName("--masking", *masking);

@@ -16,6 +16,19 @@
 
 namespace glint::app {
 
+// The environment options (--env, --env-intensity, --env-rotation, --env-lights) of the commands
+// that draw a scene (render, view, trace, bench).
+struct EnvironmentOptions {
+  std::string file;                  // a .hdr or .exr map replacing the scene's environment
+  std::optional<float> intensity;    // scales the environment's radiance
+  std::optional<float> rotationDegrees;  // turns it about +y
+  std::optional<int> rasterLights;   // scene::Environment::rasterLights
+
+  void addTo(CLI::App& command);
+  // Validates the values (one line naming the option or the file and the problem) and applies them.
+  void applyTo(scene::Scene& scene) const;
+};
+
 struct SceneOptions {
   std::string scene = scene::kDefaultScene;
   std::string camera = "default";
@@ -26,6 +39,7 @@ struct SceneOptions {
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
   std::optional<float> sky;
+  EnvironmentOptions environment;
   CameraOptions cameraOptions;  // --look-from, --look-at, --up, --fov: applied to the chosen preset
   // The specular target of every material (scene::Material::specular).
   std::optional<std::string> ndf;

@@ -2,13 +2,11 @@
 
 #include <cmath>
 
+#include "scene/environment_map.h"
+
 namespace glint::gl {
 
-glm::vec3 equirectDirection(float u, float v) {
-  const float phi = (u - 0.5f) * 2.0f * static_cast<float>(M_PI);
-  const float theta = v * static_cast<float>(M_PI);
-  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
-}
+glm::vec3 equirectDirection(float u, float v) { return scene::directionFromEquirect({u, v}); }
 
 std::array<glm::vec3, 9> irradianceSh(const scene::Environment& environment) {
   std::array<glm::vec3, 9> c{};
@@ -24,7 +22,8 @@ std::array<glm::vec3, 9> irradianceSh(const scene::Environment& environment) {
     const float v = (static_cast<float>(y) + 0.5f) / static_cast<float>(h);
     const double solidAngle = (2.0 * M_PI / w) * (M_PI / h) * std::sin(v * M_PI);
     for (int x = 0; x < w; ++x) {
-      const glm::vec3 d = equirectDirection((static_cast<float>(x) + 0.5f) / static_cast<float>(w), v);
+      const glm::vec3 d =
+          environment.worldDirection(equirectDirection((static_cast<float>(x) + 0.5f) / static_cast<float>(w), v));
       const glm::vec3 radiance = environment.pixels[static_cast<std::size_t>(y) * w + x] * environment.intensity;
       const float basis[9] = {0.282095f,          0.488603f * d.y,       0.488603f * d.z,
                               0.488603f * d.x,    1.092548f * d.x * d.y, 1.092548f * d.y * d.z,

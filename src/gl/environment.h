@@ -12,7 +12,8 @@ namespace glint::gl {
 
 // Irradiance E(n) = sum_i c_i Y_i(n) (Ramamoorthi & Hanrahan 2001, "An Efficient Representation
 // for Irradiance Environment Maps"): radiance projected on the 9 real SH basis functions of
-// bands 0-2 and scaled by the clamped-cosine factors pi, 2pi/3, pi/4. Includes the intensity.
+// bands 0-2 and scaled by the clamped-cosine factors pi, 2pi/3, pi/4. Includes the intensity and
+// the rotation.
 std::array<glm::vec3, 9> irradianceSh(const scene::Environment& environment);
 
 // Unit direction (+y up) for equirectangular coordinates in [0, 1]^2, rows from the top; the

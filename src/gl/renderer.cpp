@@ -16,6 +16,7 @@
 #include "gl/shadow_maps.h"
 #include "glint/error.h"
 #include "glint/image_io.h"
+#include "scene/environment_map.h"
 #include "scene/normal_map_moments.h"
 
 namespace glint::gl {
@@ -271,7 +272,8 @@ struct Renderer::Gpu {
   std::map<int, std::array<GLuint, 2>> leanMoments;
   GLuint white = 0;
   GLuint flatNormal = 0;
-  GLuint environment = 0;
+  GLuint environment = 0;            // without the regions drawn as lights (Renderer::environmentLights)
+  GLuint backgroundEnvironment = 0;  // the whole map, seen behind the meshes; `environment` when no region was taken
   float environmentMaxLod = 0.0f;
   std::array<glm::vec3, 9> irradiance{};
   GLuint framebuffer = 0;
@@ -295,6 +297,7 @@ struct Renderer::Gpu {
     for (const auto& [material, moments] : leanMoments) glDeleteTextures(2, moments.data());
     glDeleteTextures(1, &white);
     glDeleteTextures(1, &flatNormal);
+    if (backgroundEnvironment != environment) glDeleteTextures(1, &backgroundEnvironment);
     glDeleteTextures(1, &environment);
     glDeleteVertexArrays(1, &emptyVertexArray);
     releaseTarget();
@@ -377,14 +380,20 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
                                      GL_UNSIGNED_BYTE, t->rgba.data(), true, true));
   }
   const scene::Environment& env = scene.environment;
-  if (env.pixels.empty()) {
-    const glm::vec3 uniform[4] = {env.uniform, env.uniform, env.uniform, env.uniform};
-    g.environment = makeTexture(2, 2, GL_RGBA32F, GL_RGB, GL_FLOAT, uniform, false, true);
-  } else {
-    g.environment = makeTexture(env.width, env.height, GL_RGBA32F, GL_RGB, GL_FLOAT, env.pixels.data(), true, true);
-    g.environmentMaxLod = std::floor(std::log2(static_cast<float>(std::max(env.width, env.height))));
-  }
-  g.irradiance = irradianceSh(env);
+  // The map's brightest small regions become directional lights, so that glints see them; the
+  // forward pass's prefiltered specular and irradiance take the rest, the background the whole map.
+  const int freeLightSlots = std::max(0, kMaxLights - static_cast<int>(lights_.size()));
+  scene::EnvironmentLights split = scene::extractEnvironmentLights(env, std::min(env.rasterLights, freeLightSlots));
+  environmentLights_ = std::move(split.lights);
+  auto uploadEnvironment = [](const scene::Environment& e) {
+    if (!e.pixels.empty()) return makeTexture(e.width, e.height, GL_RGBA32F, GL_RGB, GL_FLOAT, e.pixels.data(), true, true);
+    const glm::vec3 uniform[4] = {e.uniform, e.uniform, e.uniform, e.uniform};
+    return makeTexture(2, 2, GL_RGBA32F, GL_RGB, GL_FLOAT, uniform, false, true);
+  };
+  g.environment = uploadEnvironment(split.residual);
+  g.backgroundEnvironment = environmentLights_.empty() ? g.environment : uploadEnvironment(env);
+  if (!env.pixels.empty()) g.environmentMaxLod = std::floor(std::log2(static_cast<float>(std::max(env.width, env.height))));
+  g.irradiance = irradianceSh(split.residual);
   for (const scene::Mesh& mesh : scene.meshes) {
     GpuMesh m;
     m.material = mesh.material;
@@ -458,9 +467,11 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glm::vec3 spotAxes[kMaxLights];
   glm::vec2 spotCones[kMaxLights];
   float inverseRanges[kMaxLights];
-  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size()));
+  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size() + environmentLights_.size()));
   for (int i = 0; i < lightCount; ++i) {
-    const scene::Light& light = lights_[static_cast<std::size_t>(i)];
+    const auto sceneLights = static_cast<int>(lights_.size());
+    const scene::Light& light = i < sceneLights ? lights_[static_cast<std::size_t>(i)]
+                                                : environmentLights_[static_cast<std::size_t>(i - sceneLights)];
     lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
                                            : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;
@@ -565,6 +576,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   const glm::vec4 cameraPoint = camera.projection == scene::Camera::Projection::Orthographic
                                     ? glm::vec4(glm::normalize(camera.position - camera.target), 0.0f)
                                     : glm::vec4(camera.position, 1.0f);
+  const glm::vec2 environmentRotation(std::cos(scene_.environment.rotation), std::sin(scene_.environment.rotation));
   auto setFrameUniforms = [&](const ShaderProgram& p) {
     glUseProgram(p.id());
     g.dictionary->bind(p);
@@ -579,6 +591,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
+    glUniform2fv(p.uniform("uEnvironmentRotation"), 1, &environmentRotation.x);
     glBindTextureUnit(9, g.environment);
     if (shadows) {
       g.shadowMaps.bind();
@@ -668,7 +681,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glUniformMatrix4fv(background.uniform("uInverseViewProjection"), 1, GL_FALSE, &inverseProjection[0][0]);
   glUniform1f(background.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
   glUniform1f(background.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
-  glBindTextureUnit(9, g.environment);
+  glUniform2fv(background.uniform("uEnvironmentRotation"), 1, &environmentRotation.x);
+  glBindTextureUnit(9, g.backgroundEnvironment);
   glDepthFunc(GL_LEQUAL);
   glBindVertexArray(g.emptyVertexArray);
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -83,12 +83,17 @@ class Renderer {
   // Materials and lights as drawn; the viewer edits them between frames.
   std::vector<scene::Material>& materials() { return materials_; }
   std::vector<scene::Light>& lights() { return lights_; }
+  // The environment map's brightest small regions, drawn as directional lights after the scene's
+  // (scene::extractEnvironmentLights, at most scene::Environment::rasterLights and the slots the
+  // scene's lights leave of kMaxLights); the map's specular and irradiance lack their radiance.
+  const std::vector<scene::Light>& environmentLights() const { return environmentLights_; }
 
  private:
   struct Gpu;
   const scene::Scene& scene_;
   std::vector<scene::Material> materials_;
   std::vector<scene::Light> lights_;
+  std::vector<scene::Light> environmentLights_;
   std::vector<std::string> warnings_;
   std::unique_ptr<Gpu> gpu_;
 };

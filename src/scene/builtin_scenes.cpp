@@ -9,6 +9,7 @@
 #include "glint/error.h"
 #include "glint/image_io.h"
 #include "glint/kernel/random.h"
+#include "scene/environment_map.h"
 #include "scene/geometry.h"
 #include "scene/gltf_loader.h"
 
@@ -449,14 +450,9 @@ Environment sky(float intensity) {
   environment.height = 64;
   environment.intensity = intensity;
   environment.pixels.resize(static_cast<std::size_t>(environment.width) * static_cast<std::size_t>(environment.height));
-  const glm::vec3 zenith(0.22f, 0.42f, 0.85f);
-  const glm::vec3 horizon(0.78f, 0.82f, 0.9f);
-  const glm::vec3 ground(0.3f, 0.29f, 0.28f);
   for (int y = 0; y < environment.height; ++y) {
     const float elevation = 0.5f * kPi - kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(environment.height);
-    const float h = std::sin(elevation);
-    const glm::vec3 colour = h >= 0.0f ? glm::mix(horizon, zenith, std::sqrt(h))
-                                       : glm::mix(horizon, ground, std::min(1.0f, 8.0f * -h));
+    const glm::vec3 colour = skyRadiance(elevation);
     for (int x = 0; x < environment.width; ++x) {
       environment.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(environment.width) + static_cast<std::size_t>(x)] = colour;
     }

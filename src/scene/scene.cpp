@@ -10,6 +10,16 @@
 
 namespace glint::scene {
 
+// A turn about +y by `angle`: x' = x cos + z sin, z' = z cos - x sin (counter-clockwise seen from +y).
+static glm::vec3 turnedAboutY(glm::vec3 d, float angle) {
+  const float c = std::cos(angle);
+  const float s = std::sin(angle);
+  return {c * d.x + s * d.z, d.y, c * d.z - s * d.x};
+}
+
+glm::vec3 Environment::mapDirection(glm::vec3 world) const { return turnedAboutY(world, -rotation); }
+glm::vec3 Environment::worldDirection(glm::vec3 map) const { return turnedAboutY(map, rotation); }
+
 glm::vec3 Scene::boundsMin() const {
   glm::vec3 low(std::numeric_limits<float>::max());
   for (const Mesh& mesh : meshes) {

@@ -147,6 +147,16 @@ struct Environment {
   std::vector<glm::vec3> pixels;
   glm::vec3 uniform{0.0f};
   float intensity = 1.0f;
+  // The map turned about +y by this angle (radians, counter-clockwise seen from above): a direction
+  // d of the world reads the map at mapDirection(d). Both renderers apply it.
+  float rotation = 0.0f;
+  // How many of the map's brightest small regions the rasteriser takes out as directional lights,
+  // so that they light glints (scene/environment_map.h, extractEnvironmentLights); the path tracer
+  // samples the whole map and ignores it.
+  int rasterLights = 4;
+
+  glm::vec3 mapDirection(glm::vec3 world) const;  // world to map: turned by -rotation
+  glm::vec3 worldDirection(glm::vec3 map) const;  // map to world: turned by +rotation
 };
 
 // A camera looks from position towards target. glTF's two projections: a perspective camera is a

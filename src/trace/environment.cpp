@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "glint/error.h"
+#include "scene/environment_map.h"
 
 namespace glint::trace {
 
@@ -23,15 +24,9 @@ void basisAround(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
 
 }  // namespace
 
-glm::vec2 equirectFromDirection(glm::vec3 d) {
-  return {std::atan2(d.x, -d.z) / (2.0f * kPi) + 0.5f, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
-}
+glm::vec2 equirectFromDirection(glm::vec3 d) { return scene::equirectFromDirection(d); }
 
-glm::vec3 directionFromEquirect(glm::vec2 uv) {
-  const float phi = (uv.x - 0.5f) * 2.0f * kPi;
-  const float theta = uv.y * kPi;
-  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
-}
+glm::vec3 directionFromEquirect(glm::vec2 uv) { return scene::directionFromEquirect(uv); }
 
 EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
     : environment_(environment), uniform_(environment.pixels.empty()) {
@@ -42,13 +37,36 @@ EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
   if (uniform_) {
     anyLight = glm::any(glm::greaterThan(environment.uniform * environment.intensity, glm::vec3(0.0f)));
   } else {
+    // radiance() interpolates bilinearly between texel centres, so a texel's cell (edges at the
+    // distribution's cell edges) sees its neighbours' radiance too: a dark texel beside the sun is
+    // half as bright as the sun at their shared edge. Each cell is weighted by the largest value the
+    // interpolation takes in it -- at the texel's centre, its edges' midpoints or its corners -- so
+    // that radiance / pdf stays bounded there (weighting by the texel alone leaves those cells
+    // almost never sampled, and BSDF samples that find them carry the variance:
+    // EnvironmentTraceStat.ASmallBrightRegionConvergesFasterWithEnvironmentSampling).
+    const int w = environment.width;
+    const int h = environment.height;
+    std::vector<float> texel(environment.pixels.size());
+    for (std::size_t i = 0; i < texel.size(); ++i) {
+      texel[i] = std::max(0.0f, luminance(environment.pixels[i] * environment.intensity));
+    }
+    auto at = [&](int x, int y) {  // u wraps around, v stops at the poles, as in radiance()
+      return texel[static_cast<std::size_t>(std::clamp(y, 0, h - 1)) * w + static_cast<std::size_t>(((x % w) + w) % w)];
+    };
     std::vector<float> weights(environment.pixels.size());
-    for (int y = 0; y < environment.height; ++y) {
+    for (int y = 0; y < h; ++y) {
       // Texels near the poles cover less solid angle: weight by sin(theta) at the row's centre.
-      const float sinTheta = std::sin(kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(environment.height));
-      for (int x = 0; x < environment.width; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * environment.width + x;
-        weights[i] = std::max(0.0f, luminance(environment.pixels[i] * environment.intensity)) * sinTheta;
+      const float sinTheta = std::sin(kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+      for (int x = 0; x < w; ++x) {
+        float largest = at(x, y);
+        for (int dy = -1; dy <= 1; dy += 2) {
+          for (int dx = -1; dx <= 1; dx += 2) {
+            largest = std::max({largest, 0.5f * (at(x, y) + at(x + dx, y)), 0.5f * (at(x, y) + at(x, y + dy)),
+                                0.25f * (at(x, y) + at(x + dx, y) + at(x, y + dy) + at(x + dx, y + dy))});
+          }
+        }
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        weights[i] = largest * sinTheta;
         anyLight = anyLight || weights[i] > 0.0f;
       }
     }
@@ -60,7 +78,7 @@ EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
 glm::vec3 EnvironmentLight::radiance(glm::vec3 d) const {
   if (black_) return glm::vec3(0.0f);
   if (uniform_) return environment_.uniform * environment_.intensity;
-  const glm::vec2 uv = equirectFromDirection(d);
+  const glm::vec2 uv = equirectFromDirection(environment_.mapDirection(d));
   const int w = environment_.width;
   const int h = environment_.height;
   // Bilinear between texel centres: u wraps around, v stops at the poles.
@@ -95,7 +113,7 @@ std::optional<EnvironmentLight::Sample> EnvironmentLight::sample(glm::vec2 u, gl
     const glm::vec2 uv = distribution_->sample(u, &uvPdf);
     const float sinTheta = std::sin(uv.y * kPi);
     if (!(sinTheta > 0.0f) || !(uvPdf > 0.0f)) return std::nullopt;
-    s.direction = directionFromEquirect(uv);
+    s.direction = environment_.worldDirection(directionFromEquirect(uv));
     // (u, v) -> (phi, theta) stretches by 2pi x pi; d(omega) = sin(theta) d(theta) d(phi).
     s.pdf = uvPdf / (2.0f * kPi * kPi * sinTheta);
   }
@@ -107,7 +125,7 @@ std::optional<EnvironmentLight::Sample> EnvironmentLight::sample(glm::vec2 u, gl
 float EnvironmentLight::pdf(glm::vec3 d, glm::vec3 normal) const {
   if (black_) return 0.0f;
   if (uniform_) return cosineHemispherePdf(glm::dot(d, normal));
-  const glm::vec2 uv = equirectFromDirection(d);
+  const glm::vec2 uv = equirectFromDirection(environment_.mapDirection(d));
   const float sinTheta = std::sin(uv.y * kPi);
   if (!(sinTheta > 0.0f)) return 0.0f;
   return distribution_->pdf(uv) / (2.0f * kPi * kPi * sinTheta);

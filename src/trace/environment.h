@@ -14,7 +14,8 @@
 
 namespace glint::trace {
 
-// The shader's direction-to-map mapping and its inverse.
+// The shader's direction-to-map mapping and its inverse (scene/environment_map.h); the map's
+// rotation (scene::Environment::rotation) turns directions before and after them.
 glm::vec2 equirectFromDirection(glm::vec3 d);
 glm::vec3 directionFromEquirect(glm::vec2 uv);
 

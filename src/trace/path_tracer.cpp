@@ -181,8 +181,9 @@ glm::vec3 PathTracer::radiance(const RayDifferential& cameraRay, Pcg32& rng) con
         const glm::vec3 le = environment_.radiance(ray.direction);
         // Seen directly, or found by BSDF sampling: weighed against the light sample that could
         // have found it too.
-        const float weight = depth == 0 ? 1.0f
-                                        : powerHeuristic(previousPdf, environment_.pdf(ray.direction, previousNormal));
+        const float weight = depth == 0 || !settings_.sampleEnvironment
+                                 ? 1.0f
+                                 : powerHeuristic(previousPdf, environment_.pdf(ray.direction, previousNormal));
         result += throughput * le * weight;
       }
       break;
@@ -203,7 +204,7 @@ glm::vec3 PathTracer::radiance(const RayDifferential& cameraRay, Pcg32& rng) con
     if (settings_.directOnly) break;
     if (useEmitters_) result += throughput * emitterLight(point, shaded, rng);
 
-    if (useEnvironment_) {
+    if (useEnvironment_ && settings_.sampleEnvironment) {
       const glm::vec2 uLight = uniformFloat2(rng);
       if (const auto light = environment_.sample(uLight, shaded.frame.n)) {
         const glm::vec3 wi = shaded.frame.toLocal(light->direction);

@@ -38,6 +38,10 @@ struct TraceSettings {
   // at each hit's footprint, the mean of the normal map's slopes tilts the normal and their
   // covariance widens the glint layer. Off: the filtered normal texture only.
   bool normalMapFiltering = true;
+  // Light samples drawn from the environment's importance distribution, combined with BSDF samples
+  // by the power heuristic. Off: only BSDF samples find the environment (what the distribution
+  // gains is measured against this, docs/trace.md).
+  bool sampleEnvironment = true;
   scene::Camera camera;
 };
 
