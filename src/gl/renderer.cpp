@@ -467,11 +467,13 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glm::vec3 spotAxes[kMaxLights];
   glm::vec2 spotCones[kMaxLights];
   float inverseRanges[kMaxLights];
-  const int lightCount = std::min<int>(kMaxLights, static_cast<int>(lights_.size() + environmentLights_.size()));
+  // The scene's lights, then those taken out of the environment map; both cast shadows.
+  std::vector<scene::Light> drawnLights(lights_);
+  drawnLights.insert(drawnLights.end(), environmentLights_.begin(), environmentLights_.end());
+  if (drawnLights.size() > static_cast<std::size_t>(kMaxLights)) drawnLights.resize(kMaxLights);
+  const int lightCount = static_cast<int>(drawnLights.size());
   for (int i = 0; i < lightCount; ++i) {
-    const auto sceneLights = static_cast<int>(lights_.size());
-    const scene::Light& light = i < sceneLights ? lights_[static_cast<std::size_t>(i)]
-                                                : environmentLights_[static_cast<std::size_t>(i - sceneLights)];
+    const scene::Light& light = drawnLights[static_cast<std::size_t>(i)];
     lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
                                            : glm::vec4(-glm::normalize(light.direction), 0.0f);
     lightIntensities[i] = light.intensity;
@@ -525,9 +527,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   float shadowDepthScales[kMaxLights];
   float shadowTexels[kMaxLights];
   if (shadows) {
-    const std::vector<scene::Light> casting(lights_.begin(), lights_.begin() + lightCount);
     std::vector<float> key;
-    for (const scene::Light& l : casting) {
+    for (const scene::Light& l : drawnLights) {
       key.insert(key.end(), {static_cast<float>(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
                              l.direction.y, l.direction.z, l.outerConeAngle});
     }
@@ -535,7 +536,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       key.insert(key.end(), {static_cast<float>(m.alphaMode), m.alphaCutoff, m.baseColour.a,
                              static_cast<float>(m.baseColourTexture)});
     }
-    g.shadowMaps.update(casting, scene_.boundsMin(), scene_.boundsMax(), key,
+    g.shadowMaps.update(drawnLights, scene_.boundsMin(), scene_.boundsMax(), key,
                         [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
                           drawDepths(viewProjection, linearDepth, origin, depthScale, false);
                         });
