@@ -258,6 +258,60 @@ void glNamedRenderbufferStorage(GLuint renderbuffer, GLenum internalFormat, GLsi
   glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(previous));
 }
 
+void glNamedRenderbufferStorageMultisample(GLuint renderbuffer, GLsizei samples, GLenum internalFormat, GLsizei width,
+                                           GLsizei height) {
+  GLint previous = 0;
+  glGetIntegerv(GL_RENDERBUFFER_BINDING, &previous);
+  glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, internalFormat, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(previous));
+}
+
+void glBlitNamedFramebuffer(GLuint readFramebuffer, GLuint drawFramebuffer, GLint srcX0, GLint srcY0, GLint srcX1,
+                            GLint srcY1, GLint dstX0, GLint dstY0, GLint dstX1, GLint dstY1, GLbitfield mask,
+                            GLenum filter) {
+  GLint previousRead = 0;
+  GLint previousDraw = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previousRead);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousDraw);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, readFramebuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, drawFramebuffer);
+  glBlitFramebuffer(srcX0, srcY0, srcX1, srcY1, dstX0, dstY0, dstX1, dstY1, mask, filter);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previousRead));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previousDraw));
+}
+
+void glNamedFramebufferTextureLayer(GLuint framebuffer, GLenum attachment, GLuint texture, GLint level, GLint layer) {
+  withFramebuffer(framebuffer, [&] {
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, texture, level, layer);
+    return 0;
+  });
+}
+
+void glNamedFramebufferDrawBuffer(GLuint framebuffer, GLenum buffer) {
+  withFramebuffer(framebuffer, [&] {
+    glDrawBuffers(1, &buffer);
+    return 0;
+  });
+}
+
+void glNamedFramebufferReadBuffer(GLuint framebuffer, GLenum buffer) {
+  GLint previous = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glReadBuffer(buffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+}
+
+void glTextureStorage3D(GLuint texture, GLsizei levels, GLenum internalFormat, GLsizei width, GLsizei height,
+                        GLsizei depth) {
+  GLint previous = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &previous);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, internalFormat, width, height, depth);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(previous));
+}
+
 void glintWebGetIntegerv(GLenum name, GLint* value) {
   if (name == GL_MAX_TEXTURE_BUFFER_SIZE) {
     GLint maxSize = 0;

@@ -37,7 +37,12 @@ struct Page {
   std::unique_ptr<gl::DisplayPass> display;
   scene::ViewControls controls;
   glm::vec3 pivot{0.0f};
-  gl::FrameSettings frame;
+  // WebGL2 has no cube-map arrays for the point lights' shadow maps: the page draws no shadows.
+  gl::FrameSettings frame = [] {
+    gl::FrameSettings settings;
+    settings.shadows = false;
+    return settings;
+  }();
   float exposure = 1.0f;  // the page's multiplier of the scene's exposure
 };
 

@@ -11,6 +11,9 @@
 
 #define GL_TEXTURE_BUFFER 0x8C2A
 #define GL_MAX_TEXTURE_BUFFER_SIZE 0x8C2B
+// Named so that the shadow maps' code compiles; WebGL2 has no cube-map arrays and the page draws
+// no shadows (web/src/glint_web.cpp).
+#define GL_TEXTURE_CUBE_MAP_ARRAY 0x9009
 
 #ifdef __cplusplus
 extern "C" {
@@ -42,6 +45,17 @@ void glClearNamedFramebufferfv(GLuint framebuffer, GLenum buffer, GLint drawBuff
 void glClearNamedFramebufferfi(GLuint framebuffer, GLenum buffer, GLint drawBuffer, GLfloat depth, GLint stencil);
 void glCreateRenderbuffers(GLsizei n, GLuint* renderbuffers);
 void glNamedRenderbufferStorage(GLuint renderbuffer, GLenum internalFormat, GLsizei width, GLsizei height);
+void glNamedRenderbufferStorageMultisample(GLuint renderbuffer, GLsizei samples, GLenum internalFormat, GLsizei width,
+                                           GLsizei height);
+void glBlitNamedFramebuffer(GLuint readFramebuffer, GLuint drawFramebuffer, GLint srcX0, GLint srcY0, GLint srcX1,
+                            GLint srcY1, GLint dstX0, GLint dstY0, GLint dstX1, GLint dstY1, GLbitfield mask,
+                            GLenum filter);
+void glNamedFramebufferTextureLayer(GLuint framebuffer, GLenum attachment, GLuint texture, GLint level, GLint layer);
+void glNamedFramebufferDrawBuffer(GLuint framebuffer, GLenum buffer);
+void glNamedFramebufferReadBuffer(GLuint framebuffer, GLenum buffer);
+// 2D array textures only (the shadow maps' layers), the one kind of 3D storage WebGL2 can hold for us.
+void glTextureStorage3D(GLuint texture, GLsizei levels, GLenum internalFormat, GLsizei width, GLsizei height,
+                        GLsizei depth);
 // ES 3.0's glGetIntegerv, which also answers GL_MAX_TEXTURE_BUFFER_SIZE (the texel buffers' limit).
 void glintWebGetIntegerv(GLenum name, GLint* value);
 
