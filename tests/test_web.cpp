@@ -142,6 +142,7 @@ ImageRgb8 desktopImage(const std::string& name, int size, const std::string& brd
   frame.height = size;
   frame.camera = scene.cameras.at("default");
   frame.brdf = gl::brdfModelFromString(brdf);
+  frame.shadows = false;  // as the page draws (WebGL2 has no cube-map arrays for point lights' maps)
   const ImageRgbF radiance = gl::renderSupersampled(renderer, frame, 1);
   return gl::DisplayPass().encode(radiance, scene.exposure);
 }
