@@ -13,8 +13,6 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 constexpr float kPiF = static_cast<float>(kPiD);
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 }  // namespace
 
 glm::vec2 equirectFromDirection(glm::vec3 d) {

@@ -191,6 +191,9 @@ struct Scene {
   glm::vec3 boundsMax() const;
 };
 
+// Rec. 709 luminance of linear RGB: how lobes, emitters and environment texels are weighed.
+inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
 // The glint roughness of a material whose glint layer gives no alpha: roughness^2 (the glTF
 // convention), at least 0.01 so the glint BRDF stays within its dictionary.
 float alphaFromRoughness(float roughness);

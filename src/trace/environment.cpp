@@ -10,8 +10,6 @@ namespace glint::trace {
 
 namespace {
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
 // An orthonormal basis around a unit vector (Duff et al. 2017, "Building an Orthonormal Basis,
 // Revisited").
 void basisAround(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
@@ -48,7 +46,7 @@ EnvironmentLight::EnvironmentLight(const scene::Environment& environment)
     const int h = environment.height;
     std::vector<float> texel(environment.pixels.size());
     for (std::size_t i = 0; i < texel.size(); ++i) {
-      texel[i] = std::max(0.0f, luminance(environment.pixels[i] * environment.intensity));
+      texel[i] = std::max(0.0f, scene::luminance(environment.pixels[i] * environment.intensity));
     }
     auto at = [&](int x, int y) {  // u wraps around, v stops at the poles, as in radiance()
       return texel[static_cast<std::size_t>(std::clamp(y, 0, h - 1)) * w + static_cast<std::size_t>(((x % w) + w) % w)];

@@ -23,8 +23,7 @@
 
 namespace glint::trace {
 
-// Rec. 709 luminance of linear RGB: how lobes and emitters are weighed against each other.
-inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using scene::luminance;
 
 // The specular lobe of materials with a glint layer (`--brdf`); the real-time renderer's BrdfModel.
 enum class SpecularModel { Glint, CookTorrance };
