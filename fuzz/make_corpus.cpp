@@ -15,6 +15,7 @@
 
 #include "dictionary.h"
 #include "image_io.h"
+#include "radiance_hdr.h"
 #include "scene/gltf_writer.h"
 #include "scene/scene.h"
 
@@ -293,6 +294,7 @@ int main(int argc, char** argv) {
   write("corpus/image/half-rle-tiled.exr", exrVariant(TINYEXR_PIXELTYPE_HALF, TINYEXR_COMPRESSIONTYPE_RLE, false, true));
   write("corpus/image/grey.jpg", jpegOf(8, 8, 1));
   write("corpus/image/rgb.jpg", jpegOf(16, 8, 3));
+  write("corpus/image/flat.hdr", text(encodeRadianceHdr("flat.hdr", gradient(3, 2))));
   {
     std::string grey16;  // a 16-bit grey-alpha PNG through stb_image_write's encoder is 8-bit only
     unsigned char pixels[8] = {0, 255, 64, 128, 128, 64, 255, 0};
@@ -388,6 +390,15 @@ int main(int argc, char** argv) {
     const int window[4] = {-1, 0, 2147483647, 1};
     std::memcpy(&exr[at], window, sizeof window);
     write("regressions/image/exr-data-window-overflow.exr", exr);
+  }
+  // A header that asks for 2^23 x 10 pixels in a file of a few hundred bytes: tinyexr allocates and
+  // fills them all (16 s under ASan); refused by the pixel budget before decoding.
+  {
+    std::string exr = exrOf(gradient(2, 2));
+    const std::size_t at = exr.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
+    const int window[4] = {0, 0, (1 << 23) - 1, 9};
+    std::memcpy(&exr[at], window, sizeof window);
+    write("regressions/image/exr-80-million-pixels.exr", exr);
   }
   return 0;
 }

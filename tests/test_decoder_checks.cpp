@@ -15,6 +15,7 @@
 #include "error.h"
 #include "file_io.h"
 #include "image_io.h"
+#include "radiance_hdr.h"
 #include "scene/gltf_loader.h"
 #include "test_support.h"
 
@@ -54,6 +55,36 @@ TEST(DecoderChecks, PngOfAZeroOrHugeSideIsRefused) {
   expectError([&] { checkPngForDecoder(bytes); }, {"zero-size image (0x2)"});
   setWidth(kMaxImageSide + 1);
   expectError([&] { checkPngForDecoder(bytes); }, {"image too large (16777217x2"});
+}
+
+// A header may ask for more pixels than its bytes hold; the decoders would allocate and fill them
+// all. Each format refuses more than the pixel budget before decoding, naming the size.
+TEST(DecoderChecks, ImagesOfMorePixelsThanTheBudgetAreRefused) {
+  // The fuzzer's find: 2^23 x 10 pixels (84 million, under the default 2^27) in a few hundred
+  // bytes; a budget of 2^26 refuses it before tinyexr allocates anything.
+  const std::vector<std::byte> exr = readFile(kFuzz / "regressions/image/exr-80-million-pixels.exr");
+  expectError([&] { decodeImage(exr, "big.exr", std::uint64_t{1} << 26); },
+              {"big.exr: image too large (8388608x10, more than 67108864 pixels)"});
+  // The default budget (2^27) is checked the same way: a PNG header of 16384 x 8193.
+  std::vector<std::byte> png = readFile(kFuzz / "corpus/image/rgb.png");
+  auto setSize = [&](std::uint32_t width, std::uint32_t height) {
+    for (int i = 0; i < 4; ++i) {
+      png[16 + static_cast<std::size_t>(i)] = static_cast<std::byte>(width >> (24 - 8 * i));
+      png[20 + static_cast<std::size_t>(i)] = static_cast<std::byte>(height >> (24 - 8 * i));
+    }
+  };
+  setSize(16384, 8193);
+  expectError([&] { decodeImage(png, "big.png"); }, {"big.png: image too large (16384x8193, more than 134217728 pixels)"});
+  setSize(3, 2);
+  EXPECT_NO_THROW(decodeImage(png, "rgb.png", 6));
+  expectError([&] { decodeImage(png, "rgb.png", 5); }, {"rgb.png: image too large (3x2, more than 5 pixels)"});
+  // JPEG frame header and Radiance resolution line.
+  expectError([&] { checkGltfImageForDecoder(readFile(kFuzz / "corpus/image/rgb.jpg"), 127); },
+              {"image too large (16x8, more than 127 pixels)"});
+  EXPECT_NO_THROW(checkGltfImageForDecoder(readFile(kFuzz / "corpus/image/rgb.jpg"), 128));
+  const std::vector<std::byte> hdr = readFile(kFuzz / "corpus/image/flat.hdr");
+  expectError([&] { decodeRadianceHdr(hdr, "flat.hdr", 5); }, {"flat.hdr: image too large (3x2, more than 5 pixels)"});
+  EXPECT_EQ(decodeRadianceHdr(hdr, "flat.hdr", 6).width, 3);
 }
 
 TEST(DecoderChecks, JpegHuffmanTableOfMoreThan256CodesIsRefused) {

@@ -56,7 +56,15 @@ bool looksLikeJpeg(std::span<const std::byte> bytes) {
   return bytes.size() >= 2 && byteAt(bytes, 0) == 0xFF && byteAt(bytes, 1) == 0xD8;
 }
 
-void checkPngForDecoder(std::span<const std::byte> bytes) {
+void checkImagePixels(std::uint64_t width, std::uint64_t height, std::uint64_t maxPixels) {
+  // Sides are at most 2^32 - 1 in every format read, so the product fits in 64 bits.
+  if (width * height > maxPixels) {
+    throw Error("image too large (" + std::to_string(width) + "x" + std::to_string(height) + ", more than " +
+                std::to_string(maxPixels) + " pixels)");
+  }
+}
+
+void checkPngForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixels) {
   // Chunks: length (4 bytes, big-endian), type (4), data, CRC (4), after the 8-byte signature.
   std::size_t at = 8;
   if (bytes.size() < at + 8 + 13 || !isType(bytes, at + 4, "IHDR") || bigEndian32(bytes, at) != 13) {
@@ -71,6 +79,7 @@ void checkPngForDecoder(std::span<const std::byte> bytes) {
     throw Error("image too large (" + std::to_string(width) + "x" + std::to_string(height) + ", at most " +
                 std::to_string(kMaxImageSide) + " a side)");
   }
+  checkImagePixels(width, height, maxPixels);
   bool seenData = false;
   while (at + 8 <= bytes.size()) {
     const std::uint32_t length = bigEndian32(bytes, at);
@@ -84,7 +93,7 @@ void checkPngForDecoder(std::span<const std::byte> bytes) {
   }
 }
 
-void checkJpegForDecoder(std::span<const std::byte> bytes) {
+void checkJpegForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixels) {
   std::size_t at = 2;  // after the start-of-image marker
   while (at < bytes.size()) {
     // stb_image skips bytes that are not 0xFF between segments, then 0xFF fill bytes.
@@ -99,6 +108,12 @@ void checkJpegForDecoder(std::span<const std::byte> bytes) {
     if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // no length
     const std::uint32_t length = byteAt(bytes, at) << 8 | byteAt(bytes, at + 1);
     if (marker == 0xC4) checkHuffmanSegment(bytes, at + 2, length);
+    // A frame header (baseline, extended or progressive, the frames stb_image decodes): length,
+    // precision, then height and width, big-endian.
+    if ((marker == 0xC0 || marker == 0xC1 || marker == 0xC2) && length >= 7) {
+      checkImagePixels(byteAt(bytes, at + 5) << 8 | byteAt(bytes, at + 6), byteAt(bytes, at + 3) << 8 | byteAt(bytes, at + 4),
+                       maxPixels);
+    }
     if (length < 2) break;  // stb_image refuses the file here
     at += length;
     if (marker == 0xDA) {
@@ -122,9 +137,9 @@ void checkJpegForDecoder(std::span<const std::byte> bytes) {
   }
 }
 
-void checkGltfImageForDecoder(std::span<const std::byte> bytes) {
-  if (looksLikePng(bytes)) return checkPngForDecoder(bytes);
-  if (looksLikeJpeg(bytes)) return checkJpegForDecoder(bytes);
+void checkGltfImageForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixels) {
+  if (looksLikePng(bytes)) return checkPngForDecoder(bytes, maxPixels);
+  if (looksLikeJpeg(bytes)) return checkJpegForDecoder(bytes, maxPixels);
   throw Error("not a PNG or JPEG image (the formats glTF 2.0 allows)");
 }
 

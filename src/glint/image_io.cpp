@@ -57,9 +57,9 @@ struct CFree {
   void operator()(void* memory) const { std::free(memory); }
 };
 
-ImageRgbF decodePng(const std::string& name, std::span<const std::byte> bytes) {
+ImageRgbF decodePng(const std::string& name, std::span<const std::byte> bytes, std::uint64_t maxPixels) {
   try {
-    checkPngForDecoder(bytes);
+    checkPngForDecoder(bytes, maxPixels);
   } catch (const Error& e) {
     throw Error(name + ": " + e.what());
   }
@@ -96,7 +96,7 @@ ImageRgbF decodePng(const std::string& name, std::span<const std::byte> bytes) {
 // with an int index that overflows for large images: glint parses the header itself, checks it,
 // decodes the image with LoadEXRImageFromMemory, and copies the channels, freeing what tinyexr
 // allocated on every path.
-ImageRgbF decodeExr(const std::string& name, std::span<const std::byte> bytes) {
+ImageRgbF decodeExr(const std::string& name, std::span<const std::byte> bytes, std::uint64_t maxPixels) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   EXRVersion version;
   if (ParseEXRVersionFromMemory(&version, data, bytes.size()) != TINYEXR_SUCCESS) {
@@ -122,6 +122,11 @@ ImageRgbF decodeExr(const std::string& name, std::span<const std::byte> bytes) {
     throw Error(name + ": truncated or corrupt EXR (data window (" + std::to_string(window.min_x) + ", " +
                 std::to_string(window.min_y) + ") to (" + std::to_string(window.max_x) + ", " +
                 std::to_string(window.max_y) + "): expected 1 to " + std::to_string(kMaxImageSide) + " pixels a side)");
+  }
+  try {
+    checkImagePixels(static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(height), maxPixels);
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
   }
   // The channels read: R, G, B, or a single channel of any name as grey; alpha is ignored.
   int source[3] = {-1, -1, -1};
@@ -310,16 +315,16 @@ std::string lowercaseExtension(const std::filesystem::path& path) {
   return extension;
 }
 
-ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name) {
+ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name, std::uint64_t maxPixels) {
   if (bytes.empty()) throw Error(name + ": empty file, expected a PNG or EXR image");
-  if (startsWith(bytes, kPngMagic)) return decodePng(name, bytes);
-  if (startsWith(bytes, kExrMagic)) return decodeExr(name, bytes);
+  if (startsWith(bytes, kPngMagic)) return decodePng(name, bytes, maxPixels);
+  if (startsWith(bytes, kExrMagic)) return decodeExr(name, bytes, maxPixels);
   throw Error(name + ": not a PNG or EXR image (unrecognised content)");
 }
 
-ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name) {
+ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name, std::uint64_t maxPixels) {
   if (!startsWith(bytes, kExrMagic)) throw Error(name + ": not an EXR image");
-  return decodeExr(name, bytes);
+  return decodeExr(name, bytes, maxPixels);
 }
 
 ImageRgbF readImage(const std::filesystem::path& path) { return decodeImage(readFile(path), path.string()); }

@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "decoder_checks.h"
 #include "image.h"
 
 namespace glint {
@@ -37,13 +38,17 @@ std::uint8_t linearToSrgb8(float linear);
 // Reads a PNG (8 or 16 bit, grey, grey-alpha, RGB or RGBA; alpha ignored; values decoded from sRGB
 // to linear) or an EXR (RGB(A) or one channel, half or float, stored linear values), chosen by the
 // file's magic bytes, not its name. Throws Error with one line naming the file and the problem
-// (missing, truncated or corrupt, unsupported format, zero size, non-finite EXR pixels).
+// (missing, truncated or corrupt, unsupported format, zero size, more than kMaxImagePixels
+// pixels, non-finite EXR pixels).
 ImageRgbF readImage(const std::filesystem::path& path);
 // readImage on bytes already read, `name` naming them in errors (the file's path for readImage).
-ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name);
+// maxPixels lowers the pixel budget (the fuzz harness's, so that one input decodes in a second).
+ImageRgbF decodeImage(std::span<const std::byte> bytes, const std::string& name,
+                      std::uint64_t maxPixels = kMaxImagePixels);
 // The EXR half of decodeImage alone, for readers that take only EXR (the authors' dictionary):
 // bytes that are not an EXR are refused as such.
-ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name);
+ImageRgbF decodeExrImage(std::span<const std::byte> bytes, const std::string& name,
+                         std::uint64_t maxPixels = kMaxImagePixels);
 
 // Float32 RGB EXR, lossless (ZIP). Throws Error naming the file for a non-finite pixel (readImage
 // would refuse the file) or when it cannot be written; never leaves a partial file.

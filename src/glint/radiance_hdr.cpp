@@ -55,7 +55,7 @@ bool looksLikeRadianceHdr(std::span<const std::byte> bytes) {
   return bytes.size() >= 2 && byteAt(bytes, 0) == '#' && byteAt(bytes, 1) == '?';
 }
 
-ImageRgbF decodeRadianceHdr(std::span<const std::byte> bytes, const std::string& name) {
+ImageRgbF decodeRadianceHdr(std::span<const std::byte> bytes, const std::string& name, std::uint64_t maxPixels) {
   if (!looksLikeRadianceHdr(bytes)) throw Error(name + ": not a Radiance HDR image (it does not start with '#?')");
   Reader reader{bytes, name};
   reader.line();  // "#?RADIANCE", "#?RGBE", ...
@@ -77,6 +77,11 @@ ImageRgbF decodeRadianceHdr(std::span<const std::byte> bytes, const std::string&
   if (width <= 0 || height <= 0 || width > kMaxImageSide || height > kMaxImageSide) {
     throw Error(name + ": Radiance HDR size " + std::to_string(width) + "x" + std::to_string(height) +
                 " is out of range (1 to " + std::to_string(kMaxImageSide) + " a side)");
+  }
+  try {
+    checkImagePixels(static_cast<std::uint64_t>(width), static_cast<std::uint64_t>(height), maxPixels);
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
   }
   // Each scanline takes at least 4 bytes a pixel flat, or the 4-byte marker and one run of at most
   // 127 pixels per 2 bytes per channel encoded: a size the remaining bytes cannot hold is refused

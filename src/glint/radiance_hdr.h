@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -21,9 +22,10 @@ bool looksLikeRadianceHdr(std::span<const std::byte> bytes);
 // from the top, the orientation every writer uses), then H scanlines, each flat (4 bytes a pixel)
 // or run-length encoded per channel (the "new" encoding, widths 8 to 32767). A pixel (R, G, B, E)
 // is (R, G, B) * 2^(E - 136), 0 when E is 0. Throws Error with one line naming `name` and the
-// problem (not a Radiance file, unsupported format or orientation, zero or oversized size,
-// truncated data, a bad run).
-ImageRgbF decodeRadianceHdr(std::span<const std::byte> bytes, const std::string& name);
+// problem (not a Radiance file, unsupported format or orientation, zero or oversized size, more
+// than maxPixels pixels, truncated data, a bad run).
+ImageRgbF decodeRadianceHdr(std::span<const std::byte> bytes, const std::string& name,
+                            std::uint64_t maxPixels = kMaxImagePixels);
 // Flat RGBE scanlines (no run-length encoding; readers take both). Throws Error naming the file
 // for a zero size or a negative or non-finite pixel; never leaves a partial file.
 std::vector<std::byte> encodeRadianceHdr(const std::filesystem::path& path, const ImageRgbF& image);
