@@ -136,6 +136,15 @@ void runBench(const BenchOptions& options) {
       unlitScene.environment.rasterLights = 0;
       unlitRenderer = std::make_unique<gl::Renderer>(unlitScene, dictionary);
     }
+    // The renderer keeps its shadow maps while the lights and the camera stay, so a variant that
+    // draws other maps (one cascade, a moving light) draws with a renderer of its own: on the
+    // shared one it would make the next variant's frame draw the maps again as well.
+    std::unique_ptr<gl::Renderer> oneCascadeRenderer;
+    std::unique_ptr<gl::Renderer> movingLightsRenderer;
+    if (options.featureCost) {
+      oneCascadeRenderer = std::make_unique<gl::Renderer>(scene, dictionary);
+      movingLightsRenderer = std::make_unique<gl::Renderer>(scene, dictionary);
+    }
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
@@ -155,6 +164,8 @@ void runBench(const BenchOptions& options) {
         frame.shadowCascades = variant.oneCascade ? 1 : timed.shadowCascades;
         gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
                                 : variant.withoutEnvironmentLights ? *unlitRenderer
+                                : variant.oneCascade               ? *oneCascadeRenderer
+                                : variant.movingLights             ? *movingLightsRenderer
                                                                    : renderer;
         // A light that moved by a hair since the last frame: its shadow maps are drawn again.
         if (variant.movingLights && !drawing.lights().empty()) drawing.lights()[0].direction.x += round % 2 ? 1e-6f : -1e-6f;
