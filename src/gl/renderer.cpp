@@ -521,10 +521,10 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
   };
-  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights
-  // and the alpha masks (the meshes do not move).
-  // A directional light's cascades follow the camera (shadow_maps.h): its frustum without the
-  // frame's jitter, so that the jittered frames of one image share their maps.
+  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights,
+  // the alpha masks (the meshes do not move) and, for a directional light's cascades, the camera
+  // (shadow_maps.h): its frustum without the frame's jitter, so that the jittered frames of one
+  // image share their maps.
   const bool shadows = settings.shadows && lightCount > 0;
   if (settings.shadowCascades < 1 || settings.shadowCascades > kShadowCascades) {
     throw Error("shadow cascades: " + std::to_string(settings.shadowCascades) + "; from 1 to " +
