@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/renderer.h"
+#include "gl/shadow_maps.h"
 #include "gl_support.h"
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
@@ -53,6 +54,69 @@ scene::Scene withLogDensity(scene::Scene scene, float logDensity) {
 
 std::filesystem::path goldenPath(const std::string& name) {
   return std::filesystem::path(GLINT_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
+}
+
+// ---- shadow cascades (no OpenGL needed: the maps' matrices) ------------------------------------
+
+TEST(ShadowCascades, SplitsMixLogarithmicAndUniform) {
+  // Near 1, far 100, two cascades: the logarithmic split is at 10, the uniform one at 50.5, and
+  // the practical scheme weighs them 0.75 and 0.25: 20.125.
+  const std::vector<float> splits = gl::cascadeSplits(1.0f, 100.0f, 2);
+  ASSERT_EQ(splits.size(), 3u);
+  EXPECT_FLOAT_EQ(splits[0], 1.0f);
+  EXPECT_NEAR(splits[1], 20.125f, 1e-3f);
+  EXPECT_FLOAT_EQ(splits[2], 100.0f);
+}
+
+// The arctic's sun, seen from its default camera moved by `offset` (a 128 x 128 frame).
+std::vector<gl::ShadowLookup> arcticSunCascades(glm::vec3 offset, int cascades = gl::kShadowCascades) {
+  const scene::Scene arctic = scene::makeBuiltinScene("arctic");
+  scene::Camera camera = arctic.cameras.at("default");
+  camera.position += offset;
+  camera.target += offset;
+  gl::ShadowView view;
+  view.viewProjection = gl::viewProjection(camera, 128, 128, glm::vec2(0.0f), arctic.boundsMin(), arctic.boundsMax());
+  view.cameraPosition = camera.position;
+  view.cascades = cascades;
+  return gl::shadowLookups(arctic.lights.at(0), arctic.boundsMin(), arctic.boundsMax(), view);
+}
+
+TEST(ShadowCascades, NearCascadesHaveFinerTexelsThanTheWholeScenesMap) {
+  const std::vector<gl::ShadowLookup> whole = arcticSunCascades(glm::vec3(0.0f), 1);
+  const std::vector<gl::ShadowLookup> cascades = arcticSunCascades(glm::vec3(0.0f));
+  ASSERT_EQ(whole.size(), 1u);
+  ASSERT_EQ(cascades.size(), static_cast<std::size_t>(gl::kShadowCascades));
+  std::printf("arctic sun: one map %.2f mm texels; cascades", 1e3 * whole[0].texel);
+  for (const gl::ShadowLookup& c : cascades) std::printf(" %.2f", 1e3 * c.texel);
+  std::printf(" mm\n");
+  for (std::size_t c = 1; c < cascades.size(); ++c) EXPECT_GE(cascades[c].texel, cascades[c - 1].texel);
+  EXPECT_LE(cascades.back().texel, whole[0].texel);
+  // The ornament's rings (6 cm) cast their shadows 3 to 5 m from the camera: the second cascade's.
+  EXPECT_LT(cascades[1].texel, 0.1f * whole[0].texel);
+}
+
+TEST(ShadowCascades, ACameraThatMovesALittleKeepsEachCascadesTexelGrid) {
+  // A fixed point falls on the same place in a texel of each cascade as the camera moves by a few
+  // millimetres at a time (the cascade's size is kept, its centre moves by whole texels), so a
+  // shadow's filtered edge does not crawl; the scene's texel positions differ by whole numbers.
+  const glm::vec3 point(-1.1f, 0.3f, -0.8f);  // at the arctic's ornament
+  const std::vector<gl::ShadowLookup> start = arcticSunCascades(glm::vec3(0.0f));
+  int kept = 0;
+  for (int step = 1; step <= 20; ++step) {
+    const std::vector<gl::ShadowLookup> moved = arcticSunCascades(glm::vec3(0.003f, 0.001f, -0.002f) * float(step));
+    for (std::size_t c = 0; c < start.size(); ++c) {
+      if (moved[c].texel != start[c].texel) continue;  // crossed a 2^(1/8) step of the cascade's size
+      ++kept;
+      auto texelPosition = [&](const gl::ShadowLookup& lookup) {
+        const glm::vec4 clip = lookup.matrix * glm::vec4(point, 1.0f);
+        return (0.5f * glm::vec2(clip) + 0.5f) * static_cast<float>(gl::kShadowMapSize);
+      };
+      const glm::vec2 shift = texelPosition(moved[c]) - texelPosition(start[c]);
+      EXPECT_NEAR(shift.x, std::round(shift.x), 2e-2f) << "step " << step << ", cascade " << c;
+      EXPECT_NEAR(shift.y, std::round(shift.y), 2e-2f) << "step " << step << ", cascade " << c;
+    }
+  }
+  EXPECT_GT(kept, 60);  // most of the 80 moved cascades kept their size
 }
 
 TEST(RenderGl, VeryHighDensityGlintEqualsCookTorrance) {

@@ -300,6 +300,8 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectRenderFails(folder, "sphere --relative-area 2", "relative_area");
   expectRenderFails(folder, "sphere --dict missing.gdict", "missing.gdict: cannot open");
   expectRenderFails(folder, "sphere --shadows maybe", "--shadows must be on or off, got 'maybe'");
+  expectRenderFails(folder, "sphere --shadow-cascades 0", "--shadow-cascades must be from 1 to 4, got 0");
+  expectRenderFails(folder, "sphere --shadow-cascades 5", "--shadow-cascades must be from 1 to 4, got 5");
   expectRenderFails(folder, "sphere --msaa 3", "--msaa must be a power of two");
   expectRenderFails(folder, "sphere --msaa 4096", "--msaa must be a power of two");
   const RunResult wrongExtension = runGlint(folder, "render sphere -o out.jpg --size 32x32");

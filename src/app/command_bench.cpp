@@ -44,8 +44,9 @@ struct BenchOptions {
 // With --gltf-target, glint is timed a second time with every material's specular lobe turned to
 // glTF's (GGX, Smith, multiple-scattering compensation: scene::kGltfSpecular), glint-gltf. With
 // --feature-cost, glint is timed without shadows (glint-no-shadows), at one sample a pixel
-// (glint-msaa1), and with its shadow maps drawn again every frame (glint-moving-lights: the
-// renderer keeps them while the lights stay, so the other columns only read them).
+// (glint-msaa1), with its shadow maps drawn again every frame (glint-moving-lights: the renderer
+// keeps them while the lights and the camera stay, so the other columns only read them), and with
+// one shadow map a directional light instead of cascades (glint-one-cascade).
 // --compare-env-lights, glint is timed a second time without the directional lights taken out of
 // the environment map (scene::Environment::rasterLights 0), glint-no-env-lights.
 struct Variant {
@@ -57,6 +58,7 @@ struct Variant {
   bool noShadows = false;
   bool oneSample = false;
   bool movingLights = false;
+  bool oneCascade = false;
 };
 
 std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights,
@@ -72,6 +74,7 @@ std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarge
     variants.push_back({"glint-no-shadows", gl::BrdfModel::Glint, antiAliasing, false, false, true});
     variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
     variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, true});
+    variants.push_back({"glint-one-cascade", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, false, true});
   }
   return variants;
 }
@@ -133,6 +136,15 @@ void runBench(const BenchOptions& options) {
       unlitScene.environment.rasterLights = 0;
       unlitRenderer = std::make_unique<gl::Renderer>(unlitScene, dictionary);
     }
+    // The renderer keeps its shadow maps while the lights and the camera stay, so a variant that
+    // draws other maps (one cascade, a moving light) draws with a renderer of its own: on the
+    // shared one it would make the next variant's frame draw the maps again as well.
+    std::unique_ptr<gl::Renderer> oneCascadeRenderer;
+    std::unique_ptr<gl::Renderer> movingLightsRenderer;
+    if (options.featureCost) {
+      oneCascadeRenderer = std::make_unique<gl::Renderer>(scene, dictionary);
+      movingLightsRenderer = std::make_unique<gl::Renderer>(scene, dictionary);
+    }
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
@@ -149,8 +161,11 @@ void runBench(const BenchOptions& options) {
         frame.antiAliasing = variant.antiAliasing;
         frame.shadows = timed.shadows && !variant.noShadows;
         frame.msaa = variant.oneSample ? 1 : timed.msaa;
+        frame.shadowCascades = variant.oneCascade ? 1 : timed.shadowCascades;
         gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
                                 : variant.withoutEnvironmentLights ? *unlitRenderer
+                                : variant.oneCascade               ? *oneCascadeRenderer
+                                : variant.movingLights             ? *movingLightsRenderer
                                                                    : renderer;
         // A light that moved by a hair since the last frame: its shadow maps are drawn again.
         if (variant.movingLights && !drawing.lights().empty()) drawing.lights()[0].direction.x += round % 2 ? 1e-6f : -1e-6f;
@@ -243,7 +258,8 @@ void registerBenchCommand(CLI::App& app) {
   options->raster.addTo(*command);
   command->add_flag("--feature-cost", options->featureCost,
                     "Also time glint without shadows (glint-no-shadows), at one sample a pixel (glint-msaa1) and "
-                    "with its shadow maps drawn again every frame, as when a light moves (glint-moving-lights)");
+                    "with its shadow maps drawn again every frame, as when a light moves (glint-moving-lights), and "
+                    "with one shadow map a directional light (glint-one-cascade)");
   options->environment.addTo(*command);
   command->add_flag("--compare-env-lights", options->compareEnvironmentLights,
                     "Also time glint without the lights taken out of the environment map (glint-no-env-lights)");

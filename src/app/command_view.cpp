@@ -233,7 +233,7 @@ void runView(const ViewOptions& options) {
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   printWarnings(renderer.warnings());
-  gl::FrameSettings startSettings;  // --shadows and --msaa; the panel changes them
+  gl::FrameSettings startSettings;  // --shadows, --shadow-cascades and --msaa; the panel changes the first and last
   options.raster.applyTo(startSettings, renderer);
   const gl::DisplayPass display;
   gl::FrameTimer timer;
@@ -288,6 +288,7 @@ void runView(const ViewOptions& options) {
     frame.antiAliasing = antiAliasingModes[static_cast<std::size_t>(frameControls.antiAliasing)];
     frame.camera = viewCamera;
     frame.shadows = frameControls.shadows;
+    frame.shadowCascades = startSettings.shadowCascades;
     frame.msaa = 1 << frameControls.msaa;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 

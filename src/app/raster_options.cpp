@@ -8,6 +8,10 @@ void RasterOptions::addTo(CLI::App& command) {
   command.add_option("--shadows", shadows,
                      "Shadows of the lights (shadow maps, filtered edges): on or off")
       ->capture_default_str();
+  command.add_option("--shadow-cascades", shadowCascades,
+                     "Shadow maps of a directional light, each over a range of the view's depth: 1 to " +
+                         std::to_string(gl::kShadowCascades) + "; 1 fits one map to the whole scene")
+      ->capture_default_str();
   command.add_option("--msaa", msaa,
                      "Samples a pixel of the geometry, for anti-aliased edges: each surface in a pixel is still "
                      "shaded once, at its centre; 1 turns it off")
@@ -16,12 +20,17 @@ void RasterOptions::addTo(CLI::App& command) {
 
 void RasterOptions::applyTo(gl::FrameSettings& frame, const gl::Renderer& renderer) const {
   if (shadows != "on" && shadows != "off") throw Error("--shadows must be on or off, got '" + shadows + "'");
+  if (shadowCascades < 1 || shadowCascades > gl::kShadowCascades) {
+    throw Error("--shadow-cascades must be from 1 to " + std::to_string(gl::kShadowCascades) + ", got " +
+                std::to_string(shadowCascades));
+  }
   const int most = renderer.maxMsaaSamples();
   if (msaa < 1 || (msaa & (msaa - 1)) != 0 || msaa > most) {
     throw Error("--msaa must be a power of two from 1 to " + std::to_string(most) + " (this OpenGL's most), got " +
                 std::to_string(msaa));
   }
   frame.shadows = shadows == "on";
+  frame.shadowCascades = shadowCascades;
   frame.msaa = msaa;
 }
 

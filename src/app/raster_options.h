@@ -1,5 +1,5 @@
 // The rasteriser's shadows and anti-aliased edges from the command line (render, view, bench,
-// aa-error): --shadows on|off and --msaa N (docs/cli.md, docs/renderer.md).
+// aa-error): --shadows on|off, --shadow-cascades N and --msaa N (docs/cli.md, docs/renderer.md).
 #pragma once
 
 #include <string>
@@ -12,12 +12,13 @@ namespace glint::app {
 
 struct RasterOptions {
   std::string shadows = gl::FrameSettings{}.shadows ? "on" : "off";
+  int shadowCascades = gl::FrameSettings{}.shadowCascades;
   int msaa = gl::FrameSettings{}.msaa;
 
   void addTo(CLI::App& command);
   // Sets the frame's shadows and samples a pixel; throws Error with one line for --shadows other
-  // than on or off and for --msaa other than a power of two that this OpenGL draws (the
-  // renderer's maxMsaaSamples).
+  // than on or off, for --shadow-cascades outside 1 to gl::kShadowCascades and for --msaa other
+  // than a power of two that this OpenGL draws (the renderer's maxMsaaSamples).
   void applyTo(gl::FrameSettings& frame, const gl::Renderer& renderer) const;
 };
 

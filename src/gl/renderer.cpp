@@ -214,6 +214,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"},
                         {"SHADOWS", variant.shadows ? "1" : "0"},
                         {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
+                        {"SHADOW_CASCADES", std::to_string(kShadowCascades)},
+                        {"SHADOW_CASCADE_MARGIN", std::to_string(kCascadeMarginTexels)},
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"}});
 }
 
@@ -519,13 +521,21 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
   };
-  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights
-  // and the alpha masks (the meshes do not move).
+  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights,
+  // the alpha masks (the meshes do not move) and, for a directional light's cascades, the camera
+  // (shadow_maps.h): its frustum without the frame's jitter, so that the jittered frames of one
+  // image share their maps.
   const bool shadows = settings.shadows && lightCount > 0;
-  glm::mat4 shadowMatrices[kMaxLights];
-  float shadowLayers[kMaxLights];
-  float shadowDepthScales[kMaxLights];
-  float shadowTexels[kMaxLights];
+  if (settings.shadowCascades < 1 || settings.shadowCascades > kShadowCascades) {
+    throw Error("shadow cascades: " + std::to_string(settings.shadowCascades) + "; from 1 to " +
+                std::to_string(kShadowCascades));
+  }
+  constexpr int kShadowEntries = kMaxLights * kShadowCascades;
+  glm::mat4 shadowMatrices[kShadowEntries];
+  float shadowLayers[kShadowEntries] = {};
+  float shadowDepthScales[kShadowEntries] = {};
+  float shadowTexels[kShadowEntries] = {};
+  const int shadowEntries = lightCount * kShadowCascades;
   if (shadows) {
     std::vector<float> key;
     for (const scene::Light& l : drawnLights) {
@@ -536,11 +546,16 @@ void Renderer::renderFrame(const FrameSettings& settings) {
       key.insert(key.end(), {static_cast<float>(m.alphaMode), m.alphaCutoff, m.baseColour.a,
                              static_cast<float>(m.baseColourTexture)});
     }
-    g.shadowMaps.update(drawnLights, scene_.boundsMin(), scene_.boundsMax(), key,
+    ShadowView shadowView;
+    shadowView.viewProjection = viewProjection(settings.camera, settings.width, settings.height, glm::vec2(0.0f),
+                                               scene_.boundsMin(), scene_.boundsMax());
+    shadowView.cameraPosition = settings.camera.position;
+    shadowView.cascades = settings.shadowCascades;
+    g.shadowMaps.update(drawnLights, scene_.boundsMin(), scene_.boundsMax(), shadowView, key,
                         [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
                           drawDepths(viewProjection, linearDepth, origin, depthScale, false);
                         });
-    for (int i = 0; i < lightCount; ++i) {
+    for (int i = 0; i < shadowEntries; ++i) {
       const ShadowLookup& lookup = g.shadowMaps.lookups()[static_cast<std::size_t>(i)];
       shadowMatrices[i] = lookup.matrix;
       shadowLayers[i] = static_cast<float>(lookup.layer);
@@ -596,10 +611,11 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glBindTextureUnit(9, g.environment);
     if (shadows) {
       g.shadowMaps.bind();
-      glUniformMatrix4fv(p.uniform("uShadowMatrix"), lightCount, GL_FALSE, &shadowMatrices[0][0][0]);
-      glUniform1fv(p.uniform("uShadowLayer"), lightCount, shadowLayers);
-      glUniform1fv(p.uniform("uShadowDepthScale"), lightCount, shadowDepthScales);
-      glUniform1fv(p.uniform("uShadowTexel"), lightCount, shadowTexels);
+      glUniform1i(p.uniform("uShadowCascades"), g.shadowMaps.cascades());
+      glUniformMatrix4fv(p.uniform("uShadowMatrix"), shadowEntries, GL_FALSE, &shadowMatrices[0][0][0]);
+      glUniform1fv(p.uniform("uShadowLayer"), shadowEntries, shadowLayers);
+      glUniform1fv(p.uniform("uShadowDepthScale"), shadowEntries, shadowDepthScales);
+      glUniform1fv(p.uniform("uShadowTexel"), shadowEntries, shadowTexels);
     }
   };
   const ShaderProgram* current = nullptr;

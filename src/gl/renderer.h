@@ -19,6 +19,9 @@ namespace glint::gl {
 // The most lights the rasteriser draws (the first ones of the scene): a forward program is
 // compiled per light count (LIGHT_COUNT). The path tracer draws them all.
 constexpr int kMaxLights = 8;
+// The most cascades of a directional light's shadow maps, and its default
+// (FrameSettings::shadowCascades, shadow_maps.h).
+constexpr int kShadowCascades = 4;
 
 // ZirrKaplanyanReference: the same images as ZirrKaplanyan on the reference shader's schedule, slower
 // (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md "Cost"), so that benchmarks measure against both.
@@ -53,6 +56,9 @@ struct FrameSettings {
   // The lights cast shadows, from shadow maps (docs/renderer.md, "Shadows"), as the path tracer's
   // shadow rays find them.
   bool shadows = true;
+  // A directional light's shadow maps: cascades over the camera's view depth, 1 to
+  // kShadowCascades; 1 fits one map to the whole scene (docs/renderer.md, "Shadows").
+  int shadowCascades = kShadowCascades;
   // Samples a pixel of the geometry (docs/renderer.md, "Anti-aliased edges"): depth and coverage
   // per sample, each surface in the pixel shaded once, the samples averaged. 1: one sample, at the
   // centre; at most maxMsaaSamples(). Off by default: 4 samples cost llvmpipe 1.5 to 2.3 times the
