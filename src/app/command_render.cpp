@@ -29,6 +29,7 @@ struct RenderOptions {
   float exposure = 1.0f;
   OrbitOptions orbit;
   RasterOptions raster;
+  FootprintOptions footprint;
 };
 
 void runRender(const RenderOptions& options) {
@@ -70,6 +71,7 @@ void runRender(const RenderOptions& options) {
   frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
   options.raster.applyTo(frame, renderer);
+  frame.footprintPolicy = options.footprint.policy();
   const std::vector<scene::Camera> cameras =
       options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
   const int frames = static_cast<int>(cameras.size());
@@ -130,6 +132,7 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   options->orbit.addTo(*command);
   options->raster.addTo(*command);
+  options->footprint.addTo(*command, false);
   command->callback([options] { runRender(*options); });
 }
 

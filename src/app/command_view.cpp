@@ -39,6 +39,7 @@ struct ViewOptions {
   std::string antiAliasing = "ggaa+lean";
   bool hidePanel = false;  // start without the panel (H shows it)
   RasterOptions raster;
+  FootprintOptions footprint;
 };
 
 // What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
@@ -235,6 +236,7 @@ void runView(const ViewOptions& options) {
   printWarnings(renderer.warnings());
   gl::FrameSettings startSettings;  // --shadows and --msaa; the panel changes them
   options.raster.applyTo(startSettings, renderer);
+  startSettings.footprintPolicy = options.footprint.policy();
   const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
@@ -289,6 +291,7 @@ void runView(const ViewOptions& options) {
     frame.camera = viewCamera;
     frame.shadows = frameControls.shadows;
     frame.msaa = 1 << frameControls.msaa;
+    frame.footprintPolicy = startSettings.footprintPolicy;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -369,6 +372,7 @@ void registerViewCommand(CLI::App& app) {
                       "With --frames N: write frame N as the window shows it (the panel too, unless hidden) to a PNG");
   command->add_flag("--hide-panel", options->hidePanel, "Start with the panel hidden (H shows and hides it)");
   options->raster.addTo(*command);
+  options->footprint.addTo(*command, false);
   command->callback([options] { runView(*options); });
 }
 

@@ -448,6 +448,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     throw Error("multisampling: " + std::to_string(settings.msaa) + " samples a pixel; this OpenGL takes 1, 2, ... " +
                 std::to_string(maxMsaaSamples()) + " (powers of two)");
   }
+  validateFootprintPolicy(settings.footprintPolicy);
   g.resizeTarget(settings.width, settings.height, settings.msaa);
   const GLuint target = g.drawFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, target);
@@ -633,6 +634,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
     glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
     glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
+    glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
+                settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
     glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
     glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
     glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
