@@ -191,6 +191,9 @@ struct ForwardVariant {
   bool shadows;     // SHADOWS: the lights cast shadows (shaders/shadows.glsl)
   int shadowCubes;  // SHADOW_CUBES: bit i, light i's shadow map is a cube
   bool centroid;    // CENTROID_SHADING: several samples a pixel, edges shaded inside the surface
+  // GLINT_FOOTPRINT_POLICY: glint programs whose footprint policy is not exact read it from
+  // uGlintFootprintPolicy; the exact ones are compiled without its code (glintPixelFootprint).
+  bool footprintPolicy;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -214,7 +217,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"GLINT_MULTIPLE_SCATTERING", variant.multipleScattering ? "1" : "0"},
                         {"SHADOWS", variant.shadows ? "1" : "0"},
                         {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
-                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"}});
+                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
+                        {"GLINT_FOOTPRINT_POLICY", variant.footprintPolicy ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -255,7 +259,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         material.specular.multipleScattering,
                         settings.shadows && lightCount > 0,
                         settings.shadows ? shadowCubes : 0,
-                        settings.msaa > 1};
+                        settings.msaa > 1,
+                        model == BrdfModel::Glint && footprintPolicyName(settings.footprintPolicy) != "exact"};
 }
 
 struct Renderer::Gpu {

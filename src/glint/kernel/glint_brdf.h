@@ -681,6 +681,16 @@ GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float ma
   return footprint;
 }
 
+// Whether glintPixelFootprint applies the policy. The renderer compiles a program with
+// GLINT_FOOTPRINT_POLICY 0 when the policy is exact, so that the paper's footprint pays nothing for
+// the others (llvmpipe runs both sides of a branch); C++ and programs that leave it undefined apply
+// params.footprintPolicy, which is the paper's footprint when zero.
+#if defined(__cplusplus) || !defined(GLINT_FOOTPRINT_POLICY)
+#define GLINT_APPLIES_FOOTPRINT_POLICY 1
+#else
+#define GLINT_APPLIES_FOOTPRINT_POLICY GLINT_FOOTPRINT_POLICY
+#endif
+
 // The pixel's footprint under the renderer's footprint policy (GlintFootprintPolicy;
 // docs/antialiasing.md, "Footprint policies"): aniso=A clamps the anisotropy at min(A, the
 // material's), cells=K raises the LOD until each walked level has at most K cells
@@ -688,6 +698,9 @@ GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float ma
 // weight is below W, so that level alone is walked. The P-SDF and the host's sampler both take
 // their footprint from here. With the zero policy it is glintFootprint's, bit for bit.
 GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParameters params, int numLevels) {
+#if !GLINT_APPLIES_FOOTPRINT_POLICY
+  return glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, numLevels);
+#else
   GlintFootprintPolicy policy = params.footprintPolicy;
   float maxAnisotropy = policy.maxAnisotropy > 0.0f ? min(params.maxAnisotropy, policy.maxAnisotropy)
                                                     : params.maxAnisotropy;
@@ -703,6 +716,7 @@ GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParamet
     footprint.lod = floor(footprint.lod);
   }
   return footprint;
+#endif
 }
 
 // The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
