@@ -191,9 +191,10 @@ struct ForwardVariant {
   bool shadows;     // SHADOWS: the lights cast shadows (shaders/shadows.glsl)
   int shadowCubes;  // SHADOW_CUBES: bit i, light i's shadow map is a cube
   bool centroid;    // CENTROID_SHADING: several samples a pixel, edges shaded inside the surface
-  // GLINT_FOOTPRINT_POLICY: glint programs whose footprint policy is not exact read it from
-  // uGlintFootprintPolicy; the exact ones are compiled without its code (glintPixelFootprint).
-  bool footprintPolicy;
+  // GLINT_FOOTPRINT_POLICY: the words of the glint footprint policy (bits: 1 aniso, 2 cells, 4 drop;
+  // glintPixelFootprint), compiled in so that each policy pays for its own words only and exact for
+  // none; their values come from uGlintFootprintPolicy.
+  int footprintWords;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -218,7 +219,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"SHADOWS", variant.shadows ? "1" : "0"},
                         {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
-                        {"GLINT_FOOTPRINT_POLICY", variant.footprintPolicy ? "1" : "0"}});
+                        {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -234,6 +235,11 @@ bool isMasked(const scene::Material& material) { return material.alphaMode == sc
 // The program a material is drawn with. A material without a glint layer is Cook-Torrance under
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
+// The words a footprint policy uses, as GLINT_FOOTPRINT_POLICY's bits.
+int footprintWords(const kernel::GlintFootprintPolicy& policy) {
+  return (policy.maxAnisotropy > 0.0f ? 1 : 0) | (policy.maxCells > 0.0f ? 2 : 0) | (policy.minBlend > 0.0f ? 4 : 0);
+}
+
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
                               int lightCount, int shadowCubes) {
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
@@ -260,7 +266,7 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.shadows && lightCount > 0,
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
-                        model == BrdfModel::Glint && footprintPolicyName(settings.footprintPolicy) != "exact"};
+                        model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0};
 }
 
 struct Renderer::Gpu {

@@ -681,14 +681,15 @@ GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float ma
   return footprint;
 }
 
-// Whether glintPixelFootprint applies the policy. The renderer compiles a program with
-// GLINT_FOOTPRINT_POLICY 0 when the policy is exact, so that the paper's footprint pays nothing for
-// the others (llvmpipe runs both sides of a branch); C++ and programs that leave it undefined apply
-// params.footprintPolicy, which is the paper's footprint when zero.
+// The words of the policy that glintPixelFootprint applies, as bits: 1 aniso, 2 cells, 4 drop. The
+// renderer compiles each program with GLINT_FOOTPRINT_POLICY set to the words its policy uses
+// (0 for exact), so that a policy pays for its own words only and the paper's footprint for none
+// (llvmpipe runs both sides of a branch); C++ and programs that leave it undefined apply all three,
+// each of which does nothing when its field of params.footprintPolicy is zero.
 #if defined(__cplusplus) || !defined(GLINT_FOOTPRINT_POLICY)
-#define GLINT_APPLIES_FOOTPRINT_POLICY 1
+#define GLINT_FOOTPRINT_WORDS 7
 #else
-#define GLINT_APPLIES_FOOTPRINT_POLICY GLINT_FOOTPRINT_POLICY
+#define GLINT_FOOTPRINT_WORDS GLINT_FOOTPRINT_POLICY
 #endif
 
 // The pixel's footprint under the renderer's footprint policy (GlintFootprintPolicy;
@@ -698,25 +699,27 @@ GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float ma
 // weight is below W, so that level alone is walked. The P-SDF and the host's sampler both take
 // their footprint from here. With the zero policy it is glintFootprint's, bit for bit.
 GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParameters params, int numLevels) {
-#if !GLINT_APPLIES_FOOTPRINT_POLICY
-  return glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, numLevels);
-#else
   GlintFootprintPolicy policy = params.footprintPolicy;
-  float maxAnisotropy = policy.maxAnisotropy > 0.0f ? min(params.maxAnisotropy, policy.maxAnisotropy)
-                                                    : params.maxAnisotropy;
+  float maxAnisotropy = params.maxAnisotropy;
+#if (GLINT_FOOTPRINT_WORDS & 1) != 0
+  maxAnisotropy = policy.maxAnisotropy > 0.0f ? min(params.maxAnisotropy, policy.maxAnisotropy) : maxAnisotropy;
+#endif
   GlintFootprint footprint = glintFootprint(duvdx, duvdy, maxAnisotropy, params.logDensity, numLevels);
   if (footprint.degenerate) {
     return footprint;
   }
+#if (GLINT_FOOTPRINT_WORDS & 2) != 0
   if (policy.maxCells > 0.0f) {
     footprint = glintBoundedFootprint(footprint, policy.maxCells, numLevels);
   }
+#endif
+#if (GLINT_FOOTPRINT_WORDS & 4) != 0
   float blend = footprint.lod - floor(footprint.lod);
   if (blend > 0.0f && blend < policy.minBlend) {
     footprint.lod = floor(footprint.lod);
   }
-  return footprint;
 #endif
+  return footprint;
 }
 
 // The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
