@@ -150,8 +150,10 @@ void runTrace(const TraceOptions& options) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
+  const std::string footprint = footprintPolicyName(settings.footprintPolicy);
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
-                               ? options.brdf + ", " + trace::glintSamplerName(settings.sampler) + " sampler"
+                               ? options.brdf + (footprint == "exact" ? "" : ", footprint " + footprint) + ", " +
+                                     trace::glintSamplerName(settings.sampler) + " sampler"
                                : options.brdf;
   const std::string paths =
       settings.directOnly ? std::string("direct light only") : "max depth " + std::to_string(settings.maxDepth);
