@@ -227,6 +227,7 @@ void runView(const ViewOptions& options) {
   if (!options.screenshot.empty() && options.frames == 0) {
     throw Error("--screenshot needs --frames N (the screenshot is of frame N)");
   }
+  const FootprintPolicy footprintPolicy = options.footprint.policy();  // refused before a window opens
   const scene::Scene scene = options.scene.loadScene();
   const Dictionary dictionary = options.scene.loadDictionary();
   gl::WindowContext window(options.width, options.height, "glint view: " + options.scene.scene);
@@ -236,7 +237,7 @@ void runView(const ViewOptions& options) {
   printWarnings(renderer.warnings());
   gl::FrameSettings startSettings;  // --shadows and --msaa; the panel changes them
   options.raster.applyTo(startSettings, renderer);
-  startSettings.footprintPolicy = options.footprint.policy();
+  startSettings.footprintPolicy = footprintPolicy;
   const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
