@@ -258,7 +258,7 @@ TEST(FootprintPolicyCli, BadPoliciesGiveOneLineNamingTheOption) {
   const auto folder = temporaryFolder("footprint_cli");
   for (const std::string command : {"render sphere --size 16x16 -o x.png", "trace sphere --size 8x8 --spp 1 -o x.exr",
                                     "bench sphere --size 16x16 --frames 1 --warmup 0",
-                                    "aa-error sphere --size 16x16 --reference 1 --sequence 2"}) {
+                                    "aa-error sphere --size 16x16 --reference 1 --sequence 2", "view sphere --frames 1"}) {
     for (const std::string policy : {"cells=0", "aniso=0.9", "drop=2", "sharp", "cells=nan"}) {
       const RunResult result = runGlint(folder, command + " --footprint " + policy);
       expectOneLineError(result, "--footprint");
