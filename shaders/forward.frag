@@ -105,6 +105,7 @@ uniform float uGlintLogDensity;
 uniform float uGlintRelativeArea;
 uniform float uGlintDensityRandomisation;
 uniform float uGlintMaxAnisotropy;
+uniform vec3 uGlintFootprintPolicy;  // GlintFootprintPolicy: aniso, cells, drop (0: the paper's footprint)
 uniform uint uGlintPatternSeed;
 uniform float uGlintUvScale;
 uniform bool uGlintHasLogDensityTexture;
@@ -189,6 +190,9 @@ void main() {
   params.relativeArea = clamp(uGlintRelativeArea * texture(uGlintRelativeAreaTexture, vUv).r, 1e-4f, 1.0f);
   params.densityRandomisation = uGlintDensityRandomisation;
   params.maxAnisotropy = uGlintMaxAnisotropy;
+  params.footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
+  params.footprintPolicy.maxCells = uGlintFootprintPolicy.y;
+  params.footprintPolicy.minBlend = uGlintFootprintPolicy.z;
   params.patternSeed = uGlintPatternSeed;
   // A compile-time switch (one program per variant, src/gl/renderer.cpp): llvmpipe executes both
   // sides of a branch, so a uniform would make every glint material pay for the colours.

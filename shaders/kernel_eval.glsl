@@ -1,4 +1,4 @@
-// One case of the CPU-versus-GPU kernel test: its inputs as seven vec4s and its evaluation, shared by
+// One case of the CPU-versus-GPU kernel test: its inputs as eight vec4s and its evaluation, shared by
 // the compute shader of the desktop test (kernel_eval.comp, tests/test_gl_kernel.cpp) and the
 // fragment shader of the WebGL2 test (kernel_eval.frag, tests/test_web.cpp). Same functions, same
 // argument order as glint::GlintBsdf; with GLINT_FILTERED 1 the P-SDF is the anti-aliased one
@@ -18,6 +18,7 @@ struct KernelInput {
   vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
   vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
   vec4 target;               // ndf, masking (microfacet_targets.h), multiple scattering (0 or 1), as floats
+  vec4 footprintPolicy;      // GlintFootprintPolicy: aniso, cells, drop (0: the paper's footprint), unused
 };
 
 // The case's parameters, footprint and directions.
@@ -34,6 +35,9 @@ void readCase(KernelInput data, out GlintParameters params, out vec2 uv, out vec
   params.ndf = int(data.target.x);
   params.masking = int(data.target.y);
   params.multipleScattering = data.target.z > 0.5f;
+  params.footprintPolicy.maxAnisotropy = data.footprintPolicy.x;
+  params.footprintPolicy.maxCells = data.footprintPolicy.y;
+  params.footprintPolicy.minBlend = data.footprintPolicy.z;
   uv = data.uvAndDuvdx.xy;
   duvdx = data.uvAndDuvdx.zw;
   duvdy = data.duvdyAndAlpha.xy;

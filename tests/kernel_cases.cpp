@@ -21,6 +21,29 @@ float cookTorranceOnCpu(const KernelCase& c) {
 
 }  // namespace
 
+FootprintPolicy randomFootprintPolicy(Pcg32& rng) {
+  FootprintPolicy policy = exactFootprintPolicy();
+  switch (rng.nextBelow(6)) {
+    case 0:
+      policy.maxAnisotropy = uniform(rng, 1.0f, 8.0f);
+      break;
+    case 1:
+      policy.maxCells = static_cast<float>(12 + rng.nextBelow(60));
+      break;
+    case 2:
+      policy.minBlend = uniform(rng, 0.0f, 1.0f);
+      break;
+    case 3:
+      policy.maxAnisotropy = uniform(rng, 1.0f, 8.0f);
+      policy.maxCells = static_cast<float>(12 + rng.nextBelow(60));
+      policy.minBlend = uniform(rng, 0.0f, 1.0f);
+      break;
+    default:  // the paper's footprint in a third of the cases
+      break;
+  }
+  return policy;
+}
+
 KernelValues evaluateOnCpu(const KernelCase& c) {
   const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
@@ -38,7 +61,8 @@ std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
                       {c.wi, p.relativeArea},
                       {p.densityRandomisation, p.maxAnisotropy, static_cast<float>(p.patternSeed), p.rho},
                       c.derivatives,
-                      {static_cast<float>(p.ndf), static_cast<float>(p.masking), p.multipleScattering ? 1.0f : 0.0f, 0.0f}});
+                      {static_cast<float>(p.ndf), static_cast<float>(p.masking), p.multipleScattering ? 1.0f : 0.0f, 0.0f},
+                      {p.footprintPolicy.maxAnisotropy, p.footprintPolicy.maxCells, p.footprintPolicy.minBlend, 0.0f}});
   }
   return inputs;
 }
@@ -65,6 +89,7 @@ std::vector<KernelCase> randomKernelCases(int count) {
   // The targets from a stream of their own, so that the other draws are those of the cases before
   // the targets existed.
   Pcg32 targets(4242, 10);
+  Pcg32 policies(4242, 11);  // the footprint policies, a stream of their own for the same reason
   std::vector<KernelCase> cases;
   for (int i = 0; i < count; ++i) {
     KernelCase c;
@@ -77,6 +102,7 @@ std::vector<KernelCase> randomKernelCases(int count) {
     c.parameters.ndf = static_cast<int>(targets.nextBelow(2));
     c.parameters.masking = static_cast<int>(targets.nextBelow(2));
     c.parameters.multipleScattering = targets.nextBelow(2) == 0;
+    c.parameters.footprintPolicy = randomFootprintPolicy(policies);
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
     c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));

@@ -13,7 +13,8 @@
 namespace glint::test {
 
 struct KernelInput {
-  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives, target;
+  glm::vec4 uvAndDuvdx, duvdyAndAlpha, woAndLogDensity, wiAndRelativeArea, randomisationEtc, slopeDerivatives, target,
+      footprintPolicy;
 };
 struct KernelCase {
   GlintParameters parameters;
@@ -30,6 +31,10 @@ struct KernelValues {
 KernelValues evaluateOnCpu(const KernelCase& c);
 KernelValues evaluateFilteredOnCpu(const KernelCase& c);
 std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases);
+
+// A random footprint policy: the paper's footprint (exact) in a third of the draws, else aniso, cells,
+// drop or all three, over their ranges.
+FootprintPolicy randomFootprintPolicy(Pcg32& rng);
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
 // smooth, relative areas, footprints from magnified to minified, directions down to grazing, both

@@ -365,6 +365,7 @@ struct SamplingCase {
   float rho = 0.0f;  // slope correlation
   int ndf = kernel::kNdfBeckmann;  // the smooth target (kernel/microfacet_targets.h)
   bool multipleScattering = false;  // the compensation lobe (kernel/multiple_scattering.h)
+  FootprintPolicy footprintPolicy = exactFootprintPolicy();  // --footprint
 };
 
 // Footprint of a pixel: 1.5:1, rotated, area pi |det| = 1.5e-6 uv^2, so a log density of 15, 21,
@@ -387,6 +388,7 @@ GlintParameters caseParameters(const SamplingCase& c) {
   parameters.rho = c.rho;
   parameters.ndf = c.ndf;
   parameters.multipleScattering = c.multipleScattering;
+  parameters.footprintPolicy = c.footprintPolicy;
   return parameters;
 }
 
@@ -529,6 +531,28 @@ std::vector<SamplingCase> chiSquareCases() {
     c.eta = d.eta;
     c.relativeArea = d.relativeArea;
     c.sampler = d.sampler;
+    cases.push_back(c);
+  }
+  // Footprint policies (glintPixelFootprint): the sampler walks the policy's levels and cells, as
+  // the P-SDF does. cells=12 raises the case footprint's LOD from 4.2 past its two levels' 10 and 5
+  // cells; with drop=0.5 a single level is left where the blend falls below one half.
+  struct Policy {
+    const char* name;
+    float alpha, logDensity, theta;
+    const char* policy;
+  };
+  for (const Policy& p : {
+           Policy{"Mixture_cells12_alpha0p25_density21_theta45", 0.25f, 21.0f, 45.0f, "cells=12"},
+           Policy{"Mixture_cells12_alpha0p1_density15_theta5", 0.1f, 15.0f, 5.0f, "cells=12"},
+           Policy{"Mixture_cells16_drop0p5_alpha0p6_density32_theta75", 0.6f, 32.0f, 75.0f, "cells=16,drop=0.5"},
+           Policy{"Mixture_cells24_aniso2_alpha0p25_density21_theta30", 0.25f, 21.0f, 30.0f, "aniso=2,cells=24"},
+       }) {
+    SamplingCase c;
+    c.name = p.name;
+    c.alpha = p.alpha;
+    c.logDensity = p.logDensity;
+    c.thetaDegrees = p.theta;
+    c.footprintPolicy = footprintPolicyFromString(p.policy);
     cases.push_back(c);
   }
   return cases;

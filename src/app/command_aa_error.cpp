@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
@@ -27,6 +28,7 @@ struct AaErrorOptions {
   std::string dictionary;
   float aaKernel = 1.0f;
   bool json = false;
+  FootprintOptions footprint;
 };
 
 using Frame = std::vector<double>;  // RGB radiance, pixel after pixel
@@ -68,8 +70,12 @@ struct ModeResult {
   double relativeFlicker;  // mean per-pixel temporal standard deviation over the mean radiance
 };
 
+// The reference is drawn with the paper's footprint whatever --footprint says: a policy's error
+// includes the different glints it shows. Each policy is measured on the same frames (the same
+// jitters and drift), one after the other.
 nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& dictionary, const AaErrorOptions& options,
                             int width, int height) {
+  const std::vector<std::pair<std::string, FootprintPolicy>> footprints = options.footprint.all();
   gl::Renderer renderer(scene, dictionary);
   printWarnings(renderer.warnings());
   gl::FrameSettings frame;
@@ -104,6 +110,8 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
                           {"reference_mean", referenceMean},
                           {"glint_pixels", values.size() / 3}};
   frame.normalMapFinestLevel = false;
+  for (const auto& [policyName, policy] : footprints) {
+  frame.footprintPolicy = policy;
   for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
     frame.antiAliasing = mode;
     frame.jitter = glm::vec2(0.0f);
@@ -129,13 +137,18 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
       deviation += std::sqrt(std::max(0.0, sumSquares[i] / options.sequence - m * m));
     }
     result.relativeFlicker = deviation / static_cast<double>(values.size()) / referenceMean;
-    entry[gl::toString(mode)] = {{"relative_rmse", result.relativeRmse}, {"relative_flicker", result.relativeFlicker}};
+    const nlohmann::json measured = {{"relative_rmse", result.relativeRmse},
+                                     {"relative_flicker", result.relativeFlicker}};
+    if (policyName == footprints.front().first) entry[gl::toString(mode)] = measured;
+    entry["footprints"][policyName][gl::toString(mode)] = measured;
+  }
   }
   return entry;
 }
 
 void runAaError(const AaErrorOptions& options) {
   const auto [width, height] = parseImageSize(options.size);
+  const std::vector<std::pair<std::string, FootprintPolicy>> footprints = options.footprint.all();
   if (options.reference < 1 || options.reference > 65536) throw Error("--reference must be in [1, 65536]");
   if (options.sequence < 2 || options.sequence > 4096) throw Error("--sequence must be in [2, 4096]");
   if (!(options.aaKernel >= 0.0f && options.aaKernel <= 16.0f)) throw Error("--aa-kernel must be in [0, 16]");
@@ -153,6 +166,7 @@ void runAaError(const AaErrorOptions& options) {
   gl::HeadlessContext context;
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},
                            {"aa_kernel", options.aaKernel},
+                           {"footprint", options.footprint.all().front().first},
                            {"size", options.size},
                            {"reference_frames", options.reference},
                            {"sequence_frames", options.sequence},
@@ -191,6 +205,31 @@ void runAaError(const AaErrorOptions& options) {
     }
     std::printf("\n");
   }
+  if (footprints.size() < 2) return;
+  // Each footprint policy's RMSE and flicker, and both as ratios to the first policy's, mode by mode.
+  std::printf("\nfootprint policies, each against the same reference (ratio to %s)\n", footprints.front().first.c_str());
+  std::printf("%-16s %-20s", "scene", "footprint");
+  for (const char* metric : {"RMSE ", "flicker "}) {
+    for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+      std::printf(" %22s", (std::string(metric) + gl::toString(mode)).c_str());
+    }
+  }
+  std::printf("\n");
+  for (const auto& entry : report["scenes"]) {
+    for (const auto& [policyName, policy] : footprints) {
+      std::printf("%-16s %-20s", entry["scene"].get<std::string>().c_str(), policyName.c_str());
+      for (const char* metric : {"relative_rmse", "relative_flicker"}) {
+        for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+          const double first = entry["footprints"][footprints.front().first][gl::toString(mode)][metric];
+          const double value = entry["footprints"][policyName][gl::toString(mode)][metric];
+          char cell[64];
+          std::snprintf(cell, sizeof cell, "%.2f%% (%.3f)", 100.0 * value, value / first);
+          std::printf(" %22s", cell);
+        }
+      }
+      std::printf("\n");
+    }
+  }
 }
 
 }  // namespace
@@ -210,6 +249,7 @@ void registerAaErrorCommand(CLI::App& app) {
   command->add_option("--aa-kernel", options->aaKernel, "Size of the anti-aliasing kernel (as glint render's)")
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  options->footprint.addTo(*command, true);
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runAaError(*options); });
 }

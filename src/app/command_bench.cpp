@@ -34,6 +34,7 @@ struct BenchOptions {
   std::string antiAliasing = "ggaa+lean";
   bool gltfTarget = false;
   RasterOptions raster;
+  FootprintOptions footprint;
   bool featureCost = false;
   EnvironmentOptions environment;
   bool compareEnvironmentLights = false;
@@ -59,10 +60,14 @@ struct Variant {
   bool oneSample = false;
   bool movingLights = false;
   bool oneCascade = false;
+  FootprintPolicy footprint = exactFootprintPolicy();
 };
 
+// With several --footprint policies, the first is every column's, and glint is timed again with each
+// of the others, glint[policy].
 std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights,
-                                   bool featureCost) {
+                                   bool featureCost,
+                                   const std::vector<std::pair<std::string, FootprintPolicy>>& footprints) {
   std::vector<Variant> variants;
   for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
   if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
@@ -75,6 +80,12 @@ std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarge
     variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
     variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, true});
     variants.push_back({"glint-one-cascade", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, false, true});
+  }
+  for (Variant& variant : variants) variant.footprint = footprints.front().second;
+  for (std::size_t k = 1; k < footprints.size(); ++k) {
+    Variant variant{"glint[" + footprints[k].first + "]", gl::BrdfModel::Glint, antiAliasing};
+    variant.footprint = footprints[k].second;
+    variants.push_back(variant);
   }
   return variants;
 }
@@ -112,11 +123,13 @@ void runBench(const BenchOptions& options) {
   const gl::ContextInfo info = gl::currentContextInfo();
   gl::FrameTimer timer;
   const bool progress = isatty(STDERR_FILENO);
+  const std::vector<std::pair<std::string, FootprintPolicy>> footprints = options.footprint.all();
   const std::vector<Variant> models =
       benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget,
-                    options.compareEnvironmentLights, options.featureCost);
+                    options.compareEnvironmentLights, options.featureCost, footprints);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
-                           {"frames", options.frames}, {"scenes", nlohmann::json::array()}};
+                           {"frames", options.frames}, {"footprint", footprints.front().first},
+                           {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const scene::Scene& scene = scenes[s];
     warnAboutUndrawnLights(scene);
@@ -162,6 +175,7 @@ void runBench(const BenchOptions& options) {
         frame.shadows = timed.shadows && !variant.noShadows;
         frame.msaa = variant.oneSample ? 1 : timed.msaa;
         frame.shadowCascades = variant.oneCascade ? 1 : timed.shadowCascades;
+        frame.footprintPolicy = variant.footprint;
         gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
                                 : variant.withoutEnvironmentLights ? *unlitRenderer
                                 : variant.oneCascade               ? *oneCascadeRenderer
@@ -187,6 +201,11 @@ void runBench(const BenchOptions& options) {
       if (model.label == "glint") continue;
       entry["ratio_glint_" + model.label] = timings["glint"].median / timings[model.label].median;
     }
+    // Each other footprint policy's glint against Cook-Torrance, from the same frames.
+    for (std::size_t k = 1; k < footprints.size(); ++k) {
+      const std::string label = "glint[" + footprints[k].first + "]";
+      entry["ratio_" + label + "_cook-torrance"] = timings[label].median / timings["cook-torrance"].median;
+    }
     report["scenes"].push_back(entry);
   }
   if (progress) std::fprintf(stderr, "\r%60s\r", "");
@@ -201,19 +220,35 @@ void runBench(const BenchOptions& options) {
   }
   const double mean = sum / static_cast<double>(report["scenes"].size());
   report["glint_cook-torrance"] = {{"mean_ratio", mean}, {"max_ratio", highest}, {"max_over_mean", highest / mean}};
+  for (std::size_t k = 1; k < footprints.size(); ++k) {
+    const std::string label = "glint[" + footprints[k].first + "]";
+    double policySum = 0.0;
+    double policyHighest = 0.0;
+    for (const auto& entry : report["scenes"]) {
+      const double ratio = entry["ratio_" + label + "_cook-torrance"].get<double>();
+      policySum += ratio;
+      policyHighest = std::max(policyHighest, ratio);
+    }
+    const double policyMean = policySum / static_cast<double>(report["scenes"].size());
+    report[label + "_cook-torrance"] = {{"mean_ratio", policyMean}, {"max_ratio", policyHighest}};
+  }
 
   if (options.json) {
     std::cout << report.dump() << std::endl;
     return;
   }
   std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max), anti-aliasing %s, shadows %s, "
-              "msaa %d\n",
+              "msaa %d, footprint %s\n",
               width, height, info.renderer.c_str(), timer.method(), options.frames, options.frames == 1 ? "" : "s",
-              options.warmup, options.antiAliasing.c_str(), options.raster.shadows.c_str(), options.raster.msaa);
+              options.warmup, options.antiAliasing.c_str(), options.raster.shadows.c_str(), options.raster.msaa,
+              footprints.front().first.c_str());
   std::printf("%-16s", "scene");
   for (const Variant& model : models) std::printf("  %-26s", model.label.c_str());
   for (const Variant& model : models) {
     if (model.label != "glint") std::printf("  glint/%s", model.label.c_str());
+  }
+  for (std::size_t k = 1; k < footprints.size(); ++k) {
+    std::printf("  glint[%s]/cook-torrance", footprints[k].first.c_str());
   }
   std::printf("\n");
   for (const auto& entry : report["scenes"]) {
@@ -230,9 +265,20 @@ void runBench(const BenchOptions& options) {
       std::printf("  %*.2fx", static_cast<int>(6 + model.label.size()) - 1,
                   entry["ratio_glint_" + model.label].get<double>());
     }
+    for (std::size_t k = 1; k < footprints.size(); ++k) {
+      const std::string label = "glint[" + footprints[k].first + "]";
+      std::printf("  %*.2fx", static_cast<int>(label.size() + 13) - 1,
+                  entry["ratio_" + label + "_cook-torrance"].get<double>());
+    }
     std::printf("\n");
   }
   std::printf("glint / cook-torrance: mean %.2fx, highest %.2fx, highest / mean %.2f\n", mean, highest, highest / mean);
+  for (std::size_t k = 1; k < footprints.size(); ++k) {
+    const std::string label = "glint[" + footprints[k].first + "]";
+    std::printf("%s / cook-torrance: mean %.2fx, highest %.2fx\n", label.c_str(),
+                report[label + "_cook-torrance"]["mean_ratio"].get<double>(),
+                report[label + "_cook-torrance"]["max_ratio"].get<double>());
+  }
 }
 
 }  // namespace
@@ -256,6 +302,7 @@ void registerBenchCommand(CLI::App& app) {
                     "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
                     "multiple-scattering compensation (glint-gltf)");
   options->raster.addTo(*command);
+  options->footprint.addTo(*command, true);
   command->add_flag("--feature-cost", options->featureCost,
                     "Also time glint without shadows (glint-no-shadows), at one sample a pixel (glint-msaa1) and "
                     "with its shadow maps drawn again every frame, as when a light moves (glint-moving-lights), and "

@@ -29,6 +29,7 @@ struct RenderOptions {
   float exposure = 1.0f;
   OrbitOptions orbit;
   RasterOptions raster;
+  FootprintOptions footprint;
 };
 
 void runRender(const RenderOptions& options) {
@@ -70,6 +71,7 @@ void runRender(const RenderOptions& options) {
   frame.normalMapFinestLevel = options.reference != 0;
   frame.filterScale = options.aaKernel;
   options.raster.applyTo(frame, renderer);
+  frame.footprintPolicy = options.footprint.policy();
   const std::vector<scene::Camera> cameras =
       options.orbit.cameras(options.scene.findCamera(scene), orbitPivot(scene, options.scene.cameraOptions));
   const int frames = static_cast<int>(cameras.size());
@@ -94,8 +96,11 @@ void runRender(const RenderOptions& options) {
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
-  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
-               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+  // The footprint policy is named when it is not the paper's.
+  const std::string footprint = footprintPolicyName(frame.footprintPolicy);
+  const std::string policy = footprint == "exact" ? "" : ", footprint " + footprint;
+  std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s%s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
+               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf), policy.c_str(),
                gl::toString(antiAliasing), frame.shadows ? "on" : "off", frame.msaa, seconds,
                gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());
@@ -130,6 +135,7 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--exposure", options->exposure, "Exposure multiplier for PNG output")->capture_default_str();
   options->orbit.addTo(*command);
   options->raster.addTo(*command);
+  options->footprint.addTo(*command, false);
   command->callback([options] { runRender(*options); });
 }
 

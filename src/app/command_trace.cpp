@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 
 #include "app/commands.h"
+#include "app/raster_options.h"
 #include "app/scene_options.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
@@ -38,6 +39,7 @@ struct TraceOptions {
   float exposure = 1.0f;
   int threads = 0;
   OrbitOptions orbit;
+  FootprintOptions footprint;
 };
 
 // The BRDF names are the real-time renderer's (one list of names); the tracer has both models.
@@ -97,6 +99,7 @@ void runTrace(const TraceOptions& options) {
   settings.directOnly = options.directOnly;
   settings.pixelCentres = options.pixelCentres;
   settings.normalMapFiltering = !options.unfilteredNormalMaps;
+  settings.footprintPolicy = options.footprint.policy();
   trace::validateTraceSettings(settings);
   const std::filesystem::path output =
       options.output.empty() ? options.scene.outputNamedAfterScene(".exr") : options.output;
@@ -147,8 +150,10 @@ void runTrace(const TraceOptions& options) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
+  const std::string footprint = footprintPolicyName(settings.footprintPolicy);
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
-                               ? options.brdf + ", " + trace::glintSamplerName(settings.sampler) + " sampler"
+                               ? options.brdf + (footprint == "exact" ? "" : ", footprint " + footprint) + ", " +
+                                     trace::glintSamplerName(settings.sampler) + " sampler"
                                : options.brdf;
   const std::string paths =
       settings.directOnly ? std::string("direct light only") : "max depth " + std::to_string(settings.maxDepth);
@@ -189,6 +194,7 @@ void registerTraceCommand(CLI::App& app) {
   command->add_flag("--unfiltered-normal-maps", options->unfilteredNormalMaps,
                     "Glint layers read the filtered normal texture only, not the normal map's slope variance (as "
                     "glint render --aa ggaa or none)");
+  options->footprint.addTo(*command, false);
   command->add_option("--exposure", options->exposure, "Exposure multiplier for the PNG preview")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "Worker threads (0: all cores); the image does not depend on it")

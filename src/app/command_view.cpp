@@ -39,6 +39,7 @@ struct ViewOptions {
   std::string antiAliasing = "ggaa+lean";
   bool hidePanel = false;  // start without the panel (H shows it)
   RasterOptions raster;
+  FootprintOptions footprint;
 };
 
 // What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
@@ -226,6 +227,7 @@ void runView(const ViewOptions& options) {
   if (!options.screenshot.empty() && options.frames == 0) {
     throw Error("--screenshot needs --frames N (the screenshot is of frame N)");
   }
+  const FootprintPolicy footprintPolicy = options.footprint.policy();  // refused before a window opens
   const scene::Scene scene = options.scene.loadScene();
   const Dictionary dictionary = options.scene.loadDictionary();
   gl::WindowContext window(options.width, options.height, "glint view: " + options.scene.scene);
@@ -235,6 +237,7 @@ void runView(const ViewOptions& options) {
   printWarnings(renderer.warnings());
   gl::FrameSettings startSettings;  // --shadows, --shadow-cascades and --msaa; the panel changes the first and last
   options.raster.applyTo(startSettings, renderer);
+  startSettings.footprintPolicy = footprintPolicy;
   const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
@@ -290,6 +293,7 @@ void runView(const ViewOptions& options) {
     frame.shadows = frameControls.shadows;
     frame.shadowCascades = startSettings.shadowCascades;
     frame.msaa = 1 << frameControls.msaa;
+    frame.footprintPolicy = startSettings.footprintPolicy;
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -370,6 +374,7 @@ void registerViewCommand(CLI::App& app) {
                       "With --frames N: write frame N as the window shows it (the panel too, unless hidden) to a PNG");
   command->add_flag("--hide-panel", options->hidePanel, "Start with the panel hidden (H shows and hides it)");
   options->raster.addTo(*command);
+  options->footprint.addTo(*command, false);
   command->callback([options] { runView(*options); });
 }
 

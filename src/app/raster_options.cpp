@@ -4,6 +4,40 @@
 
 namespace glint::app {
 
+void FootprintOptions::addTo(CLI::App& command, bool several) {
+  const std::string help =
+      "Glint pixel footprint: exact (the paper's), or aniso=A (anisotropy at most A), cells=K (each walked "
+      "level at most K cells, K >= 12), drop=W (the coarser level skipped below blend weight W), joined by "
+      "commas";
+  CLI::Option* option = command.add_option(
+      "--footprint", policies,
+      several ? help + "; repeat it to measure several policies in the same run" : help);
+  option->allow_extra_args(false);
+  if (!several) option->expected(1);
+}
+
+std::vector<std::pair<std::string, FootprintPolicy>> FootprintOptions::all() const {
+  std::vector<std::pair<std::string, FootprintPolicy>> result;
+  for (const std::string& text : policies) {
+    try {
+      const FootprintPolicy policy = footprintPolicyFromString(text);
+      for (const auto& [name, earlier] : result) {
+        if (name == footprintPolicyName(policy)) throw Error("policy '" + text + "' is given twice");
+      }
+      result.emplace_back(footprintPolicyName(policy), policy);
+    } catch (const Error& error) {
+      throw Error(std::string("--footprint: ") + error.what());
+    }
+  }
+  if (result.empty()) result.emplace_back("exact", exactFootprintPolicy());
+  return result;
+}
+
+FootprintPolicy FootprintOptions::policy() const {
+  if (policies.size() > 1) throw Error("--footprint is given more than once");
+  return all().front().second;
+}
+
 void RasterOptions::addTo(CLI::App& command) {
   command.add_option("--shadows", shadows,
                      "Shadows of the lights (shadow maps, filtered edges): on or off")

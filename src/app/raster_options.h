@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +22,19 @@ struct RasterOptions {
   // than on or off, for --shadow-cascades outside 1 to gl::kShadowCascades and for --msaa other
   // than a power of two that this OpenGL draws (the renderer's maxMsaaSamples).
   void applyTo(gl::FrameSettings& frame, const gl::Renderer& renderer) const;
+};
+
+// --footprint: how far the glint footprint may depart from the paper's to bound the cost of its walk
+// (docs/cli.md, docs/antialiasing.md "Footprint policies"). render, view and trace take one policy;
+// bench and aa-error take several (the option repeated), measured in the same run, frame by frame.
+struct FootprintOptions {
+  std::vector<std::string> policies;
+
+  void addTo(CLI::App& command, bool several);
+  // The policy given, exact when none; throws Error with one line naming --footprint.
+  FootprintPolicy policy() const;
+  // Each policy given, in order, with its name; exact alone when none.
+  std::vector<std::pair<std::string, FootprintPolicy>> all() const;
 };
 
 }  // namespace glint::app

@@ -191,6 +191,10 @@ struct ForwardVariant {
   bool shadows;     // SHADOWS: the lights cast shadows (shaders/shadows.glsl)
   int shadowCubes;  // SHADOW_CUBES: bit i, light i's shadow map is a cube
   bool centroid;    // CENTROID_SHADING: several samples a pixel, edges shaded inside the surface
+  // GLINT_FOOTPRINT_POLICY: the words of the glint footprint policy (bits: 1 aniso, 2 cells, 4 drop;
+  // glintPixelFootprint), compiled in so that each policy pays for its own words only and exact for
+  // none; their values come from uGlintFootprintPolicy.
+  int footprintWords;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -216,7 +220,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"SHADOW_CUBES", std::to_string(variant.shadowCubes)},
                         {"SHADOW_CASCADES", std::to_string(kShadowCascades)},
                         {"SHADOW_CASCADE_MARGIN", std::to_string(kCascadeMarginTexels)},
-                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"}});
+                        {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
+                        {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -232,6 +237,11 @@ bool isMasked(const scene::Material& material) { return material.alphaMode == sc
 // The program a material is drawn with. A material without a glint layer is Cook-Torrance under
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
+// The words a footprint policy uses, as GLINT_FOOTPRINT_POLICY's bits.
+int footprintWords(const kernel::GlintFootprintPolicy& policy) {
+  return (policy.maxAnisotropy > 0.0f ? 1 : 0) | (policy.maxCells > 0.0f ? 2 : 0) | (policy.minBlend > 0.0f ? 4 : 0);
+}
+
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
                               int lightCount, int shadowCubes) {
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
@@ -257,7 +267,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         material.specular.multipleScattering,
                         settings.shadows && lightCount > 0,
                         settings.shadows ? shadowCubes : 0,
-                        settings.msaa > 1};
+                        settings.msaa > 1,
+                        model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0};
 }
 
 struct Renderer::Gpu {
@@ -450,6 +461,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     throw Error("multisampling: " + std::to_string(settings.msaa) + " samples a pixel; this OpenGL takes 1, 2, ... " +
                 std::to_string(maxMsaaSamples()) + " (powers of two)");
   }
+  validateFootprintPolicy(settings.footprintPolicy);
   g.resizeTarget(settings.width, settings.height, settings.msaa);
   const GLuint target = g.drawFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, target);
@@ -649,6 +661,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
     glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
     glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
+    glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
+                settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
     glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
     glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
     glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);

@@ -10,6 +10,7 @@
 #include <glad/gl.h>
 #include <glm/glm.hpp>
 
+#include "glint/bsdf.h"
 #include "glint/dictionary.h"
 #include "glint/image_io.h"
 #include "scene/scene.h"
@@ -64,6 +65,9 @@ struct FrameSettings {
   // centre; at most maxMsaaSamples(). Off by default: 4 samples cost llvmpipe 1.5 to 2.3 times the
   // frame (docs/benchmarks.md, "Shadows and anti-aliased edges").
   int msaa = 1;
+  // How the glint footprint may depart from the paper's to bound the cost of its walk (`--footprint`;
+  // docs/antialiasing.md, "Footprint policies"). Exact by default.
+  kernel::GlintFootprintPolicy footprintPolicy = exactFootprintPolicy();
 };
 
 class Renderer {

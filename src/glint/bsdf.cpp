@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -31,6 +32,76 @@ void requireFinite(const char* field, glm::vec2 value) {
 
 }  // namespace
 
+FootprintPolicy exactFootprintPolicy() {
+  FootprintPolicy policy;
+  policy.maxAnisotropy = 0.0f;
+  policy.maxCells = 0.0f;
+  policy.minBlend = 0.0f;
+  return policy;
+}
+
+FootprintPolicy footprintPolicyFromString(const std::string& text) {
+  FootprintPolicy policy = exactFootprintPolicy();
+  if (text == "exact") return policy;
+  const std::string context = "footprint policy '" + text + "': ";
+  if (text.empty()) throw Error(context + "expected exact, or aniso=A, cells=K, drop=W joined by commas");
+  bool seen[3] = {false, false, false};
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string word = text.substr(start, comma - start);
+    start = comma + 1;
+    const std::size_t equals = word.find('=');
+    const std::string name = word.substr(0, equals);
+    const int index = name == "aniso" ? 0 : name == "cells" ? 1 : name == "drop" ? 2 : -1;
+    if (index < 0 || equals == std::string::npos) {
+      throw Error(context + "unknown word '" + word + "' (expected exact, or aniso=A, cells=K, drop=W joined by commas)");
+    }
+    if (seen[index]) throw Error(context + name + " is given twice");
+    seen[index] = true;
+    const std::string number = word.substr(equals + 1);
+    char* end = nullptr;
+    const float value = number.empty() ? std::nanf("") : std::strtof(number.c_str(), &end);
+    if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value)) {
+      throw Error(context + name + " must be a number, got '" + number + "'");
+    }
+    if (index == 0) {
+      if (!(value >= 1.0f && value <= 64.0f)) throw Error(context + "aniso must be in [1, 64], got " + number);
+      policy.maxAnisotropy = value;
+    } else if (index == 1) {
+      if (!(value >= kMinFootprintCells && value <= 1e6f && value == std::floor(value))) {
+        throw Error(context + "cells must be a whole number in [12, 1000000], got " + number);
+      }
+      policy.maxCells = value;
+    } else {
+      if (!(value >= 0.0f && value <= 1.0f)) throw Error(context + "drop must be in [0, 1], got " + number);
+      policy.minBlend = value;
+    }
+  }
+  return policy;
+}
+
+std::string footprintPolicyName(const FootprintPolicy& policy) {
+  std::ostringstream name;
+  const char* separator = "";
+  if (policy.maxAnisotropy > 0.0f) {
+    name << "aniso=" << policy.maxAnisotropy;
+    separator = ",";
+  }
+  if (policy.maxCells > 0.0f) {
+    name << separator << "cells=" << policy.maxCells;
+    separator = ",";
+  }
+  if (policy.minBlend > 0.0f) name << separator << "drop=" << policy.minBlend;
+  return name.str().empty() ? "exact" : name.str();
+}
+
+void validateFootprintPolicy(const FootprintPolicy& policy) {
+  if (policy.maxAnisotropy != 0.0f) requireRange("footprint policy aniso", policy.maxAnisotropy, 1.0f, 64.0f);
+  if (policy.maxCells != 0.0f) requireRange("footprint policy cells", policy.maxCells, kMinFootprintCells, 1e6f);
+  requireRange("footprint policy drop", policy.minBlend, 0.0f, 1.0f);
+}
+
 GlintParameters defaultGlintParameters() {
   GlintParameters p;
   p.alpha = glm::vec2(0.5f);
@@ -44,6 +115,7 @@ GlintParameters defaultGlintParameters() {
   p.ndf = kernel::kNdfBeckmann;
   p.masking = kernel::kMaskingVCavity;
   p.multipleScattering = false;
+  p.footprintPolicy = exactFootprintPolicy();
   return p;
 }
 
@@ -101,6 +173,7 @@ void validateGlintParameters(const GlintParameters& p) {
   requireRange("density_randomisation", p.densityRandomisation, 0.0f, 10.0f);
   requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
   validateTarget(microfacetTarget(p));
+  validateFootprintPolicy(p.footprintPolicy);
 }
 
 void validateFootprint(const SurfaceFootprint& footprint) {

@@ -24,6 +24,23 @@ using Spectrum = glm::vec3;
 using GlintParameters = kernel::GlintParameters;
 using ZirrKaplanyanParameters = kernel::ZirrKaplanyanParameters;
 
+// The renderer's footprint policy (kernel::GlintFootprintPolicy; docs/antialiasing.md, "Footprint
+// policies"), `--footprint` on the command line: "exact" (the paper's footprint, the default), or
+// any of aniso=A, cells=K, drop=W joined by commas.
+using FootprintPolicy = kernel::GlintFootprintPolicy;
+FootprintPolicy exactFootprintPolicy();
+// Throws Error with one line naming the word that is wrong: an unknown word, a repeated one, a value
+// that is not a number or out of range (validateFootprintPolicy).
+FootprintPolicy footprintPolicyFromString(const std::string& text);
+// The policy as footprintPolicyFromString reads it: "exact", or its words in the order aniso, cells,
+// drop.
+std::string footprintPolicyName(const FootprintPolicy& policy);
+// aniso in [1, 64] (0: none), cells in [kMinFootprintCells, 1e6] (0: none), drop in [0, 1].
+void validateFootprintPolicy(const FootprintPolicy& policy);
+// The fewest cells a walk can be bounded by: however large its cells, a footprint's walk may take
+// up to 8.6 steps (kernel::glintWalkBound; glintBoundedFootprint).
+inline constexpr float kMinFootprintCells = 12.0f;
+
 // The reference defaults of method.md section 2.
 GlintParameters defaultGlintParameters();
 // Throws Error naming the first parameter out of range (ranges in docs/conventions.md).

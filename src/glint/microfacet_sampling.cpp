@@ -117,8 +117,7 @@ float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distr
 std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const kernel::GlintParameters& params,
                                           glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy, float& uChoice,
                                           glm::vec2 u) {
-  const kernel::GlintFootprint footprint =
-      kernel::glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
+  const kernel::GlintFootprint footprint = kernel::glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   if (footprint.degenerate) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
   // P22_P = (1 - w) P22_il + w P22_il+1 (method.md 2.3): level il + 1 with probability w.
   int level = kernel::glintLodLevel(footprint);
@@ -136,12 +135,10 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   const kernel::GlintCellGrid grid =
       kernel::glintCellGrid(footprint, kernel::glintWrapUv(uv, dict.numLevels), dict.numLevels, level);
   float weightSum = 0.0f;
-  for (int t = grid.t0; t <= grid.t1; ++t) {
-    const glm::ivec2 row = kernel::glintCellRow(grid, t);
-    for (int s = row.x; s <= row.y; ++s) {
-      const float weight = kernel::glintCellWeight(grid, s, t);
-      if (weight > 0.0f) weightSum += weight;
-    }
+  for (kernel::GlintCellWalk walk = kernel::glintWalkStart(grid); kernel::glintWalkGoing(grid, walk);
+       walk = kernel::glintWalkStep(grid, walk)) {
+    const float weight = kernel::glintWalkOnCell(walk) ? kernel::glintCellWeight(grid, walk.s, walk.t) : 0.0f;
+    if (weight > 0.0f) weightSum += weight;
   }
   if (!(weightSum > 0.0f)) return std::nullopt;  // glintLevelP22 is 0 there too
   const float target = uChoice * weightSum;
@@ -152,17 +149,15 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   float cellWeight = 0.0f;
   float cellStart = 0.0f;
   bool found = false;
-  for (int t = grid.t0; t <= grid.t1 && !found; ++t) {
-    const glm::ivec2 row = kernel::glintCellRow(grid, t);
-    for (int s = row.x; s <= row.y && !found; ++s) {
-      const float weight = kernel::glintCellWeight(grid, s, t);
-      if (weight > 0.0f) {
-        cell = kernel::glintCellAt(grid, s, t);
-        cellWeight = weight;
-        cellStart = before;
-        found = target < before + weight;
-        before += weight;
-      }
+  for (kernel::GlintCellWalk walk = kernel::glintWalkStart(grid); kernel::glintWalkGoing(grid, walk) && !found;
+       walk = kernel::glintWalkStep(grid, walk)) {
+    const float weight = kernel::glintWalkOnCell(walk) ? kernel::glintCellWeight(grid, walk.s, walk.t) : 0.0f;
+    if (weight > 0.0f) {
+      cell = kernel::glintCellAt(grid, walk.s, walk.t);
+      cellWeight = weight;
+      cellStart = before;
+      found = target < before + weight;
+      before += weight;
     }
   }
   uChoice = remapUniform(target, cellStart, cellWeight);

@@ -84,8 +84,9 @@ std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoic
 }
 
 SceneMaterials::SceneMaterials(const scene::Scene& scene, const Dictionary& dictionary, SpecularModel model,
-                               GlintSampler sampler, bool normalMapFiltering)
-    : scene_(scene), dictionary_(dictionary), model_(model), sampler_(sampler) {
+                               GlintSampler sampler, bool normalMapFiltering, FootprintPolicy footprintPolicy)
+    : scene_(scene), dictionary_(dictionary), model_(model), sampler_(sampler), footprintPolicy_(footprintPolicy) {
+  validateFootprintPolicy(footprintPolicy);
   textures_.reserve(scene.textures.size());
   for (const scene::Texture& t : scene.textures) textures_.emplace_back(t);
   normalMapMoments_.resize(scene.materials.size());
@@ -203,6 +204,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
 
   // The glint layer's parameters, textures applied as in the shader.
   GlintParameters params = glintParameters(layer, m.specular);
+  params.footprintPolicy = footprintPolicy_;
   params.alpha = glm::clamp(layer.alpha * texture(layer.roughnessTexture, uv, footprint).r, 0.01f, 2.0f);
   if (layer.logDensityTexture >= 0) {
     params.logDensity = glm::mix(layer.logDensityRange.x, layer.logDensityRange.y,

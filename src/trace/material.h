@@ -96,8 +96,10 @@ class SceneMaterials {
   // Decodes the scene's textures into mip chains. The scene and the dictionary must outlive it.
   // With normalMapFiltering, glint layers on normal-mapped materials read the normal map's slope
   // moments (TraceSettings::normalMapFiltering).
+  // The glint layers' footprints follow footprintPolicy (TraceSettings::footprintPolicy).
   SceneMaterials(const scene::Scene& scene, const Dictionary& dictionary, SpecularModel model,
-                 GlintSampler sampler = GlintSampler::Mixture, bool normalMapFiltering = false);
+                 GlintSampler sampler = GlintSampler::Mixture, bool normalMapFiltering = false,
+                 FootprintPolicy footprintPolicy = exactFootprintPolicy());
 
   // The material at a surface point seen from direction `towardsViewer` (world, unit), with the
   // mesh-uv derivatives of the footprint (textures' level of detail; times the layer's uv_scale,
@@ -120,6 +122,7 @@ class SceneMaterials {
   const Dictionary& dictionary_;
   SpecularModel model_;
   GlintSampler sampler_;
+  FootprintPolicy footprintPolicy_;
   std::vector<MipTexture> textures_;
   // Per material, the slope moments of its normal map when it has one and a glint layer, and
   // normal-map filtering is on: first (E[sx], E[sy], E[sx^2]) and second (E[sy^2], E[sx sy], 0).

@@ -42,6 +42,9 @@ struct TraceSettings {
   // by the power heuristic. Off: only BSDF samples find the environment (what the distribution
   // gains is measured against this, docs/trace.md).
   bool sampleEnvironment = true;
+  // How the glint footprint may depart from the paper's to bound its cost (`--footprint`): the
+  // rasteriser's FrameSettings::footprintPolicy, the same P-SDF and sampler.
+  FootprintPolicy footprintPolicy = exactFootprintPolicy();
   scene::Camera camera;
 };
 

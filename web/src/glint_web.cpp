@@ -236,7 +236,7 @@ EMSCRIPTEN_KEEPALIVE void glint_reset_camera() {
   if (page.scene) page.frame.camera = page.scene->cameras.at("default");
 }
 
-// The WebGL2 half of the CPU-versus-GPU kernel test: `count` cases of seven vec4s each (the layout
+// The WebGL2 half of the CPU-versus-GPU kernel test: `count` cases of eight vec4s each (the layout
 // of shaders/kernel_eval.glsl's KernelInput) evaluated by shaders/kernel_eval.frag, one per pixel
 // of an RGBA32F target, into `out` (four floats a case: f, D, P22, Cook-Torrance f). With
 // `filtered` the P-SDF is the anti-aliased one.
@@ -245,8 +245,8 @@ EMSCRIPTEN_KEEPALIVE int glint_evaluate_kernel(const float* inputs, int count, i
     if (!page.dictionary) throw Error("the dictionary is not loaded");
     constexpr int kCasesPerRow = 256;
     const int rows = (count + kCasesPerRow - 1) / kCasesPerRow;
-    std::vector<float> padded(static_cast<std::size_t>(rows) * kCasesPerRow * 28, 0.0f);
-    std::copy_n(inputs, static_cast<std::size_t>(count) * 28, padded.data());
+    std::vector<float> padded(static_cast<std::size_t>(rows) * kCasesPerRow * 32, 0.0f);
+    std::copy_n(inputs, static_cast<std::size_t>(count) * 32, padded.data());
     gl::ShaderProgram program({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "kernel_eval.frag"}},
                               {{"GLINT_FILTERED", filtered ? "1" : "0"}});
     gl::DictionaryTexture dictionary(*page.dictionary);
@@ -255,8 +255,8 @@ EMSCRIPTEN_KEEPALIVE int glint_evaluate_kernel(const float* inputs, int count, i
     GLuint framebuffer = 0;
     GLuint vertexArray = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &input);
-    glTextureStorage2D(input, 1, GL_RGBA32F, 7 * kCasesPerRow, rows);
-    glTextureSubImage2D(input, 0, 0, 0, 7 * kCasesPerRow, rows, GL_RGBA, GL_FLOAT, padded.data());
+    glTextureStorage2D(input, 1, GL_RGBA32F, 8 * kCasesPerRow, rows);
+    glTextureSubImage2D(input, 0, 0, 0, 8 * kCasesPerRow, rows, GL_RGBA, GL_FLOAT, padded.data());
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, GL_RGBA32F, kCasesPerRow, rows);
     glCreateFramebuffers(1, &framebuffer);

@@ -24,6 +24,16 @@ GLINT_CONST float kEwaFilterFloor = 0.13533528f;  // exp(-2)
 // (s | t << 16) collision-free over the whole period; see glintFootprintPeriod().
 GLINT_CONST uint kCellIndexMask = 0xFFFFu;
 
+// How far the renderer may depart from the paper's pixel footprint to bound the cost of the walk
+// over its cells (docs/antialiasing.md, "Footprint policies"): a setting of the renderer, not of the
+// material, shared by the P-SDF and the host's sampler (glintPixelFootprint), so that both keep
+// seeing the same cells. All zero is the paper's footprint (`exact`), bit for bit.
+struct GlintFootprintPolicy {
+  float maxAnisotropy;  // aniso=A: a second anisotropy clamp, min(A, the material's); 0: none
+  float maxCells;       // cells=K: the walk of each level visits at most K cells; 0: no bound
+  float minBlend;       // drop=W: the coarser level is skipped below this blend weight; 0: never
+};
+
 // The material inputs of the model (method.md section 2), validated by the host.
 struct GlintParameters {
   vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
@@ -39,6 +49,7 @@ struct GlintParameters {
   // Adds the smooth target's multiple-scattering compensation lobe (multiple_scattering.h); the
   // BRDF's users add it (the host's BSDFs, the renderer), the P-SDF does not see it.
   bool multipleScattering;
+  GlintFootprintPolicy footprintPolicy;  // the renderer's, not the material's: zero is the paper's
 };
 
 // The pixel footprint as an ellipse in uv space with its continuous level of detail.
@@ -446,6 +457,62 @@ GLINT_FN ivec2 glintCellAt(GlintCellGrid grid, int x, int y) {
   return grid.transposed ? ivec2(y, x) : ivec2(x, y);
 }
 
+// The walk over a level's cells, one step at a time: the cells of line t from row.x to row.y, then
+// the next line. A line that misses the ellipse (row.y < row.x) still takes one step. The P-SDF
+// (glintLevelP22) and the host's sampler walk with these, and the cost bound of the `cells`
+// footprint policy (glintWalkBound) bounds the steps they take.
+struct GlintCellWalk {
+  int s;      // the current cell along the line, in walk coordinates
+  int t;      // the current line
+  ivec2 row;  // the line's first and last cell
+};
+
+GLINT_FN GlintCellWalk glintWalkStart(GlintCellGrid grid) {
+  GlintCellWalk walk;
+  walk.t = grid.t0;
+  walk.row = glintCellRow(grid, walk.t);
+  walk.s = walk.row.x;
+  return walk;
+}
+
+GLINT_FN bool glintWalkGoing(GlintCellGrid grid, GlintCellWalk walk) {
+  return walk.t <= grid.t1;
+}
+
+// Whether the step is on a cell (not on a line that misses the ellipse).
+GLINT_FN bool glintWalkOnCell(GlintCellWalk walk) {
+  return walk.s <= walk.row.y;
+}
+
+GLINT_FN GlintCellWalk glintWalkStep(GlintCellGrid grid, GlintCellWalk walk) {
+  GlintCellWalk next = walk;
+  next.s += 1;
+  if (next.s > next.row.y) {
+    next.t += 1;
+    next.row = glintCellRow(grid, next.t);
+    next.s = next.row.x;
+  }
+  return next;
+}
+
+// A bound on the steps of the walk of a footprint on cells of 1 / cellsPerUv uv units, from the
+// ellipse that glintCellGrid walks (its axes a0, a1 in cells, pbrt-v3's +1 on the quadratic form's
+// diagonal). That form's determinant is F = (|a0|^2 + 1)(|a1|^2 + 1), its area pi sqrt(F); lines
+// run along its longer extent, P = min(A, C) the smaller diagonal entry, so the walk has at most
+// 2 sqrt(P) + 1 lines (its half height is sqrt(P)), the longest is 2 sqrt(F / P) cells long, and a
+// line of chord c holds at most c + 1 cells. The chords are a unimodal function of the line, so
+// their sum over the lines is at most the area plus the longest chord:
+//   steps <= pi sqrt(F) + 2 sqrt(F / P) + (2 sqrt(P) + 1 + 2 delta)(1 + 2 delta),
+// each line and each end of a line allowed delta = 0.05 cells of rounding (the walk's float
+// coordinates reach 2^16 cells, where a float's spacing is 2^-7). Increasing in cellsPerUv.
+GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
+  vec2 a0 = footprint.majorAxis * cellsPerUv;
+  vec2 a1 = footprint.minorAxis * cellsPerUv;
+  float determinant = (dot(a0, a0) + 1.0f) * (dot(a1, a1) + 1.0f);
+  float across = min(a0.y * a0.y + a1.y * a1.y, a0.x * a0.x + a1.x * a1.x) + 1.0f;
+  return 3.14159265f * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
+}
+
 // The EWA weight of the cell at walk coordinates (s, t) (method.md 2.4): exp(-2 r^2) - exp(-2) for
 // r^2 < 1, else 0. The quadratic form is symmetric in the transposition, so the weights are the
 // cells'. Each cell takes its own exp: stepping the Gaussian along a line by forward differencing
@@ -506,18 +573,11 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // line after line. Where branches are predicated (llvmpipe) every iteration pays for the move to
   // the next line; measured, the single loop still costs less (docs/benchmarks.md, "Fifth round").
   // The cells, their weights and their order are those of the nested loops, bit for bit.
-  int t = grid.t0;
-  ivec2 row = glintCellRow(grid, t);
-  int s = row.x;
-  while (t <= grid.t1) {
-    float weight = s <= row.y ? glintCellWeight(grid, s, t) : 0.0f;  // 0: an empty line
-    ivec2 index = glintCellAt(grid, s, t);
-    s += 1;
-    if (s > row.y) {
-      t += 1;
-      row = glintCellRow(grid, t);
-      s = row.x;
-    }
+  GlintCellWalk walk = glintWalkStart(grid);
+  while (glintWalkGoing(grid, walk)) {
+    float weight = glintWalkOnCell(walk) ? glintCellWeight(grid, walk.s, walk.t) : 0.0f;  // 0: an empty line
+    ivec2 index = glintCellAt(grid, walk.s, walk.t);
+    walk = glintWalkStep(grid, walk);
     if (weight > 0.0f) {
       weightSum += weight;
       GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
@@ -585,13 +645,89 @@ GLINT_FN float glintLodBlend(GlintFootprint footprint) {
   return footprint.lod - float(glintLodLevel(footprint));
 }
 
+// The `cells=K` policy's level of detail: the smallest continuous level x* at which the walk is
+// bounded by K (glintWalkBound(x*) <= K, by bisection; the bound falls as the level rises), and the
+// footprint's LOD raised to at least x* + 1, so that both walked levels, floor(lod) and the next,
+// lie above x*. x* + 1 rather than ceil(x*): the LOD must vary continuously with the footprint, or
+// the P-SDF would jump where x* crosses an integer. The cells are larger and each holds
+// proportionally more microfacets (glintLevelThreshold), so the microfacets seen are unchanged.
+// Past the top level, the footprint is shrunk instead, and the area it loses added to the density,
+// as glintFootprint's size clamp does. The bound needs K >= 12 (the host's check): the walk of any
+// footprint on cells much larger than it is still bounded by 8.6.
+GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float maxCells, int numLevels) {
+  float top = float(numLevels - 1);
+  float low = footprint.lod - 1.0f;  // where the walk has at least twice the exact walk's cells across
+  if (glintWalkBound(footprint, exp2(top - low)) <= maxCells) {
+    return footprint;  // x* <= lod - 1: the LOD stays
+  }
+  float high = footprint.lod + 10.0f;  // an anisotropy of 64 spans 1/16 of a cell there: bound 8.6
+  for (int i = 0; i < 12; ++i) {
+    float middle = 0.5f * (low + high);
+    if (glintWalkBound(footprint, exp2(top - middle)) <= maxCells) {
+      high = middle;
+    } else {
+      low = middle;
+    }
+  }
+  float lod = max(footprint.lod, high + 1.0f);
+  if (lod > top) {
+    float shrink = exp2(top - lod);
+    footprint.majorAxis = footprint.majorAxis * shrink;
+    footprint.minorAxis = footprint.minorAxis * shrink;
+    footprint.logDensity = footprint.logDensity + 1.38629436f * (lod - top);  // 2 ln 2 per level
+    lod = top;
+  }
+  footprint.lod = lod;
+  return footprint;
+}
+
+// The words of the policy that glintPixelFootprint applies, as bits: 1 aniso, 2 cells, 4 drop. The
+// renderer compiles each program with GLINT_FOOTPRINT_POLICY set to the words its policy uses
+// (0 for exact), so that a policy pays for its own words only and the paper's footprint for none
+// (llvmpipe runs both sides of a branch); C++ and programs that leave it undefined apply all three,
+// each of which does nothing when its field of params.footprintPolicy is zero.
+#if defined(__cplusplus) || !defined(GLINT_FOOTPRINT_POLICY)
+#define GLINT_FOOTPRINT_WORDS 7
+#else
+#define GLINT_FOOTPRINT_WORDS GLINT_FOOTPRINT_POLICY
+#endif
+
+// The pixel's footprint under the renderer's footprint policy (GlintFootprintPolicy;
+// docs/antialiasing.md, "Footprint policies"): aniso=A clamps the anisotropy at min(A, the
+// material's), cells=K raises the LOD until each walked level has at most K cells
+// (glintBoundedFootprint), drop=W rounds the LOD down to its level when the next level's blend
+// weight is below W, so that level alone is walked. The P-SDF and the host's sampler both take
+// their footprint from here. With the zero policy it is glintFootprint's, bit for bit.
+GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParameters params, int numLevels) {
+  GlintFootprintPolicy policy = params.footprintPolicy;
+  float maxAnisotropy = params.maxAnisotropy;
+#if (GLINT_FOOTPRINT_WORDS & 1) != 0
+  maxAnisotropy = policy.maxAnisotropy > 0.0f ? min(params.maxAnisotropy, policy.maxAnisotropy) : maxAnisotropy;
+#endif
+  GlintFootprint footprint = glintFootprint(duvdx, duvdy, maxAnisotropy, params.logDensity, numLevels);
+  if (footprint.degenerate) {
+    return footprint;
+  }
+#if (GLINT_FOOTPRINT_WORDS & 2) != 0
+  if (policy.maxCells > 0.0f) {
+    footprint = glintBoundedFootprint(footprint, policy.maxCells, numLevels);
+  }
+#endif
+#if (GLINT_FOOTPRINT_WORDS & 4) != 0
+  float blend = footprint.lod - floor(footprint.lod);
+  if (blend > 0.0f && blend < policy.minBlend) {
+    footprint.lod = floor(footprint.lod);
+  }
+#endif
+  return footprint;
+}
+
 // The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
 // slope of the set, in .w; .rgb weighted by the cells' colours (equal to .w unless
 // params.colouredCells).
 GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                  GlintSlopeSet slopes) {
-  GlintFootprint footprint =
-      glintFootprint(duvdx, duvdy, params.maxAnisotropy, params.logDensity, dict.numLevels);
+  GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   GlintP22Set p22;
   if (footprint.degenerate) {
     for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
