@@ -951,15 +951,22 @@ TEST(TraceGl, NormalMapFilteringMakesTheRenderersAgreeOnNormalMappedGlints) {
 // x in [0.05, 0.95], z in [-0.45, 0.45] on the floor ([0.2, 0.8] and [-0.3, 0.3] for the
 // directional one). The camera looks straight down at (0.5, 0, 0), the middle of the shadow,
 // past the plate's edge.
-scene::Scene occluderScene(scene::Light::Type type) {
+// A grey floor of half side floorHalf about the origin and a square plate of half side plateHalf
+// centred at plateCentre, both horizontal, one rough grey material, no lights or camera yet.
+scene::Scene floorAndPlate(const std::string& name, float floorHalf, glm::vec3 plateCentre, float plateHalf) {
   scene::Scene s;
-  s.name = "occluder";
+  s.name = name;
   scene::Material grey;
   grey.baseColour = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
   grey.roughness = 0.6f;
   s.materials.push_back(grey);
-  s.meshes.push_back(scene::makeQuad("floor", 0, glm::vec3(0.0f), {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 2.0f}));
-  s.meshes.push_back(scene::makeQuad("plate", 0, glm::vec3(0.0f, 1.0f, 0.0f), {0.3f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.3f}));
+  s.meshes.push_back(scene::makeQuad("floor", 0, glm::vec3(0.0f), {floorHalf, 0.0f, 0.0f}, {0.0f, 0.0f, floorHalf}));
+  s.meshes.push_back(scene::makeQuad("plate", 0, plateCentre, {plateHalf, 0.0f, 0.0f}, {0.0f, 0.0f, plateHalf}));
+  return s;
+}
+
+scene::Scene occluderScene(scene::Light::Type type) {
+  scene::Scene s = floorAndPlate("occluder", 2.0f, glm::vec3(0.0f, 1.0f, 0.0f), 0.3f);
   scene::Light light;
   light.type = type;
   light.position = glm::vec3(-1.0f, 3.0f, 0.0f);
@@ -1087,14 +1094,7 @@ TEST(TraceGl, CascadedShadowMapsResolveASmallOccluderInALargeScene) {
   // relMSE 3.6e-4 with the cascades, 1.4e-2 with one map (--shadow-cascades 1), both BRDFs (the
   // grey has no glint layer). Bound: about three times the cascades' figure, ten times below the
   // one map's, so that the test fails without cascades.
-  scene::Scene s;
-  s.name = "large floor";
-  scene::Material grey;
-  grey.baseColour = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-  grey.roughness = 0.6f;
-  s.materials.push_back(grey);
-  s.meshes.push_back(scene::makeQuad("floor", 0, glm::vec3(0.0f), {100.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 100.0f}));
-  s.meshes.push_back(scene::makeQuad("plate", 0, glm::vec3(0.0f, 0.1f, 0.1f), {0.1f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.1f}));
+  scene::Scene s = floorAndPlate("large floor", 100.0f, glm::vec3(0.0f, 0.1f, 0.1f), 0.1f);
   scene::Light light;
   light.type = scene::Light::Type::Directional;
   light.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));  // the plate's shadow is centred on the origin
