@@ -234,14 +234,14 @@ ShaderProgram depthPrepassProgram(bool alphaMask, bool linearDepth) {
 
 bool isMasked(const scene::Material& material) { return material.alphaMode == scene::Material::AlphaMode::Mask; }
 
-// The program a material is drawn with. A material without a glint layer is Cook-Torrance under
-// every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
-// glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 // The words a footprint policy uses, as GLINT_FOOTPRINT_POLICY's bits.
 int footprintWords(const kernel::GlintFootprintPolicy& policy) {
   return (policy.maxAnisotropy > 0.0f ? 1 : 0) | (policy.maxCells > 0.0f ? 2 : 0) | (policy.minBlend > 0.0f ? 4 : 0);
 }
 
+// The program a material is drawn with. A material without a glint layer is Cook-Torrance under
+// every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
+// glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
                               int lightCount, int shadowCubes) {
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;

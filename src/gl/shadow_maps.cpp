@@ -13,15 +13,24 @@ namespace glint::gl {
 
 namespace {
 
+// The 8 corners of a box, or of a view frustum's slice: bit 0 picks x (left, right), bit 1 y
+// (bottom, top), bit 2 z (the box's min and max, the slice's near and far face).
+using Hexahedron = std::array<glm::vec3, 8>;
+
+Hexahedron boxCorners(glm::vec3 boundsMin, glm::vec3 boundsMax) {
+  Hexahedron corners;
+  for (int c = 0; c < 8; ++c) {
+    corners[static_cast<std::size_t>(c)] = glm::vec3((c & 1) ? boundsMax.x : boundsMin.x, (c & 2) ? boundsMax.y : boundsMin.y,
+                                                     (c & 4) ? boundsMax.z : boundsMin.z);
+  }
+  return corners;
+}
+
 // The bounds' farthest corner from a point: the far plane of a positional light's map, a little
 // beyond so that the farthest surface still stores a depth below the cleared 1.
 float farthestCorner(glm::vec3 point, glm::vec3 boundsMin, glm::vec3 boundsMax) {
   float farthest = 0.0f;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 c((corner & 1) ? boundsMax.x : boundsMin.x, (corner & 2) ? boundsMax.y : boundsMin.y,
-                      (corner & 4) ? boundsMax.z : boundsMin.z);
-    farthest = std::max(farthest, glm::length(c - point));
-  }
+  for (const glm::vec3& c : boxCorners(boundsMin, boundsMax)) farthest = std::max(farthest, glm::length(c - point));
   return std::max(1.01f * farthest, 1e-3f);
 }
 
@@ -36,19 +45,6 @@ glm::vec3 upFor(glm::vec3 axis) {
 bool usesCube(const scene::Light& light) {
   return light.type == scene::Light::Type::Point ||
          (light.type == scene::Light::Type::Spot && light.outerConeAngle > kWidestSpotMap);
-}
-
-// The 8 corners of a box, or of a view frustum's slice: bit 0 picks x (left, right), bit 1 y
-// (bottom, top), bit 2 z (the box's min and max, the slice's near and far face).
-using Hexahedron = std::array<glm::vec3, 8>;
-
-Hexahedron boxCorners(glm::vec3 boundsMin, glm::vec3 boundsMax) {
-  Hexahedron corners;
-  for (int c = 0; c < 8; ++c) {
-    corners[static_cast<std::size_t>(c)] = glm::vec3((c & 1) ? boundsMax.x : boundsMin.x, (c & 2) ? boundsMax.y : boundsMin.y,
-                                                     (c & 4) ? boundsMax.z : boundsMin.z);
-  }
-  return corners;
 }
 
 // A convex hexahedron's faces, each as its corners in order around it.

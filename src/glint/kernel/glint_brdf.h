@@ -510,7 +510,7 @@ GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
   vec2 a1 = footprint.minorAxis * cellsPerUv;
   float determinant = (dot(a0, a0) + 1.0f) * (dot(a1, a1) + 1.0f);
   float across = min(a0.y * a0.y + a1.y * a1.y, a0.x * a0.x + a1.x * a1.x) + 1.0f;
-  return 3.14159265f * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
+  return kPi * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
 }
 
 // The EWA weight of the cell at walk coordinates (s, t) (method.md 2.4): exp(-2 r^2) - exp(-2) for
@@ -714,7 +714,7 @@ GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParamet
   }
 #endif
 #if (GLINT_FOOTPRINT_WORDS & 4) != 0
-  float blend = footprint.lod - floor(footprint.lod);
+  float blend = glintLodBlend(footprint);
   if (blend > 0.0f && blend < policy.minBlend) {
     footprint.lod = floor(footprint.lod);
   }
