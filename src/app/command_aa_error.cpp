@@ -29,6 +29,9 @@ struct AaErrorOptions {
   float aaKernel = 1.0f;
   bool json = false;
   FootprintOptions footprint;
+  // Which footprint draws the reference: "paper" (the paper's, for every policy) or "same" (each
+  // policy's own, which asks whether a policy's centre frame shows the pixel's mean of its own glints).
+  std::string referenceFootprint = "paper";
 };
 
 using Frame = std::vector<double>;  // RGB radiance, pixel after pixel
@@ -65,14 +68,74 @@ std::vector<std::size_t> glintValues(const Frame& referenceLayer) {
   return values;
 }
 
-struct ModeResult {
-  double relativeRmse;     // against the reference, relative to the reference's mean
-  double relativeFlicker;  // mean per-pixel temporal standard deviation over the mean radiance
+// The reference under a footprint policy: the mean of N jittered frames of the 2020 model (glint
+// render --reference N), and of their glint layers, which say where the metrics look.
+struct Reference {
+  Frame radiance;
+  Frame layer;
 };
 
-// The reference is drawn with the paper's footprint whatever --footprint says: a policy's error
-// includes the different glints it shows. Each policy is measured on the same frames (the same
-// jitters and drift), one after the other.
+Reference drawReference(gl::Renderer& renderer, gl::FrameSettings frame, const AaErrorOptions& options,
+                        const FootprintPolicy& policy) {
+  frame.antiAliasing = gl::AntiAliasing::None;
+  frame.normalMapFinestLevel = true;
+  frame.footprintPolicy = policy;
+  Reference reference{Frame(static_cast<std::size_t>(frame.width) * frame.height * 3, 0.0), {}};
+  reference.layer = reference.radiance;
+  for (int k = 0; k < options.reference; ++k) {
+    frame.jitter = gl::supersampleJitter(k);
+    const Frame radiance = renderFrame(renderer, frame);
+    const Frame layer = glintLayer(renderer, frame, radiance);
+    for (std::size_t i = 0; i < radiance.size(); ++i) {
+      reference.radiance[i] += radiance[i] / options.reference;
+      reference.layer[i] += layer[i] / options.reference;
+    }
+  }
+  return reference;
+}
+
+// The mean of a frame over the given values.
+double meanOver(const Frame& frame, const std::vector<std::size_t>& values) {
+  double mean = 0.0;
+  for (std::size_t i : values) mean += frame[i] / static_cast<double>(values.size());
+  return mean;
+}
+
+// One mode's error against the reference (relative to that reference's mean) and its flicker
+// (relative to the paper's reference's mean, so that the policies' flickers divide by one figure).
+nlohmann::json measureMode(gl::Renderer& renderer, gl::FrameSettings frame, const AaErrorOptions& options,
+                           const std::vector<std::size_t>& values, const Frame& reference, double referenceMean,
+                           double flickerMean) {
+  frame.normalMapFinestLevel = false;
+  frame.jitter = glm::vec2(0.0f);
+  const Frame centre = renderFrame(renderer, frame);
+  double squared = 0.0;
+  for (std::size_t i : values) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
+  const double relativeRmse = std::sqrt(squared / static_cast<double>(values.size())) / referenceMean;
+  // Sub-pixel drift: the camera moves one pixel along a slanted line over the sequence.
+  std::vector<double> sum(centre.size(), 0.0), sumSquares(centre.size(), 0.0);
+  for (int k = 0; k < options.sequence; ++k) {
+    const float t = (static_cast<float>(k) + 0.5f) / static_cast<float>(options.sequence) - 0.5f;
+    frame.jitter = t * glm::vec2(1.0f, 0.37f);
+    const Frame layer = renderFrame(renderer, frame);
+    for (std::size_t i = 0; i < layer.size(); ++i) {
+      sum[i] += layer[i];
+      sumSquares[i] += layer[i] * layer[i];
+    }
+  }
+  double deviation = 0.0;
+  for (std::size_t i : values) {
+    const double m = sum[i] / options.sequence;
+    deviation += std::sqrt(std::max(0.0, sumSquares[i] / options.sequence - m * m));
+  }
+  const double relativeFlicker = deviation / static_cast<double>(values.size()) / flickerMean;
+  return {{"relative_rmse", relativeRmse}, {"relative_flicker", relativeFlicker}};
+}
+
+// Each policy is measured on the same frames (the same jitters and drift), one after the other, and
+// over the same pixels: those where the paper's reference shows glints. The reference is the
+// paper's footprint's whatever --footprint says, so that a policy's error includes the different
+// glints it shows, unless --reference-footprint same draws each policy's own.
 nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& dictionary, const AaErrorOptions& options,
                             int width, int height) {
   const std::vector<std::pair<std::string, FootprintPolicy>> footprints = options.footprint.all();
@@ -83,65 +146,31 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   frame.height = height;
   frame.brdf = gl::BrdfModel::Glint;
   frame.camera = scene.cameras.at(options.camera);
-
-  // The reference: the mean of N jittered frames of the 2020 model (glint render --reference N),
-  // and of their glint layers, which say where the metrics look.
-  frame.antiAliasing = gl::AntiAliasing::None;
-  frame.normalMapFinestLevel = true;
   frame.filterScale = options.aaKernel;
-  Frame reference(static_cast<std::size_t>(width) * height * 3, 0.0);
-  Frame referenceLayer(reference.size(), 0.0);
-  for (int k = 0; k < options.reference; ++k) {
-    frame.jitter = gl::supersampleJitter(k);
-    const Frame radiance = renderFrame(renderer, frame);
-    const Frame layer = glintLayer(renderer, frame, radiance);
-    for (std::size_t i = 0; i < reference.size(); ++i) {
-      reference[i] += radiance[i] / options.reference;
-      referenceLayer[i] += layer[i] / options.reference;
-    }
-  }
+
+  const Reference paperReference = drawReference(renderer, frame, options, FootprintPolicy{});
   // Errors are relative to the reference's mean radiance where its glint layer shows.
-  const std::vector<std::size_t> values = glintValues(referenceLayer);
+  const std::vector<std::size_t> values = glintValues(paperReference.layer);
   if (values.empty()) throw Error("scene '" + scene.name + "' shows no glint layer from camera '" + options.camera + "'");
-  double referenceMean = 0.0;
-  for (std::size_t i : values) referenceMean += reference[i] / static_cast<double>(values.size());
+  const double paperMean = meanOver(paperReference.radiance, values);
 
   nlohmann::json entry = {{"scene", scene.name},
-                          {"reference_mean", referenceMean},
+                          {"reference_mean", paperMean},
                           {"glint_pixels", values.size() / 3}};
-  frame.normalMapFinestLevel = false;
+  const bool ownReference = options.referenceFootprint == "same";
   for (const auto& [policyName, policy] : footprints) {
-  frame.footprintPolicy = policy;
-  for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
-    frame.antiAliasing = mode;
-    frame.jitter = glm::vec2(0.0f);
-    const Frame centre = renderFrame(renderer, frame);
-    double squared = 0.0;
-    for (std::size_t i : values) squared += (centre[i] - reference[i]) * (centre[i] - reference[i]);
-    ModeResult result{};
-    result.relativeRmse = std::sqrt(squared / static_cast<double>(values.size())) / referenceMean;
-    // Sub-pixel drift: the camera moves one pixel along a slanted line over the sequence.
-    std::vector<double> sum(centre.size(), 0.0), sumSquares(centre.size(), 0.0);
-    for (int k = 0; k < options.sequence; ++k) {
-      const float t = (static_cast<float>(k) + 0.5f) / static_cast<float>(options.sequence) - 0.5f;
-      frame.jitter = t * glm::vec2(1.0f, 0.37f);
-      const Frame layer = renderFrame(renderer, frame);
-      for (std::size_t i = 0; i < layer.size(); ++i) {
-        sum[i] += layer[i];
-        sumSquares[i] += layer[i] * layer[i];
-      }
+    const bool paper = !ownReference || footprintPolicyName(policy) == "exact";
+    const Reference own = paper ? Reference{} : drawReference(renderer, frame, options, policy);
+    const Frame& reference = paper ? paperReference.radiance : own.radiance;
+    const double referenceMean = paper ? paperMean : meanOver(own.radiance, values);
+    if (ownReference) entry["footprints"][policyName]["reference_mean"] = referenceMean;
+    frame.footprintPolicy = policy;
+    for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
+      frame.antiAliasing = mode;
+      const nlohmann::json measured = measureMode(renderer, frame, options, values, reference, referenceMean, paperMean);
+      if (policyName == footprints.front().first) entry[gl::toString(mode)] = measured;
+      entry["footprints"][policyName][gl::toString(mode)] = measured;
     }
-    double deviation = 0.0;
-    for (std::size_t i : values) {
-      const double m = sum[i] / options.sequence;
-      deviation += std::sqrt(std::max(0.0, sumSquares[i] / options.sequence - m * m));
-    }
-    result.relativeFlicker = deviation / static_cast<double>(values.size()) / referenceMean;
-    const nlohmann::json measured = {{"relative_rmse", result.relativeRmse},
-                                     {"relative_flicker", result.relativeFlicker}};
-    if (policyName == footprints.front().first) entry[gl::toString(mode)] = measured;
-    entry["footprints"][policyName][gl::toString(mode)] = measured;
-  }
   }
   return entry;
 }
@@ -152,6 +181,9 @@ void runAaError(const AaErrorOptions& options) {
   if (options.reference < 1 || options.reference > 65536) throw Error("--reference must be in [1, 65536]");
   if (options.sequence < 2 || options.sequence > 4096) throw Error("--sequence must be in [2, 4096]");
   if (!(options.aaKernel >= 0.0f && options.aaKernel <= 16.0f)) throw Error("--aa-kernel must be in [0, 16]");
+  if (options.referenceFootprint != "paper" && options.referenceFootprint != "same") {
+    throw Error("--reference-footprint must be paper or same, not '" + options.referenceFootprint + "'");
+  }
   const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
@@ -167,6 +199,7 @@ void runAaError(const AaErrorOptions& options) {
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},
                            {"aa_kernel", options.aaKernel},
                            {"footprint", options.footprint.all().front().first},
+                           {"reference_footprint", options.referenceFootprint},
                            {"size", options.size},
                            {"reference_frames", options.reference},
                            {"sequence_frames", options.sequence},
@@ -207,7 +240,9 @@ void runAaError(const AaErrorOptions& options) {
   }
   if (footprints.size() < 2) return;
   // Each footprint policy's RMSE and flicker, and both as ratios to the first policy's, mode by mode.
-  std::printf("\nfootprint policies, each against the same reference (ratio to %s)\n", footprints.front().first.c_str());
+  std::printf("\nfootprint policies, each against %s (ratio to %s)\n",
+              options.referenceFootprint == "same" ? "its own reference" : "the paper's footprint's reference",
+              footprints.front().first.c_str());
   std::printf("%-16s %-20s", "scene", "footprint");
   for (const char* metric : {"RMSE ", "flicker "}) {
     for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) {
@@ -250,6 +285,9 @@ void registerAaErrorCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
   options->footprint.addTo(*command, true);
+  command->add_option("--reference-footprint", options->referenceFootprint,
+                      "Footprint of the reference: paper (the paper's, for every policy) or same (each policy's own)")
+      ->capture_default_str();
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runAaError(*options); });
 }

@@ -51,7 +51,18 @@ struct FrameControls {
   int camera = 0;
   bool shadows = true;
   int msaa = 0;  // samples a pixel: 2^msaa
+  int shadowCascades = 4;
+  int footprint = 0;  // index into the panel's footprint policies
 };
+
+// The footprint policies the panel offers (docs/antialiasing.md, "Footprint policies"), and the
+// one given with --footprint when it is none of them.
+std::vector<std::string> panelFootprintPolicies(const FootprintPolicy& start) {
+  std::vector<std::string> names = {"exact", "aniso=4", "cells=24", "cells=24,drop=0.5"};
+  const std::string startName = footprintPolicyName(start);
+  if (std::find(names.begin(), names.end(), startName) == names.end()) names.push_back(startName);
+  return names;
+}
 
 class ImGuiSession {
  public:
@@ -235,9 +246,8 @@ void runView(const ViewOptions& options) {
   warnAboutUndrawnLights(scene);
   gl::Renderer renderer(scene, dictionary);
   printWarnings(renderer.warnings());
-  gl::FrameSettings startSettings;  // --shadows, --shadow-cascades and --msaa; the panel changes the first and last
+  gl::FrameSettings startSettings;  // --shadows, --shadow-cascades and --msaa, which the panel changes
   options.raster.applyTo(startSettings, renderer);
-  startSettings.footprintPolicy = footprintPolicy;
   const gl::DisplayPass display;
   gl::FrameTimer timer;
   ImGuiSession imgui(window.window());
@@ -250,6 +260,11 @@ void runView(const ViewOptions& options) {
   Choices choices = choicesOf(scene);
   FrameControls frameControls;
   frameControls.shadows = startSettings.shadows;
+  frameControls.shadowCascades = startSettings.shadowCascades;
+  const std::vector<std::string> footprintNames = panelFootprintPolicies(footprintPolicy);
+  frameControls.footprint = static_cast<int>(
+      std::find(footprintNames.begin(), footprintNames.end(), footprintPolicyName(footprintPolicy)) -
+      footprintNames.begin());
   std::vector<std::string> msaaNames;
   for (int samples = 1; samples <= renderer.maxMsaaSamples(); samples *= 2) {
     if (samples == startSettings.msaa) frameControls.msaa = static_cast<int>(msaaNames.size());
@@ -291,9 +306,9 @@ void runView(const ViewOptions& options) {
     frame.antiAliasing = antiAliasingModes[static_cast<std::size_t>(frameControls.antiAliasing)];
     frame.camera = viewCamera;
     frame.shadows = frameControls.shadows;
-    frame.shadowCascades = startSettings.shadowCascades;
+    frame.shadowCascades = frameControls.shadowCascades;
     frame.msaa = 1 << frameControls.msaa;
-    frame.footprintPolicy = startSettings.footprintPolicy;
+    frame.footprintPolicy = footprintPolicyFromString(footprintNames[static_cast<std::size_t>(frameControls.footprint)]);
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -321,6 +336,13 @@ void runView(const ViewOptions& options) {
               "slope variance; ggaa: the first only; none: the 2020 model.");
       ImGui::Checkbox("shadows", &frameControls.shadows);
       tooltip("The lights' shadows, from shadow maps, as `glint render --shadows`.");
+      ImGui::SliderInt("shadow cascades", &frameControls.shadowCascades, 1, 4, "%d", ImGuiSliderFlags_AlwaysClamp);
+      tooltip("Shadow maps of a directional light, each over a range of the view's depth; 1 fits one map to the "
+              "whole scene, as `glint render --shadow-cascades`.");
+      combo("footprint", frameControls.footprint, footprintNames);
+      tooltip("The cells a pixel's glints walk: exact (the paper's footprint), aniso=4 (anisotropy at most 4), "
+              "cells=24 (each walked level at most 24 cells), drop=0.5 (the coarser level skipped below blend "
+              "weight 0.5), as `glint render --footprint`. A policy's first frame compiles its program.");
       combo("msaa", frameControls.msaa, msaaNames);
       tooltip("Samples a pixel of the geometry, for anti-aliased edges; each surface in a pixel is shaded once, "
               "as `glint render --msaa`.");
