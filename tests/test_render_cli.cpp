@@ -2,6 +2,7 @@
 // writes (and the third-party helmet when ../shared has it), every built-in scene, exported scenes
 // rendering as the built-in ones, and one-line errors (and no output file) for broken scenes and
 // bad options.
+#include <array>
 #include <fstream>
 #include <regex>
 
@@ -430,29 +431,33 @@ TEST(ViewCli, OpensAndRendersUnderXvfb) {
 }
 
 // The viewer opens on exactly what `glint render` draws: for every built-in scene (and a camera
-// other than the default), its first frame with the panel hidden equals render's PNG of the same
-// scene, camera and size, pixel for pixel (both go through kernel/tonemap.h's display transform and
-// its rounding to 8 bits). One virtual X server runs all the viewers.
+// other than the default, and footprint policies and cascade counts the panel starts from), its first
+// frame with the panel hidden equals render's PNG of the same scene, camera, options and size, pixel
+// for pixel (both go through kernel/tonemap.h's display transform and its rounding to 8 bits). One
+// virtual X server runs all the viewers.
 TEST(ViewCli, FirstFrameEqualsRenderForEveryBuiltinScene) {
   ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0) << "xvfb-run is missing (scripts/deps installs it)";
   const auto folder = temporaryFolder("view_equals_render");
-  std::vector<std::pair<std::string, std::string>> cases;  // scene, camera
-  for (const std::string& name : scene::builtinSceneNames()) cases.emplace_back(name, "default");
-  cases.emplace_back("arctic", "ornament");
+  std::vector<std::array<std::string, 3>> cases;  // scene, camera, options of both
+  for (const std::string& name : scene::builtinSceneNames()) cases.push_back({name, "default", ""});
+  cases.push_back({"arctic", "ornament", " --shadow-cascades 1"});
+  cases.push_back({"grazing-rough", "default", " --footprint cells=24"});  // one of the panel's policies
+  cases.push_back({"grazing-rough", "default", " --footprint cells=32"});  // one it adds
   std::string views;
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto& [name, camera] = cases[i];
+    const auto& [name, camera, extra] = cases[i];
     const std::string shot = std::to_string(i) + ".png";
-    const RunResult render = runGlint(folder, "render " + name + " --camera " + camera + " --size 128x96 -o render" + shot);
+    const RunResult render =
+        runGlint(folder, "render " + name + " --camera " + camera + extra + " --size 128x96 -o render" + shot);
     ASSERT_EQ(render.exitCode, 0) << render.err;
     views += std::string(views.empty() ? "" : " && ") + "'" GLINT_EXECUTABLE "' view " + name + " --camera " + camera +
-             " --width 128 --height 96 --frames 1 --hide-panel --screenshot view" + shot;
+             extra + " --width 128 --height 96 --frames 1 --hide-panel --screenshot view" + shot;
   }
   const std::string command = "cd '" + folder.string() + "' && xvfb-run -a -s '-screen 0 640x480x24' sh -c \"" + views +
                               "\" 2> stderr.txt";
   ASSERT_EQ(std::system(command.c_str()), 0) << slurp(folder / "stderr.txt");
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::string label = cases[i].first + " --camera " + cases[i].second;
+    const std::string label = cases[i][0] + " --camera " + cases[i][1] + cases[i][2];
     const ImageRgbF rendered = readImage(folder / ("render" + std::to_string(i) + ".png"));
     const ImageRgbF viewed = readImage(folder / ("view" + std::to_string(i) + ".png"));
     ASSERT_EQ(viewed.width, rendered.width) << label;
