@@ -65,6 +65,9 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
+  command.add_option("--pattern-seed", patternSeed,
+                     "Override the pattern seed of every glint layer, 0..4294967295: another realisation of the same "
+                     "statistics");
   command.add_option("--ndf", ndf, "The smooth target of every material's specular lobe: beckmann or ggx");
   command.add_option("--masking", masking, "The masking of every material's specular lobe: v-cavity or smith");
   command.add_option("--multiple-scattering", multipleScattering,
@@ -102,6 +105,9 @@ scene::Scene SceneOptions::loadScene() const {
     s.environment = scene::skyEnvironment(*sky);
   }
   environment.applyTo(s);
+  if (patternSeed && !(*patternSeed >= 0 && *patternSeed <= 0xffffffffLL)) {
+    throw Error("--pattern-seed must be a whole number in [0, 4294967295], got " + std::to_string(*patternSeed));
+  }
   for (scene::Material& m : s.materials) {
     if (ndf) m.specular.ndf = ndfFromName("--ndf", *ndf);
     if (masking) m.specular.masking = maskingFromName("--masking", *masking);
@@ -111,6 +117,7 @@ scene::Scene SceneOptions::loadScene() const {
     if (rho) m.glint.rho = *rho;
     if (logDensity) m.glint.logDensity = *logDensity;
     if (relativeArea) m.glint.relativeArea = *relativeArea;
+    if (patternSeed) m.glint.patternSeed = static_cast<std::uint32_t>(*patternSeed);
     try {
       scene::validateGlintLayer(m.glint, s.textures.size());
     } catch (const Error& e) {

@@ -2,6 +2,7 @@
 // which dictionary, and glint layers or parameter overrides applied to its materials.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -38,6 +39,7 @@ struct SceneOptions {
   std::optional<float> rho;
   std::optional<float> logDensity;
   std::optional<float> relativeArea;
+  std::optional<std::int64_t> patternSeed;  // checked to be a uint32 when applied
   std::optional<float> sky;
   EnvironmentOptions environment;
   CameraOptions cameraOptions;  // --look-from, --look-at, --up, --fov: applied to the chosen preset
