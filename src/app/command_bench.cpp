@@ -63,6 +63,9 @@ struct Variant {
   FootprintPolicy footprint = exactFootprintPolicy();
 };
 
+// The column of glint under one of the other --footprint policies.
+std::string policyColumn(const std::string& policyName) { return "glint[" + policyName + "]"; }
+
 // With several --footprint policies, the first is every column's, and glint is timed again with each
 // of the others, glint[policy].
 std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights,
@@ -83,7 +86,7 @@ std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarge
   }
   for (Variant& variant : variants) variant.footprint = footprints.front().second;
   for (std::size_t k = 1; k < footprints.size(); ++k) {
-    Variant variant{"glint[" + footprints[k].first + "]", gl::BrdfModel::Glint, antiAliasing};
+    Variant variant{policyColumn(footprints[k].first), gl::BrdfModel::Glint, antiAliasing};
     variant.footprint = footprints[k].second;
     variants.push_back(variant);
   }
@@ -203,7 +206,7 @@ void runBench(const BenchOptions& options) {
     }
     // Each other footprint policy's glint against Cook-Torrance, from the same frames.
     for (std::size_t k = 1; k < footprints.size(); ++k) {
-      const std::string label = "glint[" + footprints[k].first + "]";
+      const std::string label = policyColumn(footprints[k].first);
       entry["ratio_" + label + "_cook-torrance"] = timings[label].median / timings["cook-torrance"].median;
     }
     report["scenes"].push_back(entry);
@@ -221,7 +224,7 @@ void runBench(const BenchOptions& options) {
   const double mean = sum / static_cast<double>(report["scenes"].size());
   report["glint_cook-torrance"] = {{"mean_ratio", mean}, {"max_ratio", highest}, {"max_over_mean", highest / mean}};
   for (std::size_t k = 1; k < footprints.size(); ++k) {
-    const std::string label = "glint[" + footprints[k].first + "]";
+    const std::string label = policyColumn(footprints[k].first);
     double policySum = 0.0;
     double policyHighest = 0.0;
     for (const auto& entry : report["scenes"]) {
@@ -266,7 +269,7 @@ void runBench(const BenchOptions& options) {
                   entry["ratio_glint_" + model.label].get<double>());
     }
     for (std::size_t k = 1; k < footprints.size(); ++k) {
-      const std::string label = "glint[" + footprints[k].first + "]";
+      const std::string label = policyColumn(footprints[k].first);
       std::printf("  %*.2fx", static_cast<int>(label.size() + 13) - 1,
                   entry["ratio_" + label + "_cook-torrance"].get<double>());
     }
@@ -274,7 +277,7 @@ void runBench(const BenchOptions& options) {
   }
   std::printf("glint / cook-torrance: mean %.2fx, highest %.2fx, highest / mean %.2f\n", mean, highest, highest / mean);
   for (std::size_t k = 1; k < footprints.size(); ++k) {
-    const std::string label = "glint[" + footprints[k].first + "]";
+    const std::string label = policyColumn(footprints[k].first);
     std::printf("%s / cook-torrance: mean %.2fx, highest %.2fx\n", label.c_str(),
                 report[label + "_cook-torrance"]["mean_ratio"].get<double>(),
                 report[label + "_cook-torrance"]["max_ratio"].get<double>());

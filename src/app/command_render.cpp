@@ -96,13 +96,10 @@ void runRender(const RenderOptions& options) {
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
-  // The footprint policy is named when it is not the paper's.
-  const std::string footprint = footprintPolicyName(frame.footprintPolicy);
-  const std::string policy = footprint == "exact" ? "" : ", footprint " + footprint;
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s%s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
-               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf), policy.c_str(),
-               gl::toString(antiAliasing), frame.shadows ? "on" : "off", frame.msaa, seconds,
-               gl::currentContextInfo().renderer.c_str());
+               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               footprintNote(frame.footprintPolicy).c_str(), gl::toString(antiAliasing), frame.shadows ? "on" : "off",
+               frame.msaa, seconds, gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());
 }
 

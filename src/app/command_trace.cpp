@@ -150,9 +150,8 @@ void runTrace(const TraceOptions& options) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
-  const std::string footprint = footprintPolicyName(settings.footprintPolicy);
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
-                               ? options.brdf + (footprint == "exact" ? "" : ", footprint " + footprint) + ", " +
+                               ? options.brdf + footprintNote(settings.footprintPolicy) + ", " +
                                      trace::glintSamplerName(settings.sampler) + " sampler"
                                : options.brdf;
   const std::string paths =

@@ -262,6 +262,8 @@ void runView(const ViewOptions& options) {
   frameControls.shadows = startSettings.shadows;
   frameControls.shadowCascades = startSettings.shadowCascades;
   const std::vector<std::string> footprintNames = panelFootprintPolicies(footprintPolicy);
+  std::vector<FootprintPolicy> footprintPolicies;
+  for (const std::string& name : footprintNames) footprintPolicies.push_back(footprintPolicyFromString(name));
   frameControls.footprint = static_cast<int>(
       std::find(footprintNames.begin(), footprintNames.end(), footprintPolicyName(footprintPolicy)) -
       footprintNames.begin());
@@ -308,7 +310,7 @@ void runView(const ViewOptions& options) {
     frame.shadows = frameControls.shadows;
     frame.shadowCascades = frameControls.shadowCascades;
     frame.msaa = 1 << frameControls.msaa;
-    frame.footprintPolicy = footprintPolicyFromString(footprintNames[static_cast<std::size_t>(frameControls.footprint)]);
+    frame.footprintPolicy = footprintPolicies[static_cast<std::size_t>(frameControls.footprint)];
     frameMilliseconds = timer.milliseconds([&] { renderer.renderFrame(frame); });
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -38,6 +38,11 @@ FootprintPolicy FootprintOptions::policy() const {
   return all().front().second;
 }
 
+std::string footprintNote(const FootprintPolicy& policy) {
+  const std::string name = footprintPolicyName(policy);
+  return name == "exact" ? "" : ", footprint " + name;
+}
+
 void RasterOptions::addTo(CLI::App& command) {
   command.add_option("--shadows", shadows,
                      "Shadows of the lights (shadow maps, filtered edges): on or off")

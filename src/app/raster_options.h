@@ -37,4 +37,7 @@ struct FootprintOptions {
   std::vector<std::pair<std::string, FootprintPolicy>> all() const;
 };
 
+// ", footprint P" for a run's summary line, empty for the paper's footprint.
+std::string footprintNote(const FootprintPolicy& policy);
+
 }  // namespace glint::app

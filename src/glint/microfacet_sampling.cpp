@@ -137,7 +137,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   float weightSum = 0.0f;
   for (kernel::GlintCellWalk walk = kernel::glintWalkStart(grid); kernel::glintWalkGoing(grid, walk);
        walk = kernel::glintWalkStep(grid, walk)) {
-    const float weight = kernel::glintWalkOnCell(walk) ? kernel::glintCellWeight(grid, walk.s, walk.t) : 0.0f;
+    const float weight = kernel::glintWalkWeight(grid, walk);
     if (weight > 0.0f) weightSum += weight;
   }
   if (!(weightSum > 0.0f)) return std::nullopt;  // glintLevelP22 is 0 there too
@@ -151,7 +151,7 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const ker
   bool found = false;
   for (kernel::GlintCellWalk walk = kernel::glintWalkStart(grid); kernel::glintWalkGoing(grid, walk) && !found;
        walk = kernel::glintWalkStep(grid, walk)) {
-    const float weight = kernel::glintWalkOnCell(walk) ? kernel::glintCellWeight(grid, walk.s, walk.t) : 0.0f;
+    const float weight = kernel::glintWalkWeight(grid, walk);
     if (weight > 0.0f) {
       cell = kernel::glintCellAt(grid, walk.s, walk.t);
       cellWeight = weight;

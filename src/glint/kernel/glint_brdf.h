@@ -479,11 +479,6 @@ GLINT_FN bool glintWalkGoing(GlintCellGrid grid, GlintCellWalk walk) {
   return walk.t <= grid.t1;
 }
 
-// Whether the step is on a cell (not on a line that misses the ellipse).
-GLINT_FN bool glintWalkOnCell(GlintCellWalk walk) {
-  return walk.s <= walk.row.y;
-}
-
 GLINT_FN GlintCellWalk glintWalkStep(GlintCellGrid grid, GlintCellWalk walk) {
   GlintCellWalk next = walk;
   next.s += 1;
@@ -523,6 +518,11 @@ GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dy = float(t) - grid.centre.y;
   float r2 = grid.ea * dx * dx + grid.eb * dx * dy + grid.ec * dy * dy;
   return max(exp(-2.0f * r2) - kEwaFilterFloor, 0.0f);
+}
+
+// The EWA weight of the walk's current step: its cell's, or 0 on a line that misses the ellipse.
+GLINT_FN float glintWalkWeight(GlintCellGrid grid, GlintCellWalk walk) {
+  return walk.s <= walk.row.y ? glintCellWeight(grid, walk.s, walk.t) : 0.0f;
 }
 
 // P22 over the footprint at one level (method.md 2.4), at each slope of the set: the EWA-weighted
@@ -575,7 +575,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   // The cells, their weights and their order are those of the nested loops, bit for bit.
   GlintCellWalk walk = glintWalkStart(grid);
   while (glintWalkGoing(grid, walk)) {
-    float weight = glintWalkOnCell(walk) ? glintCellWeight(grid, walk.s, walk.t) : 0.0f;  // 0: an empty line
+    float weight = glintWalkWeight(grid, walk);
     ivec2 index = glintCellAt(grid, walk.s, walk.t);
     walk = glintWalkStep(grid, walk);
     if (weight > 0.0f) {
