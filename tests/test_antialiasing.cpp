@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "glint/error.h"
 #include "glint/kernel/normal_map_filtering.h"
 #include "scene/builtin_scenes.h"
 #include "scene/normal_map_moments.h"

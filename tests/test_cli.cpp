@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "glint/version.h"
 #include "test_support.h"
 
 namespace glint {
@@ -37,6 +38,17 @@ TEST(GlintCli, ArgumentErrorsPointAtTheirCommandsHelp) {
   expectOneLineError(runGlint(folder, "trace sphere --spp many"), "(see glint trace --help)");
   expectOneLineError(runGlint(folder, "dict --levels"), "(see glint dict --help)");
   expectOneLineError(runGlint(folder, "--bogus"), "(see glint --help)");
+}
+
+// `glint --version` prints the version that project() declares in CMakeLists.txt (given to the
+// tests as GLINT_PROJECT_VERSION by tests/CMakeLists.txt), as do the macros of glint/version.h.
+TEST(GlintCli, VersionIsTheProjectVersion) {
+  const RunResult result = runGlint(temporaryFolder("cli_version"), "--version");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, std::string("glint ") + GLINT_PROJECT_VERSION + "\n");
+  EXPECT_EQ(std::to_string(GLINT_VERSION_MAJOR) + "." + std::to_string(GLINT_VERSION_MINOR) + "." +
+                std::to_string(GLINT_VERSION_PATCH),
+            GLINT_PROJECT_VERSION);
 }
 
 TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {

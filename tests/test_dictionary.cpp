@@ -7,8 +7,9 @@
 #include <tbb/task_arena.h>
 #include <tinyexr.h>
 
-#include "error.h"
-#include "file_io.h"
+#include "glint/dictionary_exr.h"
+#include "glint/error.h"
+#include "glint/file_io.h"
 #include "test_support.h"
 
 namespace glint {
@@ -237,14 +238,14 @@ TEST(Dictionary, BrokenExrFoldersNameTheFile) {
   const auto victim = folder / "dict_16_192_64_0p5_0p02_0010_0003.exr";
   std::filesystem::remove(victim);
   try {
-    Dictionary::loadAuthorsExr(folder);
+    loadAuthorsExrDictionary(folder);
     ADD_FAILURE() << "a missing file went unnoticed";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(victim.filename().string()), std::string::npos) << e.what();
   }
   std::ofstream(victim) << "not an EXR";
-  EXPECT_THROW(Dictionary::loadAuthorsExr(folder), Error);
-  EXPECT_THROW(Dictionary::loadAuthorsExr(temporaryFolder("dict_bad_name")), Error);
+  EXPECT_THROW(loadAuthorsExrDictionary(folder), Error);
+  EXPECT_THROW(loadAuthorsExrDictionary(temporaryFolder("dict_bad_name")), Error);
 }
 
 TEST(DictionaryErrors, MarginalsThatAreNotDensitiesAreRefused) {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "glint/error.h"
 #include "test_support.h"
 
 namespace glint {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "error.h"
-#include "microfacet_sampling.h"
+#include "glint/error.h"
+#include "glint/microfacet_sampling.h"
 #include "test_support.h"
 
 namespace glint {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "albedo_tables.h"
-#include "kernel/multiple_scattering.h"
+#include "glint/albedo_tables.h"
+#include "glint/kernel/multiple_scattering.h"
 #include "test_support.h"
 
 namespace glint {

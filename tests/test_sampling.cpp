@@ -17,8 +17,8 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
-#include "error.h"
-#include "microfacet_sampling.h"
+#include "glint/error.h"
+#include "glint/microfacet_sampling.h"
 #include "test_support.h"
 
 namespace glint {

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bsdf.h"
-#include "error.h"
+#include "glint/bsdf.h"
+#include "glint/error.h"
 
 namespace glint::app {
 

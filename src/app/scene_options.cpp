@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "gl/renderer.h"
+#include "glint/dictionary_exr.h"
 #include "glint/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/environment_map.h"
@@ -167,7 +168,7 @@ const scene::Camera& SceneOptions::findCamera(const scene::Scene& s) const {
 }
 
 Dictionary SceneOptions::loadDictionary() const {
-  return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionary);
+  return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : loadAnyDictionary(dictionary);
 }
 
 std::string SceneOptions::outputNamedAfterScene(const std::string& extension) const {
