@@ -59,8 +59,10 @@ TEST(ProceduralDictionary, LevelsAreNested) {
 TEST(ProceduralDictionaryStat, MeanMarginalTendsToTheLimitNormal) {
   // The lobe means are half-normal draws, so the mean over distributions of a fine level tends to
   // Normal(0, sigma_d^2 + s^2) (docs/dictionary.md). 64 distributions of 512 lobes at level 9:
-  // 32768 independent lobes, whose histogram's L1 distance is measured at 0.0034; bound 0.01. A
-  // wrong quantile (sigma_d instead of sigma_d sqrt 2 erfinv) gives 0.2.
+  // 32768 independent lobes, whose L1 distance is measured at 0.016 (2026-12-03; the generator's
+  // independent placement has 0.035 with 3072 lobes, level 4 of docs/dictionary.md's table, and
+  // the distance falls as one over the root of the lobes); bound 0.03. A quantile without its
+  // sqrt 2 narrows the limit by that factor: an L1 distance of 0.3.
   constexpr int kDistributions = 64;
   const double sigmaD = kAlphaD / std::sqrt(2.0);
   const double variance = sigmaD * sigmaD + double(kLobeStd) * kLobeStd;
@@ -74,7 +76,7 @@ TEST(ProceduralDictionaryStat, MeanMarginalTendsToTheLimitNormal) {
     l1 += 2.0 * h * std::abs(mean - normal) * (k == 0 ? 0.5 : 1.0);
   }
   std::printf("procedural dictionary, level 9, mean of 64 marginals: L1 distance to the limit normal %.4f\n", l1);
-  EXPECT_LT(l1, 0.01);
+  EXPECT_LT(l1, 0.03);
 }
 
 TEST(ProceduralDictionary, TheSeedSelectsAnotherDictionary) {

@@ -34,7 +34,7 @@ std::string bundleHeader(const std::string& what) {
 // program assembly: in a bundle they would name source strings the host never sees.
 std::string expandedWithoutLines(const std::string& name) {
   static const std::regex lineDirective(R"(^\s*#\s*line\b.*$)");
-  std::istringstream lines(gl::expandIncludes(name));
+  std::istringstream lines(gl::expandIncludes(name).text);
   std::string out;
   for (std::string line; std::getline(lines, line);) {
     if (!std::regex_match(line, lineDirective)) out += line + '\n';
