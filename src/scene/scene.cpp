@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <sstream>
 
@@ -37,6 +38,25 @@ glm::vec3 Scene::boundsMax() const {
 }
 
 float alphaFromRoughness(float roughness) { return std::max(roughness * roughness, 0.01f); }
+
+// The layout of kernel/glint_material.h, which the renderers' buffers and shaders rely on.
+static_assert(sizeof(kernel::GlintMaterial) == 80, "GlintMaterial: 80 bytes, five 16-byte rows");
+static_assert(offsetof(kernel::GlintMaterial, alpha) == 0);
+static_assert(offsetof(kernel::GlintMaterial, rho) == 8);
+static_assert(offsetof(kernel::GlintMaterial, logDensity) == 12);
+static_assert(offsetof(kernel::GlintMaterial, relativeArea) == 16);
+static_assert(offsetof(kernel::GlintMaterial, densityRandomisation) == 20);
+static_assert(offsetof(kernel::GlintMaterial, maxAnisotropy) == 24);
+static_assert(offsetof(kernel::GlintMaterial, patternSeed) == 28);
+static_assert(offsetof(kernel::GlintMaterial, logDensityRange) == 32);
+static_assert(offsetof(kernel::GlintMaterial, uvScale) == 40);
+static_assert(offsetof(kernel::GlintMaterial, hasLogDensityTexture) == 44);
+static_assert(offsetof(kernel::GlintMaterial, ndf) == 48);
+static_assert(offsetof(kernel::GlintMaterial, masking) == 52);
+static_assert(offsetof(kernel::GlintMaterial, colouredCells) == 56);
+static_assert(offsetof(kernel::GlintMaterial, multipleScattering) == 60);
+static_assert(offsetof(kernel::GlintMaterial, enabled) == 64);
+static_assert(offsetof(kernel::GlintMaterial, padding0) == 68);
 
 kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTarget& target) {
   kernel::GlintMaterial m{};  // the padding zero too, so that equal layers pack to equal bytes
@@ -199,7 +219,7 @@ glm::mat2 UvTransform::linear() const {
 }
 
 glm::vec2 Light::coneScaleOffset() const {
-  return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
+  return type == Type::Spot ? kernel::glintSpotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
 float Light::inverseRange() const { return positional() && range > 0.0f ? 1.0f / range : 0.0f; }

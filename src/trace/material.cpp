@@ -161,8 +161,8 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
     const glm::vec2 dy = at.footprint.duvdy;
     const glm::vec3 first = moments->first.sample(at.uv, dx, dy);
     const glm::vec3 second = moments->second.sample(at.uv, dx, dy);
-    leanCovariance = kernel::leanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
-    const glm::vec3 mapped = kernel::leanMeanNormal(first);
+    leanCovariance = kernel::glintLeanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
+    const glm::vec3 mapped = kernel::glintLeanMeanNormal(first);
     n = glm::normalize(t * mapped.x + b * mapped.y + n * mapped.z);
   } else if (m.normalTexture >= 0) {
     glm::vec3 mapped = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
@@ -195,7 +195,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   GlintParameters params = kernel::glintMaterialParameters(
       material, texture(layer.roughnessTexture, uv, footprint).r, texture(layer.logDensityTexture, uv, footprint).r,
       texture(layer.relativeAreaTexture, uv, footprint).r, footprintPolicy_);
-  const glm::vec3 leanRoughness = kernel::leanCombinedRoughness(params.alpha, params.rho, leanCovariance);
+  const glm::vec3 leanRoughness = kernel::glintLeanCombinedRoughness(params.alpha, params.rho, leanCovariance);
   params.alpha = glm::vec2(leanRoughness);
   params.rho = leanRoughness.z;
   if (model_ == SpecularModel::CookTorrance) {

@@ -25,8 +25,9 @@ GLINT_KERNEL_BEGIN
 //          44  uint  hasLogDensityTexture   56  uint  colouredCells
 //                                           60  uint  multipleScattering
 //          64  uint  enabled                68, 72, 76  padding (zero)
-// The C++ static_asserts below pin these offsets; tests/test_gl_kernel.cpp checks that the GLSL
-// compiler reports the same ones for the renderer's block (shaders/glint_material_block.glsl).
+// static_asserts pin these offsets in C++ (src/scene/scene.cpp, next to the packing of a scene's
+// glint layer); tests/test_gl_kernel.cpp checks that the GLSL compiler reports the same ones for
+// the renderer's block (shaders/glint_material_block.glsl).
 struct GlintMaterial {
   vec2 alpha;                  // roughness alpha_x, alpha_y (the roughness texture's R multiplies them)
   float rho;                   // slope correlation
@@ -38,8 +39,8 @@ struct GlintMaterial {
   vec2 logDensityRange;        // D = mix(x, y, the log-density texture's R) when hasLogDensityTexture
   float uvScale;               // glint uv = mesh uv * uvScale (glintMaterialUv)
   uint hasLogDensityTexture;   // 1: D comes from the log-density texture
-  int ndf;                     // kNdfBeckmann or kNdfGgx (microfacet_targets.h)
-  int masking;                 // kMaskingVCavity or kMaskingSmith
+  int ndf;                     // GLINT_NDF_BECKMANN or GLINT_NDF_GGX (microfacet_targets.h)
+  int masking;                 // GLINT_MASKING_VCAVITY or GLINT_MASKING_SMITH
   uint colouredCells;          // 1: each cell reflects a random hue
   uint multipleScattering;     // 1: the smooth target's compensation lobe is added
   uint enabled;                // 1: the material has a glint layer (0: Cook-Torrance of its own roughness)
@@ -89,26 +90,5 @@ GLINT_FN GlintParameters glintMaterialParameters(GlintMaterial material, float r
 }
 
 GLINT_KERNEL_END
-
-#ifdef __cplusplus
-#include <cstddef>
-static_assert(sizeof(glint::kernel::GlintMaterial) == 80, "GlintMaterial: 80 bytes, five 16-byte rows");
-static_assert(offsetof(glint::kernel::GlintMaterial, alpha) == 0);
-static_assert(offsetof(glint::kernel::GlintMaterial, rho) == 8);
-static_assert(offsetof(glint::kernel::GlintMaterial, logDensity) == 12);
-static_assert(offsetof(glint::kernel::GlintMaterial, relativeArea) == 16);
-static_assert(offsetof(glint::kernel::GlintMaterial, densityRandomisation) == 20);
-static_assert(offsetof(glint::kernel::GlintMaterial, maxAnisotropy) == 24);
-static_assert(offsetof(glint::kernel::GlintMaterial, patternSeed) == 28);
-static_assert(offsetof(glint::kernel::GlintMaterial, logDensityRange) == 32);
-static_assert(offsetof(glint::kernel::GlintMaterial, uvScale) == 40);
-static_assert(offsetof(glint::kernel::GlintMaterial, hasLogDensityTexture) == 44);
-static_assert(offsetof(glint::kernel::GlintMaterial, ndf) == 48);
-static_assert(offsetof(glint::kernel::GlintMaterial, masking) == 52);
-static_assert(offsetof(glint::kernel::GlintMaterial, colouredCells) == 56);
-static_assert(offsetof(glint::kernel::GlintMaterial, multipleScattering) == 60);
-static_assert(offsetof(glint::kernel::GlintMaterial, enabled) == 64);
-static_assert(offsetof(glint::kernel::GlintMaterial, padding0) == 68);
-#endif
 
 #endif
