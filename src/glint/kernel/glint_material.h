@@ -1,7 +1,7 @@
 // A material's glint layer as every renderer stores it (the rasteriser's uniform buffer, the page's,
 // the path tracer's), and the one mapping from it and its textures' samples to the model's
 // parameters, so that the rasteriser, the page and the path tracer apply the layer's textures by
-// the same rules (docs/scenes.md, "Glint layers"; docs/renderer.md, "The material block").
+// the same rules (docs/scenes.md, "Glint parameters in glTF extras"; docs/renderer.md, "The material block").
 // Shared by the CPU library and the GLSL renderer: see prelude.h for the rules.
 #ifndef GLINT_KERNEL_GLINT_MATERIAL_H
 #define GLINT_KERNEL_GLINT_MATERIAL_H
