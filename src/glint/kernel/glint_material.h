@@ -83,7 +83,7 @@ GLINT_FN GlintParameters glintMaterialParameters(GlintMaterial material, float r
   GlintParameters p = glintMaterialConstants(material, policy);
   p.alpha = clamp(material.alpha * roughnessSample, 0.01f, 2.0f);
   p.logDensity = material.hasLogDensityTexture != 0u
-                     ? mix(material.logDensityRange.x, material.logDensityRange.y, logDensitySample)
+                     ? glintMix(material.logDensityRange.x, material.logDensityRange.y, logDensitySample)
                      : material.logDensity;
   p.relativeArea = clamp(material.relativeArea * relativeAreaSample, 1e-4f, 1.0f);
   return p;
