@@ -3,6 +3,8 @@
 // glint::ZirrKaplanyanBsdf: glintZirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), and
 // glintZirrKaplanyanReferenceReflectance (the reference shader's schedule), which must match it bit for bit.
 #include "zirr_kaplanyan.h"
+// The kernel declares the dictionary hook; glint's GL definition of it links the program.
+#include "glint_dictionary_gl.glsl"
 
 layout(local_size_x = 64) in;
 
