@@ -2,6 +2,7 @@
 // (tests/test_gl_kernel.cpp). Each case as kernel_eval.glsl evaluates it; with SLOPE_SET defined
 // it evaluates the renderer's several-slopes walk instead.
 #include "kernel_eval.glsl"
+#include "glint_dictionary_gl.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -34,14 +35,14 @@ void main() {
   vec2 uv, duvdx, duvdy;
   vec3 wo, wi;
   readCase(inputs[i], params, uv, duvdx, duvdy, wo, wi);
-  DictionaryView dict = glintDictionary();
+  GlintDictionaryView dict = glintDictionary();
   GlintSlopeSet slopes;
   bool above[GLINT_SLOPE_COUNT];
   params.colouredCells = true;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     vec3 wh = normalize(wo + inputs[(i + uint(k)) % uCount].wiAndRelativeArea.xyz);
     above[k] = wh.z > 0.0f;
-    slopes.slope[k] = above[k] ? slopeFromNormal(wh) : vec2(0.0f);
+    slopes.slope[k] = above[k] ? glintSlopeFromNormal(wh) : vec2(0.0f);
     slopes.derivatives[k] = vec4(0.0f);
   }
   GlintP22Set together = glintP22Set(dict, params, uv, duvdx, duvdy, slopes);
@@ -51,6 +52,6 @@ void main() {
     slopeSetOutputs[i].alone[k] = above[k] ? alone : vec4(0.0f);
   }
 #else
-  outputs[i] = evaluateCase(inputs[i]);
+  outputs[i] = evaluateCase(glintDictionary(), inputs[i]);
 #endif
 }

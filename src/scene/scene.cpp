@@ -193,7 +193,7 @@ glm::mat2 UvTransform::linear() const {
 }
 
 glm::vec2 Light::coneScaleOffset() const {
-  return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
+  return type == Type::Spot ? kernel::glintSpotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
 float Light::inverseRange() const { return positional() && range > 0.0f ? 1.0f / range : 0.0f; }
@@ -219,6 +219,7 @@ void addDefaultLighting(Scene& scene) {
   sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, -0.5f));
   sun.intensity = glm::vec3(1.0f, 0.97f, 0.92f);
   scene.lights.push_back(sun);
+  scene.defaultLights = true;
 
   scene.environment = Environment{};
   scene.environment.uniform = glm::vec3(0.26f, 0.3f, 0.36f);

@@ -5,7 +5,7 @@
 // 1. Slope correlation rho (the paper's Eq. 18): each cell's map to the dictionary's space becomes
 //    upper-triangular, M^-1 = sigma_d [[1 / (sx s), -rho / (sy s)], [0, 1 / sy]], s = sqrt(1 - rho^2),
 //    so that sigma_d^2 M M^T is the full covariance [[sx^2, rho sx sy], [rho sx sy, sy^2]] and the
-//    cells converge to the correlated Beckmann (microfacet.h, beckmannP22).
+//    cells converge to the correlated Beckmann (microfacet.h, glintBeckmannP22).
 // 2. Geometric glint anti-aliasing (GGAA). Within a pixel the half vector's slope moves: to first
 //    order h(p) = h0 + dx p.x + dy p.y over the pixel's box p in [-1/2, 1/2]^2, with dx, dy its
 //    screen derivatives. The pixel's mean P-SDF is then the P-SDF convolved with that box pushed into
@@ -27,7 +27,7 @@
 #include "dictionary_lookup.h"
 
 // Whether a walk over the footprint's cells filters. A GLSL program is compiled for one mode
-// (GLINT_FILTERED 0: the 2020 model, the default; 1: anti-aliased; shaders/glint_dictionary.glsl),
+// (GLINT_FILTERED 0: the 2020 model, the default, prelude.h; 1: anti-aliased),
 // so that neither pays for the other's code; C++ filters where a slope has derivatives, and with
 // none computes the 2020 sums exactly.
 #if defined(__cplusplus)
@@ -47,14 +47,14 @@ GLINT_KERNEL_BEGIN
 // exactly the 2020 scaling h alpha_d / alpha: the terms rho adds are exact zeros and ones.
 GLINT_FN vec2 glintCorrelatedUnscale(vec2 slope, vec2 alpha, float rho, float alphaD) {
   float s = sqrt(1.0f - rho * rho);
-  vec2 scale = vec2(alphaD) / alpha;
+  vec2 scale = glintSplat2(alphaD) / alpha;
   return vec2(scale.x * (slope.x - rho * (alpha.x / alpha.y) * slope.y) / s, scale.y * slope.y);
 }
 
 // Its inverse, M h_o: from the dictionary's space back to the target's slopes (the sampler's).
 GLINT_FN vec2 glintCorrelatedScale(vec2 unscaled, vec2 alpha, float rho, float alphaD) {
   float s = sqrt(1.0f - rho * rho);
-  vec2 scale = alpha / vec2(alphaD);
+  vec2 scale = alpha / glintSplat2(alphaD);
   return vec2(scale.x * (s * unscaled.x + rho * unscaled.y), scale.y * unscaled.y);
 }
 
@@ -71,7 +71,7 @@ GLINT_FN float glintCorrelatedJacobian(vec2 alpha, float rho, float alphaD) {
 // 1e4 slope units a pixel (a half vector a thousandth of a degree from the horizon), so that K and
 // the covariances it is added to stay finite.
 GLINT_FN vec3 glintKernelCovariance(vec4 derivatives) {
-  vec4 d = clamp(derivatives, vec4(-1e4f), vec4(1e4f));
+  vec4 d = clamp(derivatives, glintSplat4(-1e4f), glintSplat4(1e4f));
   vec2 dx = vec2(d.x, d.y);
   vec2 dy = vec2(d.z, d.w);
   return vec3(dx.x * dx.x + dy.x * dy.x, dx.x * dx.y + dy.x * dy.y, dx.y * dx.y + dy.y * dy.y) *
@@ -98,10 +98,10 @@ GLINT_FN float glintKernelVariance(vec3 unscaledCovariance) {
 //
 // No logarithm: the mip level, floor(log4(4 v)), is half the binary exponent of 4 v, read from its
 // bits (exact; llvmpipe runs a log2 for every lane of every cell).
-GLINT_FN float glintMarginalLod(DictionaryView dict, float variance) {
+GLINT_FN float glintMarginalLod(GlintDictionaryView dict, float variance) {
   float spacing = glintDictionaryDomain(dict) / float(dict.texelsPerDistribution);
   float v = min(max(variance, 0.0f) / (spacing * spacing), 1e30f);  // in texels^2
-  int exponent = ((floatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
+  int exponent = ((glintFloatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
   int mip = min(exponent / 2, dict.numMips - 1);
   float level = float(1 << (2 * mip)) * 0.25f;            // V_mip
   float lod = float(mip) + (v - level) / (3.0f * level);  // V_mip+1 - V_mip = 3 V_mip
@@ -119,7 +119,7 @@ struct GlintMarginalFilter {
   float blend;           // lod - mip
 };
 
-GLINT_FN GlintMarginalFilter glintMarginalFilter(DictionaryView dict, float lod) {
+GLINT_FN GlintMarginalFilter glintMarginalFilter(GlintDictionaryView dict, float lod) {
   int mip = int(lod);
   GlintMarginalFilter marginalFilter;
   marginalFilter.texelsPerSlope = (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict)) * (1.0f / float(1 << mip));
@@ -134,7 +134,7 @@ GLINT_FN GlintMarginalFilter glintMarginalFilter(DictionaryView dict, float lod)
 // fetch: a mip texel holds its own pair and the next level's interpolation at the same two
 // positions (docs/dictionary.md, "Mip chain"), so both levels share the texel's fraction and the
 // blend is of the pairs. At lod 0 it is glintMarginal exactly (the blend adds exact zeros).
-GLINT_FN float glintFilteredMarginal(DictionaryView dict, GlintMarginalFilter marginalFilter, int level, int distribution,
+GLINT_FN float glintFilteredMarginal(GlintDictionaryView dict, GlintMarginalFilter marginalFilter, int level, int distribution,
                                      float absSlope) {
   float x = absSlope * marginalFilter.texelsPerSlope;
   int k = min(int(x), marginalFilter.lastTexel);
@@ -147,12 +147,12 @@ GLINT_FN float glintFilteredMarginal(DictionaryView dict, GlintMarginalFilter ma
 // ---- 3. The smooth lobe ----------------------------------------------------------------------
 
 // The Beckmann P22 (roughness alpha, correlation rho) convolved with a kernel of slope covariance
-// K: the Gaussian of covariance Sigma + K; exactly beckmannP22 where there is no kernel.
+// K: the Gaussian of covariance Sigma + K; exactly glintBeckmannP22 where there is no kernel.
 GLINT_FN float glintFilteredBeckmannP22(vec2 slope, vec2 alpha, float rho, vec3 kernelCovariance) {
   if (kernelCovariance.x + kernelCovariance.z > 0.0f) {
-    return gaussianSlopeP22(slope, beckmannSlopeCovariance(alpha, rho) + kernelCovariance);
+    return glintGaussianSlopeP22(slope, glintBeckmannSlopeCovariance(alpha, rho) + kernelCovariance);
   }
-  return beckmannP22(slope, alpha, rho);
+  return glintBeckmannP22(slope, alpha, rho);
 }
 
 GLINT_KERNEL_END
