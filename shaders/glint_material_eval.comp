@@ -3,7 +3,8 @@
 // kernel::glintMaterialParameters and glintMaterialUv at each case's texture samples and uv. Every
 // output is the bits of the value, so that the host compares them exactly.
 #include "glint_material_block.glsl"
-// The kernel declares the dictionary hook; glint's GL definition of it links the program.
+// The dictionary hook: never called here, but glint_material.h includes glint_brdf.h, whose
+// functions call it, and Mesa's linker resolves the calls of every function, called or not.
 #include "glint_dictionary_gl.glsl"
 
 layout(local_size_x = 64) in;
