@@ -12,6 +12,7 @@
 #include <glad/gl.h>
 #include <gtest/gtest.h>
 
+#include "gl/shader.h"
 #include "gl_support.h"
 #include "glint/error.h"
 #include "glint/image_io.h"
@@ -36,41 +37,14 @@ std::string shadertoyFragment(const std::string& common, const std::string& pass
          "\nout vec4 shadertoyColour;\nvoid main() {\n  mainImage(shadertoyColour, gl_FragCoord.xy);\n}\n";
 }
 
-GLuint compile(GLenum type, const std::string& source, const std::string& name) {
-  const GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw Error(name + " does not compile: " + log);
-  }
-  return shader;
-}
-
 // One pass drawn over a kWidth x kHeight RGBA32F target, iChannel0 bound to `channel0` (0: none).
 std::vector<float> runPass(const std::string& fragment, const std::string& name, GLuint target, GLuint channel0) {
   const std::string vertex =
       "#version 300 es\nvoid main() {\n  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
       "  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n}\n";
-  const GLuint shaders[2] = {compile(GL_VERTEX_SHADER, vertex, "the harness's vertex shader"),
-                             compile(GL_FRAGMENT_SHADER, fragment, name)};
-  const GLuint program = glCreateProgram();
-  for (GLuint s : shaders) glAttachShader(program, s);
-  glLinkProgram(program);
-  for (GLuint s : shaders) glDeleteShader(s);
-  GLint linked = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  if (!linked) {
-    char log[4096] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw Error(name + " does not link: " + log);
-  }
+  const GLuint program = gl::linkProgram({gl::compileStage(GL_VERTEX_SHADER, vertex, "the harness's vertex shader"),
+                                           gl::compileStage(GL_FRAGMENT_SHADER, fragment, name)},
+                                          name);
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);

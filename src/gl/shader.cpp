@@ -126,15 +126,45 @@ std::string locateInFiles(const std::string& log, const std::vector<std::string>
   return out;
 }
 
+GLuint compileStage(GLenum type, const std::string& source, const std::string& name,
+                    const std::vector<std::string>& files) {
+  const GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw Error("shader " + name + " does not compile: " + oneLine(locateInFiles(log, files)));
+  }
+  return shader;
+}
+
+GLuint linkProgram(const std::vector<GLuint>& stages, const std::string& name) {
+  const GLuint program = glCreateProgram();
+  for (GLuint shader : stages) glAttachShader(program, shader);
+  glLinkProgram(program);
+  for (GLuint shader : stages) glDeleteShader(shader);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw Error("shader program " + name + " does not link: " + oneLine(log));
+  }
+  return program;
+}
+
 ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& stages,
                              const std::vector<std::pair<std::string, std::string>>& defines,
                              const std::map<std::string, std::string>& sources) {
   std::string header = kVersionHeader;
   for (const auto& [name, value] : defines) header += "#define " + name + " " + value + "\n";
   std::vector<GLuint> shaders;
-  auto cleanUp = [&] {
-    for (GLuint shader : shaders) glDeleteShader(shader);
-  };
 #ifdef GLINT_GLSL_ES
   Bindings bindings;
 #endif
@@ -144,33 +174,14 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
 #ifdef GLINT_GLSL_ES
     takeBindings(source, bindings);
 #endif
-    const GLuint shader = glCreateShader(type);
-    shaders.push_back(shader);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[4096] = {};
-      glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-      cleanUp();
-      throw Error("shader " + name + " does not compile: " + oneLine(locateInFiles(log, expanded.files)));
+    try {
+      shaders.push_back(compileStage(type, source, name, expanded.files));
+    } catch (const Error&) {
+      for (GLuint shader : shaders) glDeleteShader(shader);
+      throw;
     }
   }
-  id_ = glCreateProgram();
-  for (GLuint shader : shaders) glAttachShader(id_, shader);
-  glLinkProgram(id_);
-  cleanUp();
-  GLint ok = GL_FALSE;
-  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetProgramInfoLog(id_, sizeof log, nullptr, log);
-    glDeleteProgram(id_);
-    id_ = 0;
-    throw Error("shader program " + stages.front().second + " does not link: " + oneLine(log));
-  }
+  id_ = linkProgram(shaders, stages.front().second);
 #ifdef GLINT_GLSL_ES
   glUseProgram(id_);
   for (const auto& [sampler, unit] : bindings.samplers) glUniform1i(uniform(sampler.c_str()), unit);

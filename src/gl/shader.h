@@ -34,6 +34,15 @@ ExpandedSource expandIncludes(const std::string& name,
 // written as "file:n", the file and line of ExpandedSource's numbering (`files` its files).
 std::string locateInFiles(const std::string& log, const std::vector<std::string>& files);
 
+// One stage compiled from its whole text (version line included). Throws Error naming `name`,
+// with the first line of the info log, its locations as file:line of `files` (ExpandedSource's).
+GLuint compileStage(GLenum type, const std::string& source, const std::string& name,
+                    const std::vector<std::string>& files = {});
+
+// A program linked from compiled stages, which it deletes. Throws Error naming `name` with the
+// first line of the info log.
+GLuint linkProgram(const std::vector<GLuint>& stages, const std::string& name);
+
 class ShaderProgram {
  public:
   // Compiles and links the stages {type, file name}, from the embedded files unless `sources` are
