@@ -19,6 +19,7 @@
 //   - The footprint: the glint uv's screen derivatives, dFdx and dFdy in the fragment shader.
 //   - OpenGL functions through libepoxy, which also dispatches EGL.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +28,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <epoxy/egl.h>
@@ -112,9 +114,8 @@ Mesh uvSphere(int segments, int rings) {
     const Vertex &va = mesh.vertices[a], &vb = mesh.vertices[b], &vc = mesh.vertices[c];
     if (va.position == vb.position || vb.position == vc.position || vc.position == va.position) return;
     // Counter-clockwise seen from outside: the front faces.
-    if (glm::dot(glm::cross(vb.position - va.position, vc.position - va.position), va.normal + vb.normal + vc.normal) < 0.0f) {
-      std::swap(b, c);
-    }
+    const vec3 geometric = glm::cross(vb.position - va.position, vc.position - va.position);
+    if (glm::dot(geometric, va.normal + vb.normal + vc.normal) < 0.0f) std::swap(b, c);
     mesh.indices.insert(mesh.indices.end(), {a, b, c});
   };
   for (int j = 0; j < rings; ++j) {
@@ -180,13 +181,15 @@ class HeadlessContext {
       }
     }
     if (display_ == EGL_NO_DISPLAY) throw glint::Error("no OpenGL: no surfaceless or device EGL display");
-    const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                       EGL_NONE};
     const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                         EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     EGLConfig config;
     EGLint configs = 0;
     if (!eglBindAPI(EGL_OPENGL_API) || !eglChooseConfig(display_, configAttributes, &config, 1, &configs) ||
-        configs == 0 || (context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttributes)) == EGL_NO_CONTEXT ||
+        configs == 0 ||
+        (context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, contextAttributes)) == EGL_NO_CONTEXT ||
         !eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
       eglTerminate(display_);
       throw glint::Error("no OpenGL: EGL cannot make a surfaceless OpenGL 4.5 core context");
@@ -274,17 +277,21 @@ int run(const Options& options) {
   // The sphere's vertices, attributes 0 to 3 as sphere.vert declares them.
   GLuint buffers[4];  // vertices, indices, material, dictionary
   glCreateBuffers(4, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(sphere.vertices.size() * sizeof(Vertex)), sphere.vertices.data(), 0);
-  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(sphere.indices.size() * sizeof(std::uint32_t)), sphere.indices.data(), 0);
+  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(sphere.vertices.size() * sizeof(Vertex)),
+                       sphere.vertices.data(), 0);
+  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(sphere.indices.size() * sizeof(std::uint32_t)),
+                       sphere.indices.data(), 0);
   GLuint vertexArray;
   glCreateVertexArrays(1, &vertexArray);
   glVertexArrayVertexBuffer(vertexArray, 0, buffers[0], 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vertexArray, buffers[1]);
   const struct { GLint size; GLuint offset; } attributes[] = {
-      {3, offsetof(Vertex, position)}, {3, offsetof(Vertex, normal)}, {4, offsetof(Vertex, tangent)}, {2, offsetof(Vertex, uv)}};
+      {3, offsetof(Vertex, position)}, {3, offsetof(Vertex, normal)},
+      {4, offsetof(Vertex, tangent)},  {2, offsetof(Vertex, uv)}};
   for (GLuint location = 0; location < 4; ++location) {
     glEnableVertexArrayAttrib(vertexArray, location);
-    glVertexArrayAttribFormat(vertexArray, location, attributes[location].size, GL_FLOAT, GL_FALSE, attributes[location].offset);
+    glVertexArrayAttribFormat(vertexArray, location, attributes[location].size, GL_FLOAT, GL_FALSE,
+                              attributes[location].offset);
     glVertexArrayAttribBinding(vertexArray, location, 0);
   }
 
@@ -297,8 +304,10 @@ int run(const Options& options) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[3]);
 
   const int size = options.size;
-  const glm::mat4 viewProjection =
-      glm::perspective(glm::radians(kVerticalFovDegrees), 1.0f, 1.0f, 10.0f) * glm::lookAt(kCameraPosition, vec3(0.0f), vec3(0, 1, 0));
+  // The near and far planes change only the depth: clip x, y and w, and so the image, are those of
+  // glint's renderer, whose planes fit the scene's bounds.
+  const glm::mat4 viewProjection = glm::perspective(glm::radians(kVerticalFovDegrees), 1.0f, 1.0f, 10.0f) *
+                                   glm::lookAt(kCameraPosition, vec3(0.0f), vec3(0, 1, 0));
   const glint::DictionaryParameters& shape = dictionary.parameters();
   auto uniform = [program](const char* name) { return glGetUniformLocation(program, name); };
   glProgramUniformMatrix4fv(program, uniform("uViewProjection"), 1, GL_FALSE, &viewProjection[0][0]);
@@ -373,7 +382,9 @@ int main(int argc, char** argv) {
         throw glint::Error("unknown argument '" + argument + "'");
       }
     }
-    if (options.output.empty()) throw glint::Error("usage: glint_opengl OUTPUT.{png,exr} [--dictionary FILE] [--size N]");
+    if (options.output.empty()) {
+      throw glint::Error("usage: glint_opengl OUTPUT.{png,exr} [--dictionary FILE] [--size N]");
+    }
     return run(options);
   } catch (const glint::Error& e) {
     std::fprintf(stderr, "glint_opengl: error: %s\n", e.what());

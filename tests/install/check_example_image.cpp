@@ -120,7 +120,8 @@ void compareWithRender(const glint::ImageRgbF& example, const glint::ImageRgbF& 
     ++glints;
     if (std::abs(luminance(example.pixels[i]) - r) <= 0.02f * r) ++agreeing;
   }
-  require(glints >= 20, "the render shows glints (" + std::to_string(glints) + " pixels over 4 times the sphere's median)");
+  require(glints >= 20,
+          "the render shows glints (" + std::to_string(glints) + " pixels over 4 times the sphere's median)");
   // Glint for glint: each of the render's glint pixels is within 2% in the example, but for 1%.
   require(agreeing * 100 >= glints * 99, std::to_string(agreeing) + " of the render's " + std::to_string(glints) +
                                              " glint pixels are within 2% in the example (99% needed)");
