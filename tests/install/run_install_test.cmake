@@ -80,7 +80,7 @@ run("path tracer, smooth" ${tracer} ${WORK}/smooth.exr --smooth --dictionary ${W
 run("check the images" ${CHECKER} ${WORK}/glint.exr ${WORK}/smooth.exr)
 message(STATUS "${run_output}")
 
-# The OpenGL example (examples/opengl), built when libepoxy with EGL was found: glint's built-in
+# The OpenGL example (examples/opengl), built where libepoxy, libOpenGL and libEGL are: glint's built-in
 # sphere shaded with the installed GLSL kernel, against `glint render sphere` of the same setup (one
 # light, no shadows, the 2020 model without anti-aliasing, one sample a pixel, linear EXR, the same
 # dictionary file) within check_example_image.cpp's tolerances.
@@ -92,5 +92,5 @@ if(EXISTS ${opengl_example})
   run("compare the OpenGL example with glint render" ${CHECKER} --against-render ${WORK}/opengl.exr ${WORK}/render.exr)
   message(STATUS "${run_output}")
 else()
-  message(STATUS "OpenGL example: not built (no libepoxy with EGL), not compared")
+  message(STATUS "OpenGL example: not built (no libepoxy, libOpenGL or libEGL), not compared")
 endif()
