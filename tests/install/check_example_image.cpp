@@ -3,10 +3,16 @@
 // the glint BRDF converges to (SMOOTH, --smooth). One line a check; exit status 1 at the first that
 // fails.
 //   glint_check_example_image GLINT.exr SMOOTH.exr
+// With --against-render, compares an example's image of glint's built-in sphere (EXAMPLE, e.g.
+// examples/opengl's) with `glint render sphere`'s (RENDER) of the same setup, pixel by pixel.
+//   glint_check_example_image --against-render EXAMPLE.exr RENDER.exr
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "glint/error.h"
 #include "glint/image_io.h"
@@ -66,11 +72,77 @@ std::string number(double value) {
   return text;
 }
 
+// An example's image of glint's built-in sphere against `glint render sphere`'s. Both rasterise the
+// same mesh with the same camera and shade it with the same kernel, light, sky and material, so
+// they agree to float rounding (the shaders' arithmetic is ordered differently) wherever the
+// example is right. The sky is uniform, so the sphere's pixels are those of the render that differ
+// from its corner; the glints are the sphere's pixels over 4 times its median luminance (the same
+// sphere shaded with the smooth lobe the glints average to peaks at 2.3 times it).
+void compareWithRender(const glint::ImageRgbF& example, const glint::ImageRgbF& render) {
+  require(example.width == render.width && example.height == render.height && render.width >= 64 &&
+              render.height >= 64,
+          "both images are the same size, at least 64x64 (" + std::to_string(example.width) + "x" +
+              std::to_string(example.height) + " and " + std::to_string(render.width) + "x" +
+              std::to_string(render.height) + ")");
+  const glm::vec3 sky = render.at(0, 0);
+  auto onSphere = [&](const glint::ImageRgbF& image, std::size_t i) {
+    return glm::any(glm::greaterThan(glm::abs(image.pixels[i] - sky), glm::vec3(1e-6f)));
+  };
+  std::vector<float> sphereLuminance;
+  std::size_t coverageDiffers = 0;
+  double squaredError = 0.0, squaredValue = 0.0;
+  for (std::size_t i = 0; i < render.pixels.size(); ++i) {
+    if (onSphere(render, i) != onSphere(example, i)) ++coverageDiffers;
+    if (!onSphere(render, i)) continue;
+    const glm::vec3 e = example.pixels[i], r = render.pixels[i];
+    squaredError += glm::dot(e - r, e - r);
+    squaredValue += glm::dot(r, r);
+    sphereLuminance.push_back(luminance(r));
+  }
+  require(sphereLuminance.size() > render.pixels.size() / 4,
+          "the render shows the sphere over a quarter of the frame (" + std::to_string(sphereLuminance.size()) +
+              " pixels)");
+  // Coverage: the same triangles through the same matrix cover the same pixels.
+  require(coverageDiffers * 1000 <= sphereLuminance.size(),
+          "the sphere covers the same pixels in both, but for 0.1% of them (" + std::to_string(coverageDiffers) +
+              " differ)");
+  // Over the sphere: rounding moves a pixel by parts in a million; 1% leaves room for another
+  // driver's fused multiply-adds and a glint whose cell flips at a threshold.
+  const double relativeRmse = std::sqrt(squaredError / squaredValue);
+  require(relativeRmse < 0.01, "the relative RMSE over the sphere's pixels " + number(relativeRmse) + " is under 1%");
+  std::vector<float> sorted = sphereLuminance;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const float glintThreshold = 4.0f * sorted[sorted.size() / 2];
+  std::size_t glints = 0, agreeing = 0;
+  for (std::size_t i = 0; i < render.pixels.size(); ++i) {
+    const float r = luminance(render.pixels[i]);
+    if (!onSphere(render, i) || r <= glintThreshold) continue;
+    ++glints;
+    if (std::abs(luminance(example.pixels[i]) - r) <= 0.02f * r) ++agreeing;
+  }
+  require(glints >= 20,
+          "the render shows glints (" + std::to_string(glints) + " pixels over 4 times the sphere's median)");
+  // Glint for glint: each of the render's glint pixels is within 2% in the example, but for 1%.
+  require(agreeing * 100 >= glints * 99, std::to_string(agreeing) + " of the render's " + std::to_string(glints) +
+                                             " glint pixels are within 2% in the example (99% needed)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 4 && std::string(argv[1]) == "--against-render") {
+    try {
+      compareWithRender(glint::readImage(argv[2]), glint::readImage(argv[3]));
+    } catch (const glint::Error& e) {
+      std::fprintf(stderr, "glint_check_example_image: %s\n", e.what());
+      return 1;
+    }
+    return 0;
+  }
   if (argc != 3) {
-    std::fprintf(stderr, "usage: glint_check_example_image GLINT.exr SMOOTH.exr\n");
+    std::fprintf(stderr,
+                 "usage: glint_check_example_image GLINT.exr SMOOTH.exr\n"
+                 "       glint_check_example_image --against-render EXAMPLE.exr RENDER.exr\n");
     return 2;
   }
   try {

@@ -1,7 +1,8 @@
 # The install test (ctest label install; tests/CMakeLists.txt): glint as a renderer's developer
 # meets it. Installs the build into a fresh prefix, checks the installed command, configures the
 # examples (examples/CMakeLists.txt: every example folder) from that prefix alone, builds them, runs
-# the path tracer and checks its images (check_example_image.cpp).
+# the path tracer and checks its images (check_example_image.cpp), and runs the OpenGL example and
+# compares its image with `glint render`'s.
 #   cmake -DSOURCE_DIR=... -DBUILD_DIR=... -DWORK=... -DVERSION=... -DCXX_COMPILER=... -DBUILD_TYPE=...
 #         -DCHECKER=... [-DEXAMPLE_FLAGS=...] -P run_install_test.cmake
 # An example added later (examples/opengl, examples/vulkan) is configured and built here with no
@@ -78,3 +79,18 @@ run("path tracer, glints" ${tracer} ${WORK}/glint.exr --dictionary ${WORK}/dicti
 run("path tracer, smooth" ${tracer} ${WORK}/smooth.exr --smooth --dictionary ${WORK}/dictionary.gdict)
 run("check the images" ${CHECKER} ${WORK}/glint.exr ${WORK}/smooth.exr)
 message(STATUS "${run_output}")
+
+# The OpenGL example (examples/opengl), built where libepoxy, libOpenGL and libEGL are: glint's built-in
+# sphere shaded with the installed GLSL kernel, against `glint render sphere` of the same setup (one
+# light, no shadows, the 2020 model without anti-aliasing, one sample a pixel, linear EXR, the same
+# dictionary file) within check_example_image.cpp's tolerances.
+set(opengl_example ${WORK}/build/opengl/glint_opengl)
+if(EXISTS ${opengl_example})
+  run("OpenGL example" ${opengl_example} ${WORK}/opengl.exr --dictionary ${WORK}/dictionary.gdict --size 256)
+  run("glint render sphere" ${prefix}/bin/glint render sphere --dict ${WORK}/dictionary.gdict --aa none
+      --shadows off --msaa 1 --size 256x256 -o ${WORK}/render.exr)
+  run("compare the OpenGL example with glint render" ${CHECKER} --against-render ${WORK}/opengl.exr ${WORK}/render.exr)
+  message(STATUS "${run_output}")
+else()
+  message(STATUS "OpenGL example: not built (no libepoxy, libOpenGL or libEGL), not compared")
+endif()
