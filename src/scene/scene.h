@@ -189,6 +189,10 @@ struct Scene {
   // What the scene's file uses that glint does not render (vertex colours, a second uv set, an
   // extension it does not read, ...), one line each, for the commands to warn about.
   std::vector<std::string> unreadFeatures;
+  // What the file holds in an older form that glint still reads, with what writes the current one
+  // (extras.glint: `glint export` writes EXT_materials_glint), one line each, for the commands to
+  // say.
+  std::vector<std::string> notes;
 
   // Bounds of all vertices.
   glm::vec3 boundsMin() const;
