@@ -320,7 +320,7 @@ TEST(ExportCli, GlintLayerFormsErrorsAndNotes) {
     std::ofstream(path) << document.dump();
   };
   auto exportFile = [&] { return runGlint(folder, "export textured.gltf -o out.gltf"); };
-  const std::string where = "glint: textured.gltf: material 0 'textured': ";
+  const std::string where = "glint: error: textured.gltf: material 0 'textured': ";
   for (const nlohmann::json& bad : {nlohmann::json(2), nlohmann::json("yes"), nlohmann::json(0.5)}) {
     SCOPED_TRACE(bad.dump());
     const std::string got = bad.is_string() ? "the string " + bad.dump() : bad.dump();

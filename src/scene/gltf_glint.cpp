@@ -251,7 +251,9 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
       {GlintField::DensityRandomization, &GlintLayer::densityRandomisation},
       {GlintField::MaxAnisotropy, &GlintLayer::maxAnisotropy},
       {GlintField::UvScale, &GlintLayer::uvScale}};
-  for (const auto& [field, member] : numbers) {
+  for (const auto& number : numbers) {
+    const GlintField field = number.first;
+    float GlintLayer::*const member = number.second;  // a named variable: lambdas cannot capture bindings in clang 14
     if (!reader.has(field)) continue;
     const float value = numberField(reader.at(field), reader.name(field));
     checkRange(reader.name(field), [&](GlintLayer& probe) { probe.*member = value; });

@@ -21,7 +21,7 @@ inline constexpr const char* kGlintExtensionName = "EXT_materials_glint";
 // "baseColorFactor"), extras.glint (and extras.glint_specular) in snake_case.
 enum class GlintSpelling { Extension, Extras };
 
-// A glint layer's fields, in the order the writer writes them.
+// A glint layer's fields.
 enum class GlintField {
   Ndf,
   Masking,
