@@ -1390,6 +1390,7 @@ TEST(GltfErrors, BadGlintExtension) {
       {{{"relativeAreaTexture", {{"index", 1}, {"scale", 2}}}}, "relativeAreaTexture: unknown textureInfo member"},
       {{{"density_randomisation", 1}}, "unknown field 'density_randomisation' (known: ndf, masking, multipleScattering, alpha"},
       {json::array({1}), "must be an object, got an array"},
+      {nullptr, "must be an object, got null"},
   };
   for (const auto& badCase : cases) {
     const json& extension = badCase.first;  // not a binding: clang 14's lambdas cannot capture one
