@@ -1054,7 +1054,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
   // no float, which the loader refuses as beyond a float's range).
   auto beyond = [](double bound, double direction) {
     const float next = std::nextafter(static_cast<float>(bound), static_cast<float>(direction));
-    return std::isinf(next) ? std::ldexp(direction, 128) : static_cast<double>(next);
+    return std::isinf(next) ? std::copysign(std::ldexp(1.0, 128), direction) : static_cast<double>(next);
   };
   int bounds = 0;
   for (const auto& item : properties.items()) {
@@ -1070,6 +1070,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
       EXPECT_NO_THROW(loadGltf(path)) << v;
     };
     auto refused = [&](double v) {
+      ASSERT_TRUE(std::isfinite(v));
       withExtension({{name, value(v)}});
       expectLoadError(path, "material 0 'textured': EXT_materials_glint: " + name);
     };
