@@ -1,7 +1,7 @@
 // The environment behind the meshes: drawn as a triangle at the far plane after them, so it covers
 // only the pixels no mesh did, with the radiance a camera ray in that direction meets (what the
 // path tracer shows there too).
-// microfacet.h for kPi.
+// microfacet.h for GLINT_PI.
 #include "microfacet.h"
 #include "environment.glsl"
 

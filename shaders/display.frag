@@ -13,5 +13,5 @@ void main() {
   vec3 radiance = texelFetch(uRadiance, texel, 0).rgb;
   // The dither is laid out from the image's top row, as the CPU's images are (rows here go up).
   ivec2 pixel = ivec2(texel.x, textureSize(uRadiance, 0).y - 1 - texel.y);
-  outColour = vec4(displayCodeValues(radiance, uExposure, pixel) / 255.0f, 1.0f);
+  outColour = vec4(glintDisplayCodeValues(radiance, uExposure, pixel) / 255.0f, 1.0f);
 }

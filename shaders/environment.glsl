@@ -13,7 +13,7 @@ vec3 environmentRadiance(vec3 d, float alpha) {
   // The world direction turned back by the map's rotation (scene::Environment::mapDirection).
   d = vec3(uEnvironmentRotation.x * d.x - uEnvironmentRotation.y * d.z, d.y,
            uEnvironmentRotation.x * d.z + uEnvironmentRotation.y * d.x);
-  vec2 uv = vec2(atan(d.x, -d.z) / (2.0f * kPi) + 0.5f, acos(clamp(d.y, -1.0f, 1.0f)) / kPi);
+  vec2 uv = vec2(atan(d.x, -d.z) / (2.0f * GLINT_PI) + 0.5f, acos(clamp(d.y, -1.0f, 1.0f)) / GLINT_PI);
   float lod = clamp(log2(max(alpha, 1e-3f) * float(textureSize(uEnvironment, 0).x)), 0.0f, uEnvironmentMaxLod);
   return textureLod(uEnvironment, uv, lod).rgb * uEnvironmentIntensity;
 }

@@ -114,8 +114,8 @@ uniform vec2 uGlintLogDensityRange;
 uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point or spot at xyz; w = 0: xyz = unit direction towards the light
 uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
 uniform vec3 uSpotAxis[GLINT_SLOPE_COUNT];  // the direction a spot shines along (kernel/lights.h)
-uniform vec2 uSpotCone[GLINT_SLOPE_COUNT];  // spotConeScaleOffset; (0, 1) for lights without a cone
-uniform float uLightInverseRange[GLINT_SLOPE_COUNT];  // 1 / range (rangeWindow); 0 for lights without a range
+uniform vec2 uSpotCone[GLINT_SLOPE_COUNT];  // glintSpotConeScaleOffset; (0, 1) for lights without a cone
+uniform float uLightInverseRange[GLINT_SLOPE_COUNT];  // 1 / range (glintRangeWindow); 0 for lights without a range
 #include "shadows.glsl"
 
 uniform vec3 uIrradianceSh[9];  // Ramamoorthi & Hanrahan 2001, coefficients already scaled by A_l
@@ -163,8 +163,8 @@ void main() {
   vec2 leanUv = TEXTURE_UV(uNormalUv);
   vec3 leanFirst = texture(uLeanFirstMoments, leanUv).xyz;
   vec3 leanSecond = texture(uLeanSecondMoments, leanUv).xyz;
-  float leanLambda = textureLevelOfDetail(dFdx(leanUv), dFdy(leanUv), vec2(textureSize(uLeanFirstMoments, 0)));
-  vec3 mapped = leanMeanNormal(leanFirst);
+  float leanLambda = glintTextureLevelOfDetail(dFdx(leanUv), dFdy(leanUv), vec2(textureSize(uLeanFirstMoments, 0)));
+  vec3 mapped = glintLeanMeanNormal(leanFirst);
 #else
 #if NORMAL_MAP_FINEST
   vec3 mapped = textureLod(uNormalTexture, TEXTURE_UV(uNormalUv), 0.0f).xyz * 2.0f - 1.0f;
@@ -206,14 +206,14 @@ void main() {
   // correlation included. (Filtering the glints by it instead, as by the pixel's own kernel, was
   // measured and did worse: docs/antialiasing.md, "Normal-map filtering".)
   vec3 leanRoughness =
-      leanCombinedRoughness(params.alpha, params.rho, leanSlopeCovariance(leanFirst, leanSecond, leanLambda));
+      glintLeanCombinedRoughness(params.alpha, params.rho, glintLeanSlopeCovariance(leanFirst, leanSecond, leanLambda));
   params.alpha = vec2(leanRoughness.x, leanRoughness.y);
   params.rho = leanRoughness.z;
 #endif
-  DictionaryView dict = glintDictionary();
+  GlintDictionaryView dict = glintDictionary();
 
   vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);
-  vec3 diffuse = baseColour.rgb * (1.0f - metallic) / kPi;
+  vec3 diffuse = baseColour.rgb * (1.0f - metallic) / GLINT_PI;
   vec2 specularAlpha = GLINT_LAYER ? params.alpha : vec2(roughness * roughness);
 
   // Each light's direction in the shading frame, its squared distance (1 for a directional one)
@@ -227,7 +227,7 @@ void main() {
     lightDistance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
     vec3 l = normalize(toLight);
     lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
-    lightFalloff[i] = spotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * rangeWindow(lightDistance2[i], uLightInverseRange[i]);
+    lightFalloff[i] = glintSpotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * glintRangeWindow(lightDistance2[i], uLightInverseRange[i]);
 #if SHADOWS
     lightFalloff[i] *= shadowVisibility(i, vPosition, normalize(vNormal), l, sqrt(lightDistance2[i]));
 #endif
@@ -241,7 +241,7 @@ void main() {
   bool glintLit[GLINT_SLOPE_COUNT];
   bool anyGlintLit = false;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
-    vec2 slope = slopeFromNormal(normalize(wo + lightDirection[i]));
+    vec2 slope = glintSlopeFromNormal(normalize(wo + lightDirection[i]));
     glintLit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, params, slope);
     // An unlit light's result is discarded; a finite slope keeps its texel reads in range (a light
     // below the horizon can have an infinite one).
@@ -267,8 +267,8 @@ void main() {
 #if GLINT_MULTIPLE_SCATTERING
   // The multiple-scattering compensation (multiple_scattering.h): a smooth lobe, the same for glint
   // and Cook-Torrance programs, with Schlick's average Fresnel.
-  vec3 multipleFresnel = multipleScatteringFresnel(
-      schlickAverageFresnel(f0), averageAlbedo(GLINT_NDF, GLINT_MASKING, compensationAlpha(specularAlpha)));
+  vec3 multipleFresnel = glintMultipleScatteringFresnel(
+      glintSchlickAverageFresnel(f0), glintAverageAlbedo(GLINT_NDF, GLINT_MASKING, glintCompensationAlpha(specularAlpha)));
 #endif
   vec3 radiance = emissive;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
@@ -277,41 +277,41 @@ void main() {
       continue;
     }
     vec3 wh = normalize(wo + wi);
-    vec3 fresnel = fresnelSchlick(f0, dot(wo, wh));
+    vec3 fresnel = glintFresnelSchlick(f0, dot(wo, wh));
     vec3 specular;
 #if SPECULAR_MODEL == SPECULAR_GLINT
     if (GLINT_LAYER) {
       vec4 p22 = glintLit[i] ? glintP22s.p22[i] : vec4(0.0f);
       vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
-      specular = fresnel * tint * glintMaskedReflectance(params, wo, wi, wh, ndfFromP22(p22.w, wh.z));
+      specular = fresnel * tint * glintMaskedReflectance(params, wo, wi, wh, glintNdfFromP22(p22.w, wh.z));
     } else {
-      specular = fresnel * targetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, 0.0f, wo, wi);
+      specular = fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, 0.0f, wo, wi);
     }
 #elif ZIRR_KAPLANYAN
     if (GLINT_LAYER) {
       // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
       // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
 #if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE
-      float zirrKaplanyan = zirrKaplanyanReferenceReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
+      float zirrKaplanyan = glintZirrKaplanyanReferenceReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(params));
 #else
-      float zirrKaplanyan = zirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, zirrKaplanyanFromGlint(params));
+      float zirrKaplanyan = glintZirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(params));
 #endif
       specular = fresnel * params.relativeArea * zirrKaplanyan;
     } else {
-      specular = fresnel * cookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
+      specular = fresnel * glintCookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
     }
 #else
-    specular = fresnel * targetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha,
+    specular = fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha,
                                                        GLINT_LAYER ? params.rho : 0.0f, wo, wi);
 #endif
 #if GLINT_MULTIPLE_SCATTERING
-    specular += multipleFresnel * multipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, wo, wi);
+    specular += multipleFresnel * glintMultipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, wo, wi);
 #endif
     radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
   }
   vec3 reflected = reflect(-view, n);
   vec3 ambient = diffuse * irradiance(n) +
-                 fresnelSchlick(f0, wo.z) * environmentRadiance(reflected, max(specularAlpha.x, specularAlpha.y));
+                 glintFresnelSchlick(f0, wo.z) * environmentRadiance(reflected, max(specularAlpha.x, specularAlpha.y));
   radiance += ambient * occlusion;
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth

@@ -12,7 +12,7 @@
 #define GLINT_FILTERED 0
 #endif
 
-struct DictionaryView {
+struct GlintDictionaryView {
   int numLevels;
   int numDistributions;
   int texelsPerDistribution;
@@ -26,13 +26,13 @@ uniform ivec3 uGlintDictionaryShape;  // L, N, R
 uniform float uGlintDictionaryAlpha;  // alpha_d
 #if GLINT_FILTERED
 // The mip chain: RGBA16F texels (p_m[k], p_m[k+1], q_m[k], q_m[k+1]), q_m the next level at level
-// m's positions, row after row as the C++ DictionaryView's filteredTexels.
+// m's positions, row after row as the C++ GlintDictionaryView's filteredTexels.
 layout(binding = 10) uniform GLINT_TEXEL_BUFFER uGlintFilteredDictionary;
 uniform ivec2 uGlintDictionaryMips;  // numMips, mipRowLength
 #endif
 
-DictionaryView glintDictionary() {
-  DictionaryView dict;
+GlintDictionaryView glintDictionary() {
+  GlintDictionaryView dict;
   dict.numLevels = uGlintDictionaryShape.x;
   dict.numDistributions = uGlintDictionaryShape.y;
   dict.texelsPerDistribution = uGlintDictionaryShape.z;
@@ -47,8 +47,8 @@ DictionaryView glintDictionary() {
   return dict;
 }
 
-vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
-  return glintTexelBufferFetch(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
+vec2 glintDictionaryTexelPair(GlintDictionaryView dict, int level, int distribution, int texel) {
+  return GLINT_TEXEL_BUFFER_FETCH(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
 }
 
 // Where level m of the mip chain starts in a distribution's row (as in prelude.h).
@@ -57,13 +57,13 @@ int glintMipOffset(int texelsPerDistribution, int mip) {
 }
 
 #if GLINT_FILTERED
-vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
-  return glintTexelBufferFetch(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength + index);
+vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level, int distribution, int index) {
+  return GLINT_TEXEL_BUFFER_FETCH(uGlintFilteredDictionary, (level * dict.numDistributions + distribution) * dict.mipRowLength + index);
 }
 #else
 // Unfiltered programs never read the mip chain; the kernel's filtered lookup, compiled but not
 // called there, reads mip 0's pair.
-vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
+vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level, int distribution, int index) {
   return vec4(glintDictionaryTexelPair(dict, level, distribution, index), 0.0f, 0.0f);
 }
 #endif

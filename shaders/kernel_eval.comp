@@ -34,14 +34,14 @@ void main() {
   vec2 uv, duvdx, duvdy;
   vec3 wo, wi;
   readCase(inputs[i], params, uv, duvdx, duvdy, wo, wi);
-  DictionaryView dict = glintDictionary();
+  GlintDictionaryView dict = glintDictionary();
   GlintSlopeSet slopes;
   bool above[GLINT_SLOPE_COUNT];
   params.colouredCells = true;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     vec3 wh = normalize(wo + inputs[(i + uint(k)) % uCount].wiAndRelativeArea.xyz);
     above[k] = wh.z > 0.0f;
-    slopes.slope[k] = above[k] ? slopeFromNormal(wh) : vec2(0.0f);
+    slopes.slope[k] = above[k] ? glintSlopeFromNormal(wh) : vec2(0.0f);
     slopes.derivatives[k] = vec4(0.0f);
   }
   GlintP22Set together = glintP22Set(dict, params, uv, duvdx, duvdy, slopes);

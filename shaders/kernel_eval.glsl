@@ -51,23 +51,23 @@ vec4 evaluateCase(KernelInput data) {
   vec2 uv, duvdx, duvdy;
   vec3 wo, wi;
   readCase(data, params, uv, duvdx, duvdy, wo, wi);
-  DictionaryView dict = glintDictionary();
+  GlintDictionaryView dict = glintDictionary();
   vec3 wh = normalize(wo + wi);
 #if GLINT_FILTERED
-  float p22 = wh.z > 0.0f ? glintFilteredP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh),
+  float p22 = wh.z > 0.0f ? glintFilteredP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(wh),
                                              data.slopeDerivatives)
                           : 0.0f;
-  float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
+  float d = wh.z > 0.0f ? glintNdfFromP22(p22, wh.z) : 0.0f;
   float f = wo.z > 0.0f && wi.z > 0.0f ? glintMaskedReflectance(params, wo, wi, wh, d) : 0.0f;
 #else
-  float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(wh)) : 0.0f;
-  float d = wh.z > 0.0f ? ndfFromP22(p22, wh.z) : 0.0f;
+  float p22 = wh.z > 0.0f ? glintP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(wh)) : 0.0f;
+  float d = wh.z > 0.0f ? glintNdfFromP22(p22, wh.z) : 0.0f;
   float f = glintReflectance(dict, params, uv, duvdx, duvdy, wo, wi);
 #endif
   // The compensation lobe with F = 1 (multiple_scattering.h), added to both BRDFs when the case has it.
-  float multiple = params.multipleScattering ? multipleScatteringReflectance(params.ndf, params.masking, params.alpha, wo, wi) : 0.0f;
+  float multiple = params.multipleScattering ? glintMultipleScatteringReflectance(params.ndf, params.masking, params.alpha, wo, wi) : 0.0f;
   return vec4(f + multiple, d, p22,
-              targetCookTorranceReflectance(params.ndf, params.masking, params.alpha, params.rho, wo, wi) + multiple);
+              glintTargetCookTorranceReflectance(params.ndf, params.masking, params.alpha, params.rho, wo, wi) + multiple);
 }
 
 #endif

@@ -1,7 +1,7 @@
 // Evaluates the Zirr & Kaplanyan 2016 kernel for a buffer of inputs: the GPU half of the
 // CPU-versus-GLSL test (tests/test_zirr_kaplanyan.cpp). Same entry points as the renderer's and
-// glint::ZirrKaplanyanBsdf: zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), and
-// zirrKaplanyanReferenceReflectance (the reference shader's schedule), which must match it bit for bit.
+// glint::ZirrKaplanyanBsdf: glintZirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), and
+// glintZirrKaplanyanReferenceReflectance (the reference shader's schedule), which must match it bit for bit.
 #include "zirr_kaplanyan.h"
 
 layout(local_size_x = 64) in;
@@ -26,7 +26,7 @@ void main() {
     return;
   }
   ZirrKaplanyanInput data = inputs[i];
-  ZirrKaplanyanParameters params;
+  GlintZirrKaplanyanParameters params;
   params.roughness = data.duvdyAndRoughness.zw;
   params.microRoughness = data.microRoughnessEtc.xy;
   params.searchConeAngle = data.wiAndSearchCone.w;
@@ -41,7 +41,7 @@ void main() {
   vec3 wo = data.woAndLogDensity.xyz;
   vec3 wi = data.wiAndSearchCone.xyz;
   int visits;
-  float glints = zirrKaplanyanGlintsCounted(uv, duvdx, duvdy, wo, wi, params, visits);
-  outputs[i] = vec4(zirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), glints, float(visits),
-                    zirrKaplanyanReferenceReflectance(uv, duvdx, duvdy, wo, wi, params));
+  float glints = glintZirrKaplanyanGlintsCounted(uv, duvdx, duvdy, wo, wi, params, visits);
+  outputs[i] = vec4(glintZirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), glints, float(visits),
+                    glintZirrKaplanyanReferenceReflectance(uv, duvdx, duvdy, wo, wi, params));
 }

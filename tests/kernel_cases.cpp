@@ -47,8 +47,8 @@ FootprintPolicy randomFootprintPolicy(Pcg32& rng) {
 KernelValues evaluateOnCpu(const KernelCase& c) {
   const GlintBsdf bsdf(defaultDictionary(), c.parameters, c.footprint);
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
-  const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
-  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f, p22, cookTorranceOnCpu(c)};
+  const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::glintSlopeFromNormal(wh)) : 0.0f;
+  return {bsdf.f(c.wo, c.wi).x, wh.z > 0.0f ? kernel::glintNdfFromP22(p22, wh.z) : 0.0f, p22, cookTorranceOnCpu(c)};
 }
 
 std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases) {
@@ -72,10 +72,10 @@ KernelValues evaluateFilteredOnCpu(const KernelCase& c) {
   const glm::vec3 wh = glm::normalize(c.wo + c.wi);
   if (wh.z <= 0.0f) return {0.0f, 0.0f, 0.0f, cookTorranceOnCpu(c)};
   const float p22 = kernel::glintFilteredP22(defaultDictionary().view(), c.parameters, c.footprint.uv, c.footprint.duvdx,
-                                             c.footprint.duvdy, kernel::slopeFromNormal(wh), c.derivatives);
-  const float d = kernel::ndfFromP22(p22, wh.z);
+                                             c.footprint.duvdy, kernel::glintSlopeFromNormal(wh), c.derivatives);
+  const float d = kernel::glintNdfFromP22(p22, wh.z);
   const float multiple = c.parameters.multipleScattering
-                             ? kernel::multipleScatteringReflectance(c.parameters.ndf, c.parameters.masking,
+                             ? kernel::glintMultipleScatteringReflectance(c.parameters.ndf, c.parameters.masking,
                                                                      c.parameters.alpha, c.wo, c.wi)
                              : 0.0f;
   const float f =

@@ -20,7 +20,7 @@ namespace {
 
 using namespace glint::test;
 
-kernel::DictionaryView dictionaryView() { return defaultDictionary().view(); }
+kernel::GlintDictionaryView dictionaryView() { return defaultDictionary().view(); }
 
 GlintParameters correlated(glm::vec2 alpha, float rho, float logDensity) {
   GlintParameters p = defaultGlintParameters();
@@ -34,7 +34,7 @@ GlintParameters correlated(glm::vec2 alpha, float rho, float logDensity) {
 
 TEST(SlopeCorrelation, RhoZeroIsThe2020ScalingBitForBit) {
   // The 2020 model's map: slope * alpha_d / alpha, its inverse and Jacobian alpha_d^2 / (ax ay).
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   Pcg32 rng(16, 1);
   for (int i = 0; i < 10000; ++i) {
     const GlintParameters p = correlated(glm::vec2(uniform(rng, 0.01f, 2.0f), uniform(rng, 0.01f, 2.0f)), 0.0f, 20.0f);
@@ -47,7 +47,7 @@ TEST(SlopeCorrelation, RhoZeroIsThe2020ScalingBitForBit) {
 }
 
 // The cell map M (glintScaledSlope) as a matrix, read off the images of the unit vectors.
-glm::dmat2 cellMap(const kernel::DictionaryView& dict, const GlintParameters& p) {
+glm::dmat2 cellMap(const kernel::GlintDictionaryView& dict, const GlintParameters& p) {
   return glm::dmat2(glm::dvec2(kernel::glintScaledSlope(dict, p, {1.0f, 0.0f})),
                     glm::dvec2(kernel::glintScaledSlope(dict, p, {0.0f, 1.0f})));
 }
@@ -55,7 +55,7 @@ glm::dmat2 cellMap(const kernel::DictionaryView& dict, const GlintParameters& p)
 TEST(SlopeCorrelation, CellMapCarriesTheFullCovariance) {
   // sigma_d^2 M M^T = [[sx^2, rho sx sy], [rho sx sy, sy^2]] (Eq. 18), det(M^-1) is the Jacobian,
   // and M^-1 inverts M.
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const double sigmaD = dict.alpha / std::sqrt(2.0);
   Pcg32 rng(16, 2);
   for (int i = 0; i < 1000; ++i) {
@@ -92,14 +92,14 @@ TEST(SlopeCorrelation, CorrelatedBeckmannIsTheGaussianOfItsCovariance) {
     // Relative 1e-4 where the density matters (above 1e-6 of its peak, where float's rounding of
     // the exponent's argument stays below that).
     const double floor = 1e-6 / (2.0 * std::numbers::pi * sx * sy * std::sqrt(1.0 - rho * rho));
-    EXPECT_NEAR(kernel::beckmannP22(slope, alpha, rho), expected, 2e-5 * expected + floor) << "case " << i;
-    EXPECT_NEAR(kernel::gaussianSlopeP22(slope, kernel::beckmannSlopeCovariance(alpha, rho)), expected,
+    EXPECT_NEAR(kernel::glintBeckmannP22(slope, alpha, rho), expected, 2e-5 * expected + floor) << "case " << i;
+    EXPECT_NEAR(kernel::glintGaussianSlopeP22(slope, kernel::glintBeckmannSlopeCovariance(alpha, rho)), expected,
                 1e-4 * expected + floor)
         << "case " << i;
   }
   // And it integrates to 1 at a strong correlation.
   const glm::vec2 alpha(0.3f, 0.6f);
-  EXPECT_NEAR(integrateOverSlopes([&](glm::vec2 s) { return kernel::beckmannP22(s, alpha, -0.95f); }, 6.0f * alpha, 800),
+  EXPECT_NEAR(integrateOverSlopes([&](glm::vec2 s) { return kernel::glintBeckmannP22(s, alpha, -0.95f); }, 6.0f * alpha, 800),
               1.0, 1e-3);
 }
 
@@ -152,7 +152,7 @@ TEST(SlopeCorrelation, OutOfRangeIsRejectedByName) {
 // ---- The mip chain ----------------------------------------------------------------------------
 
 // The filtered marginal at a level of detail, as the walk reads it.
-float filteredMarginal(const kernel::DictionaryView& dict, int level, int distribution, float absSlope, float lod) {
+float filteredMarginal(const kernel::GlintDictionaryView& dict, int level, int distribution, float absSlope, float lod) {
   return kernel::glintFilteredMarginal(dict, kernel::glintMarginalFilter(dict, lod), level, distribution, absSlope);
 }
 
@@ -231,7 +231,7 @@ TEST(MipChain, LevelMWidensTheMarginalsByAQuarterOfItsSpacingSquared) {
   // read with linear interpolation adds (2^m h)^2 / 4: a box of width 2^m h (1/12) and the
   // interpolation's hat (1/6). Measured on the mean of the added variance over all distributions
   // of a sparse and a dense level, within 10%.
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const double domain = kernel::glintDictionaryDomain(dict);
   const double spacing = domain / dict.texelsPerDistribution;
   for (int mip = 1; mip <= 4; ++mip) {
@@ -256,7 +256,7 @@ TEST(MipChain, LevelMWidensTheMarginalsByAQuarterOfItsSpacingSquared) {
 // ---- Filtered marginals -----------------------------------------------------------------------
 
 TEST(FilteredMarginal, AtLodZeroIsThe2020LookupBitForBit) {
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const float domain = kernel::glintDictionaryDomain(dict);
   Pcg32 rng(17, 1);
   for (int i = 0; i < 100000; ++i) {
@@ -277,7 +277,7 @@ TEST(FilteredMarginal, BlendsTwoLevelsEachReadAtItsOwnSpacing) {
   // computed here from their texels alone (Dictionary::mipTexel; 0 from 4 sigma_d on). The texels
   // hold the next level interpolated at this level's positions, rounded to binary16: 2e-3.
   const Dictionary& d = defaultDictionary();
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const double spacing = d.parameters().texelSpacing();
   const auto interpolated = [&](int mip, int level, int distribution, double x) {
     const int texels = d.parameters().texelsPerDistribution >> mip;
@@ -304,7 +304,7 @@ TEST(FilteredMarginal, BlendsTwoLevelsEachReadAtItsOwnSpacing) {
 }
 
 TEST(FilteredMarginal, IntegratesToOneAtEveryLevelOfDetail) {
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const double domain = kernel::glintDictionaryDomain(dict);
   for (float lod : {0.0f, 0.5f, 1.0f, 2.3f, 3.7f, 5.5f, 6.0f}) {
     for (int level : {0, 5, 15}) {
@@ -321,7 +321,7 @@ TEST(FilteredMarginal, IntegratesToOneAtEveryLevelOfDetail) {
 }
 
 TEST(FilteredMarginal, WiderKernelsWidenTheMarginalsByTheirVariance) {
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const float spacing = kernel::glintDictionaryDomain(dict) / dict.texelsPerDistribution;
   // The variance of mip m (m >= 1) is (2^m h)^2 / 4, h the texel spacing: such a kernel reads mip
   // m alone, a kernel between two of them the blend that matches its variance.
@@ -368,7 +368,7 @@ TEST(GlintAntiAliasing, ZeroDerivativesGiveThe2020PSdfExactly) {
   // With no derivatives the walk is the 2020 one; with derivatives so small that every lookup is
   // at level 0 (a kernel of 1e-12 slope units) it runs the filtered path, which must give the
   // same sums, but for the smooth cells' Gaussian whose covariance the kernel moves by 1e-24.
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   Pcg32 rng(18, 1);
   int glinty = 0;
   for (int i = 0; i < 3000; ++i) {
@@ -381,9 +381,9 @@ TEST(GlintAntiAliasing, ZeroDerivativesGiveThe2020PSdfExactly) {
     const float tiny = kernel::glintFilteredP22(dict, p, f.uv, f.duvdx, f.duvdy, slope, randomDerivatives(rng, 1e-12f));
     // 1e-5 relative, and 1e-6 of the Beckmann peak where the smooth cells' tail is rounded
     // differently by the Gaussian's covariance form.
-    ASSERT_NEAR(tiny, unfiltered, 1e-5f * unfiltered + 1e-6f * kernel::beckmannP22(glm::vec2(0.0f), p.alpha, p.rho))
+    ASSERT_NEAR(tiny, unfiltered, 1e-5f * unfiltered + 1e-6f * kernel::glintBeckmannP22(glm::vec2(0.0f), p.alpha, p.rho))
         << "case " << i;
-    const float smooth = kernel::beckmannP22(slope, p.alpha, p.rho);
+    const float smooth = kernel::glintBeckmannP22(slope, p.alpha, p.rho);
     glinty += std::abs(unfiltered - smooth) > 0.5f * smooth;
   }
   std::printf("%d of 3000 cases glinty (P22 off the Beckmann's by more than half)\n", glinty);
@@ -412,7 +412,7 @@ TEST(GlintAntiAliasingStat, FilterApproachesThePixelAverage) {
   // The reference a pixel should show is the mean of the 2020 P-SDF over the pixel's box of half
   // vectors, slope(p) = s0 + dx p.x + dy p.y (32 x 32 stratified samples); the filtered P-SDF at s0
   // must be closer to it than the 2020 P-SDF at s0, over glinty pixels of several footprints.
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   Pcg32 rng(18, 3);
   double errorNone = 0.0, errorFiltered = 0.0;
   for (int i = 0; i < 300; ++i) {
@@ -447,10 +447,10 @@ TEST(GlintFootprint, HugeFootprintsAreTheSmoothLimitNotZero) {
   // A footprint of 1e20 uv units: its length squared overflows a float, which made the ellipse's
   // axes NaN and the P-SDF 0. Any footprint that large holds so many microfacets that every cell
   // is in the smooth limit: the Beckmann P22.
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   const GlintParameters p = correlated(glm::vec2(0.3f), 0.0f, 20.0f);
   const glm::vec2 slope(0.05f, -0.1f);
-  const float beckmann = kernel::beckmannP22(slope, p.alpha, p.rho);
+  const float beckmann = kernel::glintBeckmannP22(slope, p.alpha, p.rho);
   for (glm::vec2 duvdx : {glm::vec2(1e20f, 0.0f), glm::vec2(3e38f, -3e38f), glm::vec2(2e6f, 1.0f)}) {
     const float value = kernel::glintP22(dict, p, glm::vec2(0.3f, 0.7f), duvdx, glm::vec2(0.0f, 1e-3f), slope);
     EXPECT_NEAR(value, beckmann, 1e-5f * beckmann) << duvdx.x;
@@ -463,7 +463,7 @@ TEST(GlintFootprint, HugeFootprintsAreTheSmoothLimitNotZero) {
 }
 
 TEST(GlintAntiAliasing, NoNanOrInfinityAtTheLimits) {
-  const kernel::DictionaryView dict = dictionaryView();
+  const kernel::GlintDictionaryView dict = dictionaryView();
   Pcg32 rng(18, 4);
   for (float rho : {-0.99f, 0.0f, 0.99f}) {
     for (glm::vec2 slope : {glm::vec2(0.0f), glm::vec2(1e3f, -1e3f), glm::vec2(3.0f, 0.1f), glm::vec2(-1e-20f, 1e-20f)}) {
@@ -510,13 +510,13 @@ TEST(NormalMapFiltering, ConstantNormalMapChangesNothing) {
     const glm::vec2 dx(footprint, 0.0f), dy(0.0f, footprint);
     const glm::vec3 a = first.sample(glm::vec2(0.3f, 0.6f), dx, dy);
     const glm::vec3 b = second.sample(glm::vec2(0.3f, 0.6f), dx, dy);
-    const glm::vec3 covariance = kernel::leanSlopeCovariance(a, b, first.levelOfDetail(dx, dy));
+    const glm::vec3 covariance = kernel::glintLeanSlopeCovariance(a, b, first.levelOfDetail(dx, dy));
     EXPECT_LE(std::abs(covariance.x) + std::abs(covariance.y) + std::abs(covariance.z), 1e-6f) << footprint;
-    const glm::vec3 alphaRho = kernel::leanCombinedRoughness(glm::vec2(0.05f, 0.3f), 0.2f, glm::vec3(0.0f));
+    const glm::vec3 alphaRho = kernel::glintLeanCombinedRoughness(glm::vec2(0.05f, 0.3f), 0.2f, glm::vec3(0.0f));
     EXPECT_EQ(alphaRho, glm::vec3(0.05f, 0.3f, 0.2f));
     glm::vec3 decoded;
     for (int c = 0; c < 3; ++c) decoded[c] = static_cast<float>(t.rgba[static_cast<std::size_t>(c)]) / 255.0f * 2.0f - 1.0f;
-    const glm::vec3 mean = kernel::leanMeanNormal(a);
+    const glm::vec3 mean = kernel::glintLeanMeanNormal(a);
     EXPECT_NEAR(glm::dot(mean, glm::normalize(decoded)), 1.0f, 1e-6f) << footprint;
   }
 }
@@ -561,13 +561,13 @@ TEST(NormalMapFiltering, RidgeKeepsItsVarianceAlongOneAxis) {
   const scene::NormalMapMoments m = scene::normalMapMoments(t, 1.0f);
   const trace::MipTexture first(m.width, m.height, m.first), second(m.width, m.height, m.second);
   const glm::vec2 dx(0.25f, 0.0f), dy(0.0f, 0.25f);  // 4 texels: level 2
-  const glm::vec3 covariance = kernel::leanSlopeCovariance(first.sample({0.5f, 0.5f}, dx, dy),
+  const glm::vec3 covariance = kernel::glintLeanSlopeCovariance(first.sample({0.5f, 0.5f}, dx, dy),
                                                            second.sample({0.5f, 0.5f}, dx, dy), first.levelOfDetail(dx, dy));
   const float slope = 0.4f / std::sqrt(1.0f - 0.0f);  // |n.x / n.z| of the decoded texels, about 0.4
   EXPECT_NEAR(covariance.x, slope * slope, 0.02f);
   EXPECT_NEAR(covariance.z, 0.0f, 1e-5f);
   EXPECT_NEAR(covariance.y, 0.0f, 1e-5f);
-  const glm::vec3 combined = kernel::leanCombinedRoughness(glm::vec2(0.1f), 0.0f, covariance);
+  const glm::vec3 combined = kernel::glintLeanCombinedRoughness(glm::vec2(0.1f), 0.0f, covariance);
   EXPECT_GT(combined.x, 0.5f);
   EXPECT_NEAR(combined.y, 0.1f, 1e-5f);
 }
@@ -575,11 +575,11 @@ TEST(NormalMapFiltering, RidgeKeepsItsVarianceAlongOneAxis) {
 TEST(NormalMapFiltering, MagnifiedFootprintsAddNoRoughness) {
   // Below a texel the covariance scales with the footprint's area in texels, 4^lambda.
   const glm::vec3 first(0.1f, 0.0f, 0.02f), second(0.01f, 0.0f, 0.0f);
-  const glm::vec3 at0 = kernel::leanSlopeCovariance(first, second, 0.0f);
-  EXPECT_NEAR(kernel::leanSlopeCovariance(first, second, -1.0f).x, 0.25f * at0.x, 1e-7f);
-  EXPECT_NEAR(kernel::leanSlopeCovariance(first, second, -3.0f).z, at0.z / 64.0f, 1e-7f);
-  EXPECT_EQ(kernel::leanSlopeCovariance(first, second, 2.0f), at0);
-  EXPECT_LT(kernel::leanSlopeCovariance(first, second, -128.0f).x, 1e-30f);
+  const glm::vec3 at0 = kernel::glintLeanSlopeCovariance(first, second, 0.0f);
+  EXPECT_NEAR(kernel::glintLeanSlopeCovariance(first, second, -1.0f).x, 0.25f * at0.x, 1e-7f);
+  EXPECT_NEAR(kernel::glintLeanSlopeCovariance(first, second, -3.0f).z, at0.z / 64.0f, 1e-7f);
+  EXPECT_EQ(kernel::glintLeanSlopeCovariance(first, second, 2.0f), at0);
+  EXPECT_LT(kernel::glintLeanSlopeCovariance(first, second, -128.0f).x, 1e-30f);
 }
 
 TEST(NormalMapFiltering, CombinedRoughnessAddsTheCovariances) {
@@ -587,9 +587,9 @@ TEST(NormalMapFiltering, CombinedRoughnessAddsTheCovariances) {
   const glm::vec2 alpha(0.2f, 0.35f);
   const float rho = -0.3f;
   const glm::vec3 map(0.01f, 0.004f, 0.02f);
-  const glm::vec3 combined = kernel::leanCombinedRoughness(alpha, rho, map);
-  const glm::vec3 rebuilt = kernel::beckmannSlopeCovariance(glm::vec2(combined), combined.z);
-  const glm::vec3 expected = kernel::beckmannSlopeCovariance(alpha, rho) + map;
+  const glm::vec3 combined = kernel::glintLeanCombinedRoughness(alpha, rho, map);
+  const glm::vec3 rebuilt = kernel::glintBeckmannSlopeCovariance(glm::vec2(combined), combined.z);
+  const glm::vec3 expected = kernel::glintBeckmannSlopeCovariance(alpha, rho) + map;
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(rebuilt[c], expected[c], 1e-6f) << c;
 }
 

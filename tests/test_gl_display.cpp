@@ -36,7 +36,7 @@ TEST(DisplayGl, EncodesAsTheCpuDoes) {
       for (int x = 0; x < width; ++x) {
         const Rgb8 g = gpu.at(x, y);
         const Rgb8 c = cpu.at(x, y);
-        const glm::vec3 exact = kernel::displayEncode(radiance.at(x, y), exposure) * 255.0f;
+        const glm::vec3 exact = kernel::glintDisplayEncode(radiance.at(x, y), exposure) * 255.0f;
         const int gc[3] = {g.r, g.g, g.b};
         const int cc[3] = {c.r, c.g, c.b};
         for (int k = 0; k < 3; ++k) {
@@ -45,7 +45,7 @@ TEST(DisplayGl, EncodesAsTheCpuDoes) {
           // Only by a level, and only where the CPU's value lies within 1e-3 of its pixel's rounding
           // boundary (a whole code less the dither's threshold).
           EXPECT_EQ(std::abs(gc[k] - cc[k]), 1) << x << ", " << y << " channel " << k;
-          const float dithered = exact[k] + kernel::orderedDitherThreshold(glm::ivec2(x, y));
+          const float dithered = exact[k] + kernel::glintOrderedDitherThreshold(glm::ivec2(x, y));
           EXPECT_LT(std::abs(dithered - std::round(dithered)), 1e-3f) << x << ", " << y << " channel " << k;
         }
       }

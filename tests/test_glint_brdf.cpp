@@ -151,7 +151,7 @@ TEST(GlintBrdf, CellWalkVisitsExactlyTheCellsInsideTheEllipse) {
   // weight. Cells with r^2 within 2e-3 of 1 are left out of the comparison: cell coordinates reach
   // 2^15, where a float's step is 4e-3 cells, so the kernel's float r^2 and this double one differ
   // there (such a cell's weight is below 7e-4 of the centre's).
-  const kernel::DictionaryView dict = defaultDictionary().view();
+  const kernel::GlintDictionaryView dict = defaultDictionary().view();
   Pcg32 rng(404, 3);
   int transposed = 0;
   int compared = 0;
@@ -221,7 +221,7 @@ TEST(GlintBrdf, PoleFootprintGivesTheSamePSdfWhicheverWayTheScreenAxesTurn) {
   // 256 uv positions and a slope inside the lobe: each value within 1e-4 of the mean of the
   // square-on ones (float rounding of the axes moves cells on the ellipse's rim, whose weight is
   // near 0), and so the mean and the spread over positions alike.
-  const kernel::DictionaryView dict = defaultDictionary().view();
+  const kernel::GlintDictionaryView dict = defaultDictionary().view();
   GlintParameters p = defaultGlintParameters();
   p.alpha = glm::vec2(0.5f);
   p.logDensity = 13.0f;  // the sphere's red glint
@@ -261,7 +261,7 @@ TEST(GlintBrdf, CellRotationMatchesTheAngle) {
   for (std::uint32_t k = 0; k < (1u << 24); ++k) {
     const glm::uvec4 hash(0u, 0u, k << 8, 0u);
     const glm::vec2 rotation = kernel::glintCellRotation(hash);
-    const double theta = 2.0 * 3.14159265358979323846 * kernel::hashToUnitOpen(hash.z);  // the angle drawn
+    const double theta = 2.0 * 3.14159265358979323846 * kernel::glintHashToUnitOpen(hash.z);  // the angle drawn
     worst = std::max({worst, std::abs(rotation.x - std::cos(theta)), std::abs(rotation.y - std::sin(theta))});
   }
   EXPECT_LT(worst, 2e-7);
@@ -274,7 +274,7 @@ TEST(GlintBrdf, LevelThresholdsDrawTheRoundedNormalQuantile) {
   // glintCellDictionaryLevel counts the thresholds Phi((j - log4(n) - 1/2) / zeta) that the cell's
   // u passes; the model's draw is round(log4(n) + zeta Phi^-1(u)) clamped to [0, L]. Against that
   // draw in double precision (normalQuantile, 1e-9 relative) on 4 million cells of random footprint
-  // levels, densities and zeta: a cell may differ only where its u lies within normalCdf's absolute
+  // levels, densities and zeta: a cell may differ only where its u lies within glintNormalCdf's absolute
   // error (2e-7, NormalCdf.MatchesErfcInSinglePrecision) of an exact threshold. Such cells are
   // expected at about that rate per threshold (measured: none); 20 allows 5e-6, and any other
   // disagreement fails. The next level's thresholds, shifted, must equal its own bit for bit.
@@ -283,7 +283,7 @@ TEST(GlintBrdf, LevelThresholdsDrawTheRoundedNormalQuantile) {
   int unexplained = 0;
   int levelsSeen = 0;
   for (int c = 0; c < 200; ++c) {
-    kernel::DictionaryView dict = defaultDictionary().view();
+    kernel::GlintDictionaryView dict = defaultDictionary().view();
     dict.numLevels = c % 5 == 0 ? 1 + static_cast<int>(rng.next() % 16u) : 16;
     GlintParameters parameters = defaultGlintParameters();
     parameters.densityRandomisation = c % 7 == 0 ? 0.0f : uniform(rng, 0.05f, 4.0f);
@@ -293,7 +293,7 @@ TEST(GlintBrdf, LevelThresholdsDrawTheRoundedNormalQuantile) {
     if (level + 1 < dict.numLevels) {
       const kernel::GlintLevelDraw next = kernel::glintNextLevelDraw(dict, parameters, logDensity, level, draw);
       const kernel::GlintLevelDraw direct = kernel::glintLevelDraw(dict, parameters, logDensity, level + 1);
-      for (int j = 0; j < kernel::kMaxDictionaryLevels; ++j) {
+      for (int j = 0; j < kernel::GLINT_MAX_DICTIONARY_LEVELS; ++j) {
         ASSERT_EQ(next.threshold[j], direct.threshold[j]) << "case " << c << ", threshold " << j;
       }
     }
@@ -301,7 +301,7 @@ TEST(GlintBrdf, LevelThresholdsDrawTheRoundedNormalQuantile) {
     std::set<int> seen;
     for (int i = 0; i < 20000; ++i) {
       const std::uint32_t k = rng.next() >> 8u;
-      const double u = kernel::hashToUnitOpen(k << 8u);  // the cell's u, as the kernel rounds it
+      const double u = kernel::glintHashToUnitOpen(k << 8u);  // the cell's u, as the kernel rounds it
       const double normal = parameters.densityRandomisation * normalQuantile(u);
       const int exact = static_cast<int>(std::clamp(std::floor(roundedFrom + normal), 0.0, double(dict.numLevels)));
       const int drawn = kernel::glintCellDictionaryLevel(draw, glm::uvec4(0u, k << 8u, 0u, 0u));
@@ -329,7 +329,7 @@ TEST(GlintBrdf, RendererSkipsOnlyNegligibleSlopes) {
   // The renderer takes P22 = 0 where glintSlopeIsNegligible holds (docs/renderer.md, "Cost"). The
   // exact P22 there comes from smooth-limit cells only and must be below exp(-16) = 1.13e-7 of the
   // Beckmann peak. High densities make such cells common, so the bound is met by non-zero values.
-  const kernel::DictionaryView dict = defaultDictionary().view();
+  const kernel::GlintDictionaryView dict = defaultDictionary().view();
   Pcg32 rng(1616, 5);
   double worst = 0.0;
   int nonZero = 0;
@@ -345,7 +345,7 @@ TEST(GlintBrdf, RendererSkipsOnlyNegligibleSlopes) {
         glm::vec2(std::cos(angle), std::sin(angle)) * radius * (parameters.alpha / glm::vec2(dict.alpha));
     ASSERT_TRUE(kernel::glintSlopeIsNegligible(dict, parameters, slope)) << "case " << i;
     const double p22 = kernel::glintP22(dict, parameters, surface.uv, surface.duvdx, surface.duvdy, slope);
-    const double peak = kernel::beckmannP22(glm::vec2(0.0f), parameters.alpha, parameters.rho);
+    const double peak = kernel::glintBeckmannP22(glm::vec2(0.0f), parameters.alpha, parameters.rho);
     worst = std::max(worst, p22 / peak);
     nonZero += p22 > 0.0 ? 1 : 0;
   }

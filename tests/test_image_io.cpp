@@ -313,7 +313,7 @@ TEST(ImageIoDisplay, SmoothGradientsAreDitheredNotBanded) {
   for (int x = 0; x < kWidth; ++x) {
     const float value = 0.05f + 0.005f * static_cast<float>(x) / static_cast<float>(kWidth - 1);
     for (int y = 0; y < kTile; ++y) radiance.at(x, y) = glm::vec3(value);
-    exactCodes[static_cast<std::size_t>(x)] = 255.0 * kernel::displayEncode(glm::vec3(value), 1.0f).x;
+    exactCodes[static_cast<std::size_t>(x)] = 255.0 * kernel::glintDisplayEncode(glm::vec3(value), 1.0f).x;
   }
   ASSERT_GT(exactCodes.back() - exactCodes.front(), 3.0);  // the gradient crosses several codes
   const ImageRgb8 encoded = displayEncode(radiance, 1.0f);

@@ -49,7 +49,7 @@ TEST(SpotLight, FallsOffBetweenItsConesAsTheGltfExtensionSays) {
   // evaluated here in double from the angle a between the axis and the direction to the point.
   const double inner = 0.3;
   const double outer = 0.7;
-  const glm::vec2 cone = kernel::spotConeScaleOffset(float(inner), float(outer));
+  const glm::vec2 cone = kernel::glintSpotConeScaleOffset(float(inner), float(outer));
   const glm::vec3 axis = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   // Directions at angle a from the axis, turned about a perpendicular.
   const glm::vec3 side = glm::normalize(glm::cross(axis, glm::vec3(1, 0, 0)));
@@ -57,7 +57,7 @@ TEST(SpotLight, FallsOffBetweenItsConesAsTheGltfExtensionSays) {
   for (int k = 0; k <= 100; ++k) {
     const double a = 1.0 * k / 100;
     const glm::vec3 away = float(std::cos(a)) * axis + float(std::sin(a)) * side;  // from the light to the point
-    const float got = kernel::spotAttenuation(axis, -away, cone);
+    const float got = kernel::glintSpotAttenuation(axis, -away, cone);
     const double ramp = std::clamp((std::cos(a) - std::cos(outer)) / (std::cos(inner) - std::cos(outer)), 0.0, 1.0);
     worst = std::max(worst, std::abs(got - ramp * ramp));
     if (a < inner) EXPECT_EQ(got, 1.0f) << a;
@@ -65,7 +65,7 @@ TEST(SpotLight, FallsOffBetweenItsConesAsTheGltfExtensionSays) {
   }
   EXPECT_LT(worst, 1e-5);  // float cosines of angles within the ramp
   // A light without a cone, (0, 1), sends its full intensity every way.
-  EXPECT_EQ(kernel::spotAttenuation(axis, axis, glm::vec2(0.0f, 1.0f)), 1.0f);
+  EXPECT_EQ(kernel::glintSpotAttenuation(axis, axis, glm::vec2(0.0f, 1.0f)), 1.0f);
 }
 
 TEST(LightRange, WindowsTheInverseSquareLawAsTheGltfExtensionSays) {
@@ -75,17 +75,17 @@ TEST(LightRange, WindowsTheInverseSquareLawAsTheGltfExtensionSays) {
   double worst = 0.0;
   for (int k = 0; k <= 120; ++k) {
     const double d = 3.0 * k / 120;
-    const float got = kernel::rangeWindow(float(d * d), float(1.0 / range));
+    const float got = kernel::glintRangeWindow(float(d * d), float(1.0 / range));
     const double window = std::max(std::min(1.0 - std::pow(d / range, 4.0), 1.0), 0.0);
     worst = std::max(worst, std::abs(got - window));
     if (d >= range) EXPECT_EQ(got, 0.0f) << d;
   }
   EXPECT_LT(worst, 1e-6);
-  EXPECT_EQ(kernel::rangeWindow(0.0f, float(1.0 / range)), 1.0f);
+  EXPECT_EQ(kernel::glintRangeWindow(0.0f, float(1.0 / range)), 1.0f);
   // Half way to the range, 15/16 of the light is left.
-  EXPECT_NEAR(kernel::rangeWindow(float(0.25 * range * range), float(1.0 / range)), 15.0 / 16, 1e-6);
+  EXPECT_NEAR(kernel::glintRangeWindow(float(0.25 * range * range), float(1.0 / range)), 15.0 / 16, 1e-6);
   // Without a range (inverse 0) nothing is taken off, however far.
-  EXPECT_EQ(kernel::rangeWindow(1e12f, 0.0f), 1.0f);
+  EXPECT_EQ(kernel::glintRangeWindow(1e12f, 0.0f), 1.0f);
 }
 
 TEST(NormalQuantile, MatchesBisectionOfTheNormalCdf) {
@@ -107,7 +107,7 @@ TEST(Erfinv, InvertsErfInSinglePrecision) {
   // Giles' single-precision approximation: relative error well below 1e-5 in x everywhere.
   for (int i = -999; i <= 999; ++i) {
     const double y = i / 1000.0 * 0.999999;
-    const double x = kernel::erfinvApprox(static_cast<float>(y));
+    const double x = kernel::glintErfinvApprox(static_cast<float>(y));
     EXPECT_NEAR(std::erf(x), y, 2e-6 * std::abs(y) + 1e-7) << "y = " << y;
   }
 }
@@ -124,13 +124,13 @@ TEST(NormalCdf, MatchesErfcInSinglePrecision) {
   for (int i = -8000; i <= 8000; ++i) {
     const float z = static_cast<float>(i / 1000.0);
     const double exact = 0.5 * std::erfc(-static_cast<double>(z) / std::sqrt(2.0));
-    const double approx = kernel::normalCdf(z);
+    const double approx = kernel::glintNormalCdf(z);
     worstAbsolute = std::max(worstAbsolute, std::abs(approx - exact));
     if (z < -3.0f) worstTailRelative = std::max(worstTailRelative, std::abs(approx / exact - 1.0));
   }
   EXPECT_LT(worstAbsolute, 2e-7);
   EXPECT_LT(worstTailRelative, 1e-5);
-  std::printf("normalCdf: worst absolute error %.2e, worst relative error below z = -3 %.2e\n", worstAbsolute,
+  std::printf("glintNormalCdf: worst absolute error %.2e, worst relative error below z = -3 %.2e\n", worstAbsolute,
               worstTailRelative);
 }
 
@@ -144,10 +144,10 @@ TEST(Hash, Pcg4dLanesAreUniformAndIndependent) {
   std::vector<glm::vec4> draws;
   for (int t = 0; t < kCells; ++t) {
     for (int s = 0; s < kCells; ++s) {
-      const glm::uvec4 h = kernel::pcg4d(glm::uvec4(s, t, 0u, 0u));
+      const glm::uvec4 h = kernel::glintPcg4d(glm::uvec4(s, t, 0u, 0u));
       glm::vec4 u;
       for (int lane = 0; lane < 4; ++lane) {
-        u[lane] = kernel::hashToUnitOpen(h[lane]);
+        u[lane] = kernel::glintHashToUnitOpen(h[lane]);
         ++histogram[lane][static_cast<int>(u[lane] * kBins)];
       }
       draws.push_back(u);
@@ -172,7 +172,7 @@ TEST(Hash, Pcg4dLanesAreUniformAndIndependent) {
 TEST(Hash, NeighbouringCellsDrawDifferentNumbers) {
   std::set<std::uint32_t> seen;
   for (std::uint32_t t = 0; t < 128; ++t) {
-    for (std::uint32_t s = 0; s < 128; ++s) seen.insert(kernel::pcg4d(glm::uvec4(s, t, 0u, 0u)).z);
+    for (std::uint32_t s = 0; s < 128; ++s) seen.insert(kernel::glintPcg4d(glm::uvec4(s, t, 0u, 0u)).z);
   }
   EXPECT_GT(seen.size(), 128u * 128u - 4u);  // 32-bit outputs: a birthday collision is possible, rare
 }
@@ -180,7 +180,7 @@ TEST(Hash, NeighbouringCellsDrawDifferentNumbers) {
 TEST(Beckmann, SlopeDistributionIntegratesToOne) {
   for (glm::vec2 alpha : {glm::vec2(0.1f), glm::vec2(0.5f), glm::vec2(0.05f, 0.8f)}) {
     const double integral = integrateOverSlopes(
-        [&](glm::vec2 slope) { return kernel::beckmannP22(slope, alpha, 0.0f); }, 6.0f * alpha, 400);
+        [&](glm::vec2 slope) { return kernel::glintBeckmannP22(slope, alpha, 0.0f); }, 6.0f * alpha, 400);
     EXPECT_NEAR(integral, 1.0, 1e-5);
   }
 }
@@ -197,7 +197,7 @@ TEST(Beckmann, NdfIsProjectedAreaNormalised) {
     for (int j = 0; j < kPhi; ++j) {
       const double phi = (j + 0.5) / kPhi * 2 * M_PI;
       const glm::vec3 m = directionAt(static_cast<float>(theta), static_cast<float>(phi));
-      const double d = kernel::ndfFromP22(kernel::beckmannP22(kernel::slopeFromNormal(m), alpha, 0.0f), m.z);
+      const double d = kernel::glintNdfFromP22(kernel::glintBeckmannP22(kernel::glintSlopeFromNormal(m), alpha, 0.0f), m.z);
       integral += d * m.z * std::sin(theta) * (M_PI / 2 / kTheta) * (2 * M_PI / kPhi);
     }
   }
@@ -206,8 +206,8 @@ TEST(Beckmann, NdfIsProjectedAreaNormalised) {
 
 TEST(Fresnel, SchlickEndpoints) {
   const glm::vec3 f0(0.04f, 0.5f, 0.9f);
-  const glm::vec3 normal = kernel::fresnelSchlick(f0, 1.0f);
-  const glm::vec3 grazing = kernel::fresnelSchlick(f0, 0.0f);
+  const glm::vec3 normal = kernel::glintFresnelSchlick(f0, 1.0f);
+  const glm::vec3 grazing = kernel::glintFresnelSchlick(f0, 0.0f);
   for (int c = 0; c < 3; ++c) {
     EXPECT_FLOAT_EQ(normal[c], f0[c]);
     EXPECT_FLOAT_EQ(grazing[c], 1.0f);
@@ -219,7 +219,7 @@ TEST(Fresnel, ConductorMatchesClosedForms) {
   // Fresnel equations through Snell's law.
   const glm::vec3 eta(0.2f, 1.1f, 1.5f);
   const glm::vec3 k(3.9f, 2.4f, 0.0f);
-  const glm::vec3 normal = kernel::fresnelConductor(eta, k, 1.0f);
+  const glm::vec3 normal = kernel::glintFresnelConductor(eta, k, 1.0f);
   for (int c = 0; c < 3; ++c) {
     const double n = eta[c];
     const double kk = k[c];
@@ -231,18 +231,18 @@ TEST(Fresnel, ConductorMatchesClosedForms) {
     const double cosT = std::sqrt(1 - sinT * sinT);
     const double rs = (cosI - n * cosT) / (cosI + n * cosT);
     const double rp = (n * cosI - cosT) / (n * cosI + cosT);
-    const float value = kernel::fresnelConductor(glm::vec3(1.5f), glm::vec3(0.0f), static_cast<float>(cosI)).x;
+    const float value = kernel::glintFresnelConductor(glm::vec3(1.5f), glm::vec3(0.0f), static_cast<float>(cosI)).x;
     EXPECT_NEAR(value, 0.5 * (rs * rs + rp * rp), 1e-5) << "cos " << cosI;
   }
 }
 
 TEST(VCavity, MaskingIsOneAtNormalViewAndFallsAtGrazing) {
   const glm::vec3 m = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f));
-  EXPECT_FLOAT_EQ(kernel::vcavityG1(glm::vec3(0, 0, 1), m), 1.0f);
+  EXPECT_FLOAT_EQ(kernel::glintVCavityG1(glm::vec3(0, 0, 1), m), 1.0f);
   const glm::vec3 grazing = directionAt(1.5f, 3.14159f);
   const float expected = 2.0f * m.z * grazing.z / glm::dot(grazing, m);
   EXPECT_LT(expected, 1.0f);
-  EXPECT_FLOAT_EQ(kernel::vcavityG1(grazing, m), expected);
+  EXPECT_FLOAT_EQ(kernel::glintVCavityG1(grazing, m), expected);
 }
 
 TEST(Footprint, AnisotropyIsClampedByWideningTheMinorAxis) {

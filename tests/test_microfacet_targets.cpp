@@ -18,8 +18,8 @@ namespace {
 
 using namespace glint::test;
 
-constexpr int kTargets[] = {kernel::kNdfBeckmann, kernel::kNdfGgx};
-constexpr int kMaskings[] = {kernel::kMaskingVCavity, kernel::kMaskingSmith};
+constexpr int kTargets[] = {kernel::GLINT_NDF_BECKMANN, kernel::GLINT_NDF_GGX};
+constexpr int kMaskings[] = {kernel::GLINT_MASKING_VCAVITY, kernel::GLINT_MASKING_SMITH};
 
 GlintParameters withTarget(GlintParameters parameters, int ndf, int masking) {
   parameters.ndf = ndf;
@@ -35,11 +35,11 @@ TEST(MicrofacetTargets, GgxSlopeDistributionIsTheClosedFormAndIntegratesToOne) {
       const glm::dvec2 r = glm::dvec2(s) / glm::dvec2(alpha);
       const double b = 1.0 + glm::dot(r, r);
       const double expected = 1.0 / (M_PI * alpha.x * alpha.y * b * b);
-      EXPECT_NEAR(kernel::ggxP22(s, alpha, 0.0f), expected, 2e-6 * expected);
+      EXPECT_NEAR(kernel::glintGgxP22(s, alpha, 0.0f), expected, 2e-6 * expected);
     }
     for (float rho : {0.0f, 0.7f, -0.95f}) {
       const double integral =
-          integrateOverWholeSlopePlane([&](glm::vec2 s) { return kernel::ggxP22(s, alpha, rho); }, alpha, 600);
+          integrateOverWholeSlopePlane([&](glm::vec2 s) { return kernel::glintGgxP22(s, alpha, rho); }, alpha, 600);
       EXPECT_NEAR(integral, 1.0, 1e-4) << alpha.x << "," << alpha.y << " rho " << rho;
     }
   }
@@ -57,17 +57,17 @@ TEST(MicrofacetTargets, ProjectedAreaAndSmithMaskingHold) {
       for (float rho : {0.0f, 0.6f}) {
         for (float degrees : {0.0f, 30.0f, 60.0f, 80.0f, 85.0f}) {
           const glm::vec3 wo = directionAt(glm::radians(degrees), 0.8f);
-          const float g1 = kernel::smithG1(ndf, alpha, rho, wo);
+          const float g1 = kernel::glintSmithG1(ndf, alpha, rho, wo);
           const double signedArea = integrateOverWholeSlopePlane(
               [&](glm::vec2 s) {
                 const glm::vec3 m = sampling::normalFromSlope(s);
-                return kernel::targetP22(ndf, s, alpha, rho) * double(glm::dot(wo, m)) / m.z;
+                return kernel::glintTargetP22(ndf, s, alpha, rho) * double(glm::dot(wo, m)) / m.z;
               },
               alpha, 400);
           const double masked = g1 * integrateOverWholeSlopePlane(
                             [&](glm::vec2 s) {
                               const glm::vec3 m = sampling::normalFromSlope(s);
-                              return kernel::targetP22(ndf, s, alpha, rho) * std::max(0.0, double(glm::dot(wo, m))) / m.z;
+                              return kernel::glintTargetP22(ndf, s, alpha, rho) * std::max(0.0, double(glm::dot(wo, m))) / m.z;
                             },
                             alpha, 400);
           worst = std::max({worst, std::abs(signedArea / wo.z - 1.0), std::abs(masked / wo.z - 1.0)});
@@ -88,7 +88,7 @@ TEST(MicrofacetTargets, GgxTailCompletesTheScaleMixture) {
   // midpoints), independently of the kernel's closed form; and the remainder integrates to 1.
   const glm::vec2 alpha(0.4f, 0.25f);
   const float rho = 0.5f;
-  const glm::dvec3 c = glm::dvec3(kernel::beckmannSlopeCovariance(alpha, rho));
+  const glm::dvec3 c = glm::dvec3(kernel::glintBeckmannSlopeCovariance(alpha, rho));
   const double determinant = c.x * c.z - c.y * c.y;
   for (glm::vec2 s : {glm::vec2(0.0f), glm::vec2(0.2f, -0.1f), glm::vec2(1.0f, 0.5f), glm::vec2(-6.0f, 9.0f)}) {
     const double q = (c.z * s.x * s.x - 2.0 * c.y * s.x * s.y + c.x * s.y * s.y) / determinant;
@@ -96,18 +96,18 @@ TEST(MicrofacetTargets, GgxTailCompletesTheScaleMixture) {
     constexpr int kPoints = 20000;
     for (int i = 0; i < kPoints; ++i) {
       const double x = (i + 0.5) / kPoints;
-      const double w = kernel::kGgxTailPrecision + x / (1.0 - x);
+      const double w = kernel::GLINT_GGX_TAIL_PRECISION + x / (1.0 - x);
       const double jacobian = 1.0 / ((1.0 - x) * (1.0 - x));
       cells += std::exp(-w) * w / (2.0 * M_PI * std::sqrt(determinant)) * std::exp(-0.5 * w * q) * jacobian / kPoints;
     }
-    const double tail = kernel::kGgxTailProbability * kernel::studentTailSlopeP22(s, glm::vec3(c));
-    const double ggx = kernel::ggxP22(s, alpha, rho);
+    const double tail = kernel::GLINT_GGX_TAIL_PROBABILITY * kernel::glintStudentTailSlopeP22(s, glm::vec3(c));
+    const double ggx = kernel::glintGgxP22(s, alpha, rho);
     EXPECT_NEAR((cells + tail) / ggx, 1.0, 1e-4) << s.x << "," << s.y;
   }
-  EXPECT_NEAR(kernel::kGgxTailProbability, -std::expm1(-double(kernel::kGgxTailPrecision)), 1e-9);
-  EXPECT_NEAR(kernel::kGgxWidestCell, 1.0 / std::sqrt(double(kernel::kGgxTailPrecision)), 1e-6);
+  EXPECT_NEAR(kernel::GLINT_GGX_TAIL_PROBABILITY, -std::expm1(-double(kernel::GLINT_GGX_TAIL_PRECISION)), 1e-9);
+  EXPECT_NEAR(kernel::GLINT_GGX_WIDEST_CELL, 1.0 / std::sqrt(double(kernel::GLINT_GGX_TAIL_PRECISION)), 1e-6);
   const double remainder = integrateOverWholeSlopePlane(
-      [&](glm::vec2 s) { return kernel::studentTailSlopeP22(s, glm::vec3(c)); }, alpha, 800);
+      [&](glm::vec2 s) { return kernel::glintStudentTailSlopeP22(s, glm::vec3(c)); }, alpha, 800);
   EXPECT_NEAR(remainder, 1.0, 1e-3);
 }
 
@@ -123,7 +123,7 @@ TEST(MicrofacetTargets, GgxTailSamplerFollowsItsDistribution) {
     radii.push_back(double(glm::dot(s, s)));  // t = q / 2 = |s|^2 / (2 sigma^2), sigma^2 = 1/2
   }
   std::sort(radii.begin(), radii.end());
-  const double w = kernel::kGgxTailPrecision;
+  const double w = kernel::GLINT_GGX_TAIL_PRECISION;
   double worst = 0.0;
   for (int i = 0; i < kDraws; ++i) {
     const double y = 1.0 + radii[static_cast<std::size_t>(i)];
@@ -175,10 +175,10 @@ TEST(GlintTargets, SmithMaskingDiffersFromVCavityAndGgxFromBeckmann) {
   const auto ct = [&](int ndf, int masking) {
     return CookTorranceBsdf(alpha, 0.0f, Fresnel::none(), Spectrum(1.0f), MicrofacetTarget{ndf, masking}).f(wo, wi).x;
   };
-  EXPECT_GT(std::abs(ct(kernel::kNdfBeckmann, kernel::kMaskingSmith) / ct(kernel::kNdfBeckmann, kernel::kMaskingVCavity) - 1.0f), 0.05f);
+  EXPECT_GT(std::abs(ct(kernel::GLINT_NDF_BECKMANN, kernel::GLINT_MASKING_SMITH) / ct(kernel::GLINT_NDF_BECKMANN, kernel::GLINT_MASKING_VCAVITY) - 1.0f), 0.05f);
   const glm::vec3 m = sampling::normalFromSlope(glm::vec2(3.0f * alpha.x, 0.0f));
   const CookTorranceBsdf beckmann(alpha);
-  const CookTorranceBsdf ggx(alpha, 0.0f, Fresnel::none(), Spectrum(1.0f), MicrofacetTarget{kernel::kNdfGgx});
+  const CookTorranceBsdf ggx(alpha, 0.0f, Fresnel::none(), Spectrum(1.0f), MicrofacetTarget{kernel::GLINT_NDF_GGX});
   EXPECT_GT(ggx.ndf(m), 10.0f * beckmann.ndf(m));
 }
 
@@ -187,7 +187,7 @@ TEST(GlintTargetsStat, MeanOverPositionsIsGgxAtModerateDensity) {
   // D_P over 20000 random positions must match GGX within 2% (the tolerance), in the peak
   // and out in the tail, where the wide cells and the remainder carry GGX's extra mass.
   const glm::vec2 alpha(0.3f, 0.5f);
-  GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::kNdfGgx, kernel::kMaskingSmith);
+  GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH);
   parameters.alpha = alpha;
   parameters.logDensity = 22.0f;
   const CookTorranceBsdf ggx(alpha, 0.0f, Fresnel::none(), Spectrum(1.0f), microfacetTarget(parameters));
@@ -214,7 +214,7 @@ TEST(GlintTargetsStat, GgxPNdfIsNormalisedForEveryFootprint) {
   double worst = 0.0;
   int refined = 0;
   for (int i = 0; i < 200; ++i) {
-    GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::kNdfGgx, kernel::kMaskingSmith);
+    GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH);
     parameters.alpha = glm::vec2(uniform(rng, 0.05f, 1.0f), uniform(rng, 0.05f, 1.0f));
     parameters.logDensity = uniform(rng, 15.0f, 40.0f);
     const SurfaceFootprint footprint = randomFootprint(rng, 1e-5f, 3e-2f);
@@ -242,13 +242,13 @@ TEST(GlintTargets, UnknownTargetsAndMaskingsAreRejectedByName) {
   GlintParameters parameters = defaultGlintParameters();
   parameters.ndf = 2;
   EXPECT_NE(errorOf([&] { validateGlintParameters(parameters); }).find("ndf"), std::string::npos);
-  parameters.ndf = kernel::kNdfGgx;
+  parameters.ndf = kernel::GLINT_NDF_GGX;
   parameters.masking = -1;
   EXPECT_NE(errorOf([&] { validateGlintParameters(parameters); }).find("masking"), std::string::npos);
-  EXPECT_EQ(ndfFromName("ndf", "ggx"), kernel::kNdfGgx);
-  EXPECT_EQ(maskingFromName("masking", "smith"), kernel::kMaskingSmith);
-  EXPECT_STREQ(ndfName(kernel::kNdfGgx), "ggx");
-  EXPECT_STREQ(maskingName(kernel::kMaskingVCavity), "v-cavity");
+  EXPECT_EQ(ndfFromName("ndf", "ggx"), kernel::GLINT_NDF_GGX);
+  EXPECT_EQ(maskingFromName("masking", "smith"), kernel::GLINT_MASKING_SMITH);
+  EXPECT_STREQ(ndfName(kernel::GLINT_NDF_GGX), "ggx");
+  EXPECT_STREQ(maskingName(kernel::GLINT_MASKING_VCAVITY), "v-cavity");
 }
 
 }  // namespace

@@ -18,8 +18,8 @@ namespace {
 
 using namespace glint::test;
 
-constexpr int kTargets[] = {kernel::kNdfBeckmann, kernel::kNdfGgx};
-constexpr int kMaskings[] = {kernel::kMaskingVCavity, kernel::kMaskingSmith};
+constexpr int kTargets[] = {kernel::GLINT_NDF_BECKMANN, kernel::GLINT_NDF_GGX};
+constexpr int kMaskings[] = {kernel::GLINT_MASKING_VCAVITY, kernel::GLINT_MASKING_SMITH};
 
 TEST(MultipleScattering, TablesAreWhatGlintComputes) {
   // 48 random nodes of the committed tables (kernel/albedo_tables.h) against glint's quadrature
@@ -28,13 +28,13 @@ TEST(MultipleScattering, TablesAreWhatGlintComputes) {
   Pcg32 rng(17, 3);
   for (int k = 0; k < 48; ++k) {
     const int table = static_cast<int>(rng.nextBelow(4));
-    const int i = 1 + static_cast<int>(rng.nextBelow(kernel::kAlbedoAlphaNodes - 1));
-    const int j = static_cast<int>(rng.nextBelow(kernel::kAlbedoMuNodes));
-    const double y = static_cast<double>(i) / (kernel::kAlbedoAlphaNodes - 1);
-    const double x = static_cast<double>(j) / (kernel::kAlbedoMuNodes - 1);
+    const int i = 1 + static_cast<int>(rng.nextBelow(kernel::GLINT_ALBEDO_ALPHA_NODES - 1));
+    const int j = static_cast<int>(rng.nextBelow(kernel::GLINT_ALBEDO_MU_NODES));
+    const double y = static_cast<double>(i) / (kernel::GLINT_ALBEDO_ALPHA_NODES - 1);
+    const double x = static_cast<double>(j) / (kernel::GLINT_ALBEDO_MU_NODES - 1);
     const double expected =
-        std::min(1.0, singleScatteringAlbedo(table / 2, table % 2, kernel::kAlbedoMaxAlpha * y * y, std::max(x * x, 1e-4)));
-    EXPECT_NEAR(kernel::kAlbedoTable[(table * kernel::kAlbedoAlphaNodes + i) * kernel::kAlbedoMuNodes + j], expected, 1e-6)
+        std::min(1.0, singleScatteringAlbedo(table / 2, table % 2, kernel::GLINT_ALBEDO_MAX_ALPHA * y * y, std::max(x * x, 1e-4)));
+    EXPECT_NEAR(kernel::GLINT_ALBEDO_TABLE[(table * kernel::GLINT_ALBEDO_ALPHA_NODES + i) * kernel::GLINT_ALBEDO_MU_NODES + j], expected, 1e-6)
         << "table " << table << " alpha node " << i << " mu node " << j;
   }
   for (int ndf : kTargets) {
@@ -43,9 +43,9 @@ TEST(MultipleScattering, TablesAreWhatGlintComputes) {
         double sum = 0.0;
         for (int k = 0; k < 4096; ++k) {
           const float mu = (static_cast<float>(k) + 0.5f) / 4096.0f;
-          sum += kernel::directionalAlbedo(ndf, masking, alpha, mu) * mu;
+          sum += kernel::glintDirectionalAlbedo(ndf, masking, alpha, mu) * mu;
         }
-        EXPECT_NEAR(kernel::averageAlbedo(ndf, masking, alpha), 2.0 * sum / 4096.0, 2e-4) << ndf << masking << alpha;
+        EXPECT_NEAR(kernel::glintAverageAlbedo(ndf, masking, alpha), 2.0 * sum / 4096.0, 2e-4) << ndf << masking << alpha;
       }
     }
   }
@@ -88,7 +88,7 @@ double furnace(const std::function<float(glm::vec3, glm::vec3)>& single, glm::ve
       const float phi = (static_cast<float>(b) + 0.5f) / kCells * 6.2831853f;
       const float sine = std::sqrt(1.0f - mu * mu);
       const glm::vec3 wi(sine * std::cos(phi), sine * std::sin(phi), mu);
-      lobe += double(kernel::multipleScatteringReflectance(target.ndf, target.masking, alpha, wo, wi)) * mu;
+      lobe += double(kernel::glintMultipleScatteringReflectance(target.ndf, target.masking, alpha, wo, wi)) * mu;
     }
   }
   return microfacets + lobe * (2.0 * M_PI / (kCells * kCells));
@@ -102,8 +102,8 @@ TEST(MultipleScatteringStat, CookTorranceWhiteFurnaceIsOneWithCompensation) {
   for (int ndf : kTargets) {
     for (int masking : kMaskings) {
       for (float alpha : {0.05f, 0.1f, 0.2f, 0.35f, 0.5f, 0.75f, 1.0f}) {
-        std::printf("furnace %-8s %-8s alpha %.2f:", ndf == kernel::kNdfGgx ? "ggx" : "beckmann",
-                    masking == kernel::kMaskingSmith ? "smith" : "v-cavity", alpha);
+        std::printf("furnace %-8s %-8s alpha %.2f:", ndf == kernel::GLINT_NDF_GGX ? "ggx" : "beckmann",
+                    masking == kernel::GLINT_MASKING_SMITH ? "smith" : "v-cavity", alpha);
         for (float degrees : {0.0f, 30.0f, 60.0f, 75.0f, 85.0f, 88.0f}) {
           const glm::vec3 wo = directionAt(glm::radians(degrees), 0.3f);
           const glm::vec2 a(alpha);
@@ -140,8 +140,8 @@ TEST(MultipleScatteringStat, GlintWhiteFurnaceAveragedOverPositionsIsOneWithComp
         GlintParameters parameters = defaultGlintParameters();
         parameters.alpha = glm::vec2(alpha);
         parameters.logDensity = 22.0f;
-        parameters.ndf = kernel::kNdfGgx;
-        parameters.masking = kernel::kMaskingSmith;
+        parameters.ndf = kernel::GLINT_NDF_GGX;
+        parameters.masking = kernel::GLINT_MASKING_SMITH;
         parameters.multipleScattering = compensated == 1;
         Pcg32 rng(31, static_cast<std::uint64_t>(alpha * 100.0f + degrees));
         double sum = 0.0;

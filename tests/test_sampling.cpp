@@ -363,7 +363,7 @@ struct SamplingCase {
   float relativeArea = 1.0f;
   float eta = 1.5f;
   float rho = 0.0f;  // slope correlation
-  int ndf = kernel::kNdfBeckmann;  // the smooth target (kernel/microfacet_targets.h)
+  int ndf = kernel::GLINT_NDF_BECKMANN;  // the smooth target (kernel/microfacet_targets.h)
   bool multipleScattering = false;  // the compensation lobe (kernel/multiple_scattering.h)
   FootprintPolicy footprintPolicy = exactFootprintPolicy();  // --footprint
 };
@@ -466,7 +466,7 @@ std::vector<SamplingCase> chiSquareCases() {
     SamplingCase::Kind kind;
     GlintSampler sampler;
     float alpha, logDensity, theta, rho;
-    int ndf = kernel::kNdfGgx;
+    int ndf = kernel::GLINT_NDF_GGX;
     bool multipleScattering = false;
   };
   for (const Ggx& g : {
@@ -480,10 +480,10 @@ std::vector<SamplingCase> chiSquareCases() {
            Ggx{"CookTorrance_ggx_alpha0p3_theta80", SamplingCase::Kind::CookTorrance, GlintSampler::Mixture, 0.3f, 21.0f, 80.0f, 0.0f},
            // With the multiple-scattering compensation: the cosine lobe drawn with probability
            // 1 - E(mu_o) and the mixture's pdf.
-           Ggx{"Mixture_ggx_ms_alpha0p6_density21_theta45", SamplingCase::Kind::Glint, GlintSampler::Mixture, 0.6f, 21.0f, 45.0f, 0.0f, kernel::kNdfGgx, true},
-           Ggx{"Mixture_ggx_ms_alpha1_density32_theta75", SamplingCase::Kind::Glint, GlintSampler::Mixture, 1.0f, 32.0f, 75.0f, 0.0f, kernel::kNdfGgx, true},
-           Ggx{"Mixture_beckmann_ms_alpha0p6_density15_theta30", SamplingCase::Kind::Glint, GlintSampler::Mixture, 0.6f, 15.0f, 30.0f, 0.0f, kernel::kNdfBeckmann, true},
-           Ggx{"CookTorrance_ggx_ms_alpha0p8_theta60", SamplingCase::Kind::CookTorrance, GlintSampler::Mixture, 0.8f, 21.0f, 60.0f, 0.0f, kernel::kNdfGgx, true},
+           Ggx{"Mixture_ggx_ms_alpha0p6_density21_theta45", SamplingCase::Kind::Glint, GlintSampler::Mixture, 0.6f, 21.0f, 45.0f, 0.0f, kernel::GLINT_NDF_GGX, true},
+           Ggx{"Mixture_ggx_ms_alpha1_density32_theta75", SamplingCase::Kind::Glint, GlintSampler::Mixture, 1.0f, 32.0f, 75.0f, 0.0f, kernel::GLINT_NDF_GGX, true},
+           Ggx{"Mixture_beckmann_ms_alpha0p6_density15_theta30", SamplingCase::Kind::Glint, GlintSampler::Mixture, 0.6f, 15.0f, 30.0f, 0.0f, kernel::GLINT_NDF_BECKMANN, true},
+           Ggx{"CookTorrance_ggx_ms_alpha0p8_theta60", SamplingCase::Kind::CookTorrance, GlintSampler::Mixture, 0.8f, 21.0f, 60.0f, 0.0f, kernel::GLINT_NDF_GGX, true},
        }) {
     SamplingCase c;
     c.name = g.name;
@@ -604,7 +604,7 @@ double visibleMass(const std::function<double(glm::vec2)>& p22, glm::vec3 wo, gl
         if (c <= 0.0) return 0.0;
         const double weight = valid(m);
         if (weight == 0.0) return 0.0;
-        return weight * kernel::vcavityG1(up, m) * c * p22(slope) / (m.z * up.z);
+        return weight * kernel::glintVCavityG1(up, m) * c * p22(slope) / (m.z * up.z);
       },
       extent, static_cast<int>(std::ceil(2.0 * std::max(extent.x, extent.y) / slopeStep)));
 }
@@ -621,7 +621,7 @@ TEST_P(SamplingStat, ChiSquareAgainstOwnPdf) {
   Quadrature quadrature;
   // GGX, or the compensation's cosine lobe: the whole plane in effect (GGX keeps 1e-8 of its mass
   // beyond 1e4 alpha), the step growing from 4 alpha out (CellIntegrator).
-  const bool ggx = c.ndf == kernel::kNdfGgx || c.multipleScattering;
+  const bool ggx = c.ndf == kernel::GLINT_NDF_GGX || c.multipleScattering;
   quadrature.box = ggx ? glm::dvec2(1e4 * c.alpha) : supportBox(c.alpha, c.rho);
   quadrature.stepGrowth = ggx ? 1.0 / (4.0 * c.alpha) : 0.0;
   quadrature.slopeStep = quadratureSlopeStep(c);
@@ -632,7 +632,7 @@ TEST_P(SamplingStat, ChiSquareAgainstOwnPdf) {
   const GlintBsdf microfacets(defaultDictionary(), parameters, footprint, Fresnel::none(), Spectrum(1.0f), c.sampler);
   const std::function<double(glm::vec2)> p22 = [&](glm::vec2 slope) {
     return c.sampler == GlintSampler::Gaussian || c.kind == SamplingCase::Kind::CookTorrance
-               ? static_cast<double>(kernel::targetP22(c.ndf, slope, parameters.alpha, parameters.rho))
+               ? static_cast<double>(kernel::glintTargetP22(c.ndf, slope, parameters.alpha, parameters.rho))
                : static_cast<double>(microfacets.p22(slope));
   };
   const auto reflectionValid = [&](glm::vec3 m) { return glm::reflect(-wo, m).z * wo.z > 0.0f ? 1.0 : 0.0; };

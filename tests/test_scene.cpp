@@ -391,7 +391,7 @@ TEST(GltfLoader, ReadsPunctualLightsPerspectiveCamerasAndDoubleSided) {
     d["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 1e-50;
   }));
   EXPECT_GT(tiny.lights[0].range, 0.0f);
-  EXPECT_EQ(kernel::rangeWindow(1e-6f, tiny.lights[0].inverseRange()), 0.0f);
+  EXPECT_EQ(kernel::glintRangeWindow(1e-6f, tiny.lights[0].inverseRange()), 0.0f);
 
   // glTF's doubleSided, false unless the material says so.
   const Scene twoSided = loadGltf(writeLitTriangle("gltf_double_sided", [](json& d) {
@@ -863,21 +863,21 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
     }
   });
   const Scene plain = loadGltf(path);
-  EXPECT_EQ(plain.materials[0].specular.ndf, kernel::kNdfGgx);
-  EXPECT_EQ(plain.materials[0].specular.masking, kernel::kMaskingSmith);
+  EXPECT_EQ(plain.materials[0].specular.ndf, kernel::GLINT_NDF_GGX);
+  EXPECT_EQ(plain.materials[0].specular.masking, kernel::GLINT_MASKING_SMITH);
   EXPECT_TRUE(plain.materials[0].specular.multipleScattering);
   editJson(path, [](json& d) {
     d["materials"][0]["extras"] = {{"glint", {{"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multiple_scattering", false}}}};
   });
   const Scene paper = loadGltf(path);
-  EXPECT_EQ(paper.materials[0].specular.ndf, kernel::kNdfBeckmann);
-  EXPECT_EQ(paper.materials[0].specular.masking, kernel::kMaskingVCavity);
+  EXPECT_EQ(paper.materials[0].specular.ndf, kernel::GLINT_NDF_BECKMANN);
+  EXPECT_EQ(paper.materials[0].specular.masking, kernel::GLINT_MASKING_VCAVITY);
   EXPECT_FALSE(paper.materials[0].specular.multipleScattering);
-  EXPECT_EQ(glintParameters(paper.materials[0].glint, paper.materials[0].specular).ndf, kernel::kNdfBeckmann);
+  EXPECT_EQ(glintParameters(paper.materials[0].glint, paper.materials[0].specular).ndf, kernel::GLINT_NDF_BECKMANN);
   for (const std::string& name : builtinSceneNames()) {
     for (const Material& m : makeBuiltinScene(name).materials) {
-      EXPECT_EQ(m.specular.ndf, kernel::kNdfBeckmann) << name;
-      EXPECT_EQ(m.specular.masking, kernel::kMaskingVCavity) << name;
+      EXPECT_EQ(m.specular.ndf, kernel::GLINT_NDF_BECKMANN) << name;
+      EXPECT_EQ(m.specular.masking, kernel::GLINT_MASKING_VCAVITY) << name;
       EXPECT_FALSE(m.specular.multipleScattering) << name;
     }
   }

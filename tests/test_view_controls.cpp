@@ -112,8 +112,8 @@ TEST(ViewControls, EditingOneMaterialLeavesEveryOtherBitIdentical) {
       EXPECT_EQ(edited.rho, 0.25f);
       EXPECT_EQ(edited.logDensity, 31.5f);
       EXPECT_EQ(edited.relativeArea, 0.375f);
-      EXPECT_EQ(d.materials[k].specular.ndf, kernel::kNdfGgx);
-      EXPECT_EQ(d.materials[k].specular.masking, kernel::kMaskingSmith);
+      EXPECT_EQ(d.materials[k].specular.ndf, kernel::GLINT_NDF_GGX);
+      EXPECT_EQ(d.materials[k].specular.masking, kernel::GLINT_MASKING_SMITH);
       EXPECT_TRUE(d.materials[k].specular.multipleScattering);
       // Only those four and the specular target: the rest of the material, its glint textures
       // included, is the scene's.

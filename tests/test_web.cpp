@@ -155,7 +155,7 @@ struct ImageDifference {
 
 // Every built-in scene in the page against the desktop renderer on llvmpipe, with the glint BRDF;
 // and the sphere and the car paint with the other two (the Zirr & Kaplanyan program uses the
-// prelude's GLSL ES findLSB and ldexp).
+// prelude's GLSL ES glintFindLSB and glintLdexp, written out where ES 3.00 lacks the built-ins).
 ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
   std::vector<std::pair<std::string, std::string>> views;  // scene, BRDF
   for (const std::string& name : scene::builtinSceneNames()) views.emplace_back(name, "glint");

@@ -58,7 +58,7 @@ GlintParameters randomGlintParameters(Pcg32& rng, float minLogDensity, float max
 }
 
 float zkValue(const ZirrKaplanyanParameters& p, const SurfaceFootprint& fp, glm::vec3 wo, glm::vec3 wi) {
-  return kernel::zirrKaplanyanReflectance(fp.uv, fp.duvdx, fp.duvdy, wo, wi, p);
+  return kernel::glintZirrKaplanyanReflectance(fp.uv, fp.duvdx, fp.duvdy, wo, wi, p);
 }
 
 // A direction whose half vector with wo has slope (slopeOverAlpha * alpha).
@@ -86,7 +86,7 @@ TEST(ZirrKaplanyan, MappingFromGlintFollowsTheSpec) {
   glint.logDensity = 25.0f;
   glint.maxAnisotropy = 8.0f;
   glint.patternSeed = 3u;
-  const ZirrKaplanyanParameters zk = kernel::zirrKaplanyanFromGlint(glint);
+  const ZirrKaplanyanParameters zk = kernel::glintZirrKaplanyanFromGlint(glint);
   EXPECT_EQ(zk.roughness, glint.alpha);
   EXPECT_NEAR(zk.microRoughness.x, 0.2 * std::sqrt(2.0) * 0.04, 1e-7);
   EXPECT_NEAR(zk.microRoughness.y, 0.5 * std::sqrt(2.0) * 0.04, 1e-7);
@@ -97,7 +97,7 @@ TEST(ZirrKaplanyan, MappingFromGlintFollowsTheSpec) {
   EXPECT_EQ(zk.maxAnisotropy, 8.0f);
   EXPECT_EQ(zk.patternSeed, 3u);
   glint.alpha = glm::vec2(0.3f);
-  EXPECT_FLOAT_EQ(kernel::zirrKaplanyanFromGlint(glint).logDensity, 25.0f);  // isotropic: e^D itself
+  EXPECT_FLOAT_EQ(kernel::glintZirrKaplanyanFromGlint(glint).logDensity, 25.0f);  // isotropic: e^D itself
   EXPECT_NO_THROW(validateZirrKaplanyanParameters(zk));
   EXPECT_NO_THROW(validateZirrKaplanyanParameters(defaultZirrKaplanyanParameters()));
 }
@@ -106,27 +106,27 @@ TEST(ZirrKaplanyan, CoherentIndexIsSharedWithTheFirstChild) {
   // Spec 1.5: cell i at level l + 1 gets the id of its child 2i at level l; odd indices are their
   // own id; negative indices too (arithmetic shift), 0 stays 0.
   for (int i = -5000; i <= 5000; ++i) {
-    ASSERT_EQ(kernel::zirrKaplanyanCoherentIndex(2 * i), kernel::zirrKaplanyanCoherentIndex(i)) << i;
-    if (i % 2 != 0) ASSERT_EQ(kernel::zirrKaplanyanCoherentIndex(i), i);
+    ASSERT_EQ(kernel::glintZirrKaplanyanCoherentIndex(2 * i), kernel::glintZirrKaplanyanCoherentIndex(i)) << i;
+    if (i % 2 != 0) ASSERT_EQ(kernel::glintZirrKaplanyanCoherentIndex(i), i);
   }
-  EXPECT_EQ(kernel::zirrKaplanyanCoherentIndex(0), 0);
-  EXPECT_EQ(kernel::zirrKaplanyanCoherentIndex(96), 3);
-  EXPECT_EQ(kernel::zirrKaplanyanCoherentIndex(-96), -3);
-  EXPECT_EQ(kernel::zirrKaplanyanCoherentIndex(INT32_MIN), -1);
+  EXPECT_EQ(kernel::glintZirrKaplanyanCoherentIndex(0), 0);
+  EXPECT_EQ(kernel::glintZirrKaplanyanCoherentIndex(96), 3);
+  EXPECT_EQ(kernel::glintZirrKaplanyanCoherentIndex(-96), -3);
+  EXPECT_EQ(kernel::glintZirrKaplanyanCoherentIndex(INT32_MIN), -1);
 }
 
 TEST(ZirrKaplanyan, BinomialIsMonotoneBoundedAndHandlesItsLimits) {
   // Spec 3.9: p >= 1 gives n, p <= 1e-30 gives 0; an inverse CDF never decreases in u and stays
   // in [0, ceil(n)]; no NaN anywhere, including q = 1 (p' above 0.9) and n below 1.
-  EXPECT_EQ(kernel::zirrKaplanyanBinomial(0.5f, 7.0f, 1.0f), 7.0f);
-  EXPECT_EQ(kernel::zirrKaplanyanBinomial(0.999f, 7.0f, 1e-31f), 0.0f);
-  EXPECT_EQ(kernel::zirrKaplanyanBinomial(0.5f, 0.0f, 0.3f), 0.0f);
+  EXPECT_EQ(kernel::glintZirrKaplanyanBinomial(0.5f, 7.0f, 1.0f), 7.0f);
+  EXPECT_EQ(kernel::glintZirrKaplanyanBinomial(0.999f, 7.0f, 1e-31f), 0.0f);
+  EXPECT_EQ(kernel::glintZirrKaplanyanBinomial(0.5f, 0.0f, 0.3f), 0.0f);
   for (float n : {1e-20f, 0.4f, 1.0f, 2.5f, 3.0f, 17.0f, 18.0f, 19.0f, 40.0f, 1e3f, 1e6f, 1e12f}) {
     for (float p : {1e-29f, 1e-12f, 1e-6f, 1e-3f, 0.05f, 0.3f, 0.92f, 0.95f, 0.999f}) {
       float previous = 0.0f;
       for (int j = 0; j < 2000; ++j) {
         const float u = (j + 0.5f) / 2000.0f;
-        const float k = kernel::zirrKaplanyanBinomial(u, n, p);
+        const float k = kernel::glintZirrKaplanyanBinomial(u, n, p);
         ASSERT_TRUE(std::isfinite(k)) << n << " " << p << " " << u;
         ASSERT_GE(k, previous - 1e-4f * std::max(1.0f, previous)) << n << " " << p << " " << u;
         ASSERT_GE(k, 0.0f);
@@ -138,9 +138,9 @@ TEST(ZirrKaplanyan, BinomialIsMonotoneBoundedAndHandlesItsLimits) {
 }
 
 // The tuned schedule's binomial: its law set up once (per grid level) and its scan as long as the
-// law needs (zirrKaplanyanScanLength, n' counts below 18 trials) draws the counts of the reference's
+// law needs (glintZirrKaplanyanScanLength, n' counts below 18 trials) draws the counts of the reference's
 // 18-count scan bit for bit. Three quarters of the cases have fewer than 18 trials, where the scan
-// is shortened; u spans (0, 1], 1 included (hashToUnitOpen's largest value rounds to 1).
+// is shortened; u spans (0, 1], 1 included (glintHashToUnitOpen's largest value rounds to 1).
 TEST(ZirrKaplanyan, BinomialScanOfItsOwnLengthDrawsTheSameCounts) {
   Pcg32 rng(2121, 3);
   int shortened = 0;
@@ -151,11 +151,11 @@ TEST(ZirrKaplanyan, BinomialScanOfItsOwnLengthDrawsTheSameCounts) {
                                           : std::exp(uniform(rng, std::log(18.0f), std::log(1e4f)));
     const float p = std::exp(uniform(rng, std::log(1e-9f), 0.0f));
     const float u = rng.nextBelow(64) == 0 ? 1.0f : uniform(rng, 0.0f, 1.0f);
-    const kernel::ZirrKaplanyanBinomialLaw law = kernel::zirrKaplanyanBinomialLaw(n, p);
-    const int scanLength = kernel::zirrKaplanyanScanLength(law);
-    const float reference = kernel::zirrKaplanyanBinomial(u, n, p);
-    const float tuned = kernel::zirrKaplanyanBinomialDraw(law, u, scanLength);
-    if (law.kind == kernel::kZirrKaplanyanCountIsScanned && scanLength < kernel::kZirrKaplanyanBinomialScan) {
+    const kernel::GlintZirrKaplanyanBinomialLaw law = kernel::glintZirrKaplanyanBinomialLaw(n, p);
+    const int scanLength = kernel::glintZirrKaplanyanScanLength(law);
+    const float reference = kernel::glintZirrKaplanyanBinomial(u, n, p);
+    const float tuned = kernel::glintZirrKaplanyanBinomialDraw(law, u, scanLength);
+    if (law.kind == kernel::GLINT_ZIRR_KAPLANYAN_COUNT_IS_SCANNED && scanLength < kernel::GLINT_ZIRR_KAPLANYAN_BINOMIAL_SCAN) {
       ++shortened;
       countIsTrials += reference == law.trials;
     }
@@ -197,7 +197,7 @@ TEST(ZirrKaplanyan, IsReciprocal) {
   int nonZero = 0;
   for (int i = 0; i < 5000; ++i) {
     const ZirrKaplanyanParameters p = i % 2 ? randomNativeParameters(rng)
-                                            : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 15.0f, 40.0f));
+                                            : kernel::glintZirrKaplanyanFromGlint(randomGlintParameters(rng, 15.0f, 40.0f));
     const SurfaceFootprint footprint = randomFootprint(rng, 1e-5f, 1e-2f);
     const glm::vec3 wo = randomDirectionAt(rng, 1.55f, 6.28f);
     const glm::vec3 wi = rng.nextBelow(2) ? randomDirectionAt(rng, 1.55f, 6.28f)
@@ -269,7 +269,7 @@ TEST(ZirrKaplanyan, CellVisitsStayUnderTheCap) {
   // Spec 5.1: at most 2 levels x 18 rows x 4 cells = 144 visits, so the normative cap of 150 never
   // binds; a typical isotropic footprint visits about 8 to 10 cells (both levels).
   Pcg32 rng(19, 2);
-  const ZirrKaplanyanParameters p = kernel::zirrKaplanyanFromGlint(defaultGlintParameters());
+  const ZirrKaplanyanParameters p = kernel::glintZirrKaplanyanFromGlint(defaultGlintParameters());
   const glm::vec3 w(0.0f, 0.0f, 1.0f);
   int largest = 0;
   double isotropicSum = 0.0;
@@ -277,16 +277,16 @@ TEST(ZirrKaplanyan, CellVisitsStayUnderTheCap) {
   for (int i = 0; i < kCases; ++i) {
     int visits = 0;
     const SurfaceFootprint anisotropic = randomFootprint(rng, 1e-5f, 1e-1f);
-    kernel::zirrKaplanyanGlintsCounted(anisotropic.uv, anisotropic.duvdx, anisotropic.duvdy, w, w, p, visits);
+    kernel::glintZirrKaplanyanGlintsCounted(anisotropic.uv, anisotropic.duvdx, anisotropic.duvdy, w, w, p, visits);
     largest = std::max(largest, visits);
     const float size = std::exp(uniform(rng, std::log(1e-4f), std::log(1e-2f)));
     const float angle = uniform(rng, 0.0f, 6.28f);
     const glm::vec2 axis = size * glm::vec2(std::cos(angle), std::sin(angle));
-    kernel::zirrKaplanyanGlintsCounted(anisotropic.uv, axis, glm::vec2(-axis.y, axis.x), w, w, p, visits);
+    kernel::glintZirrKaplanyanGlintsCounted(anisotropic.uv, axis, glm::vec2(-axis.y, axis.x), w, w, p, visits);
     isotropicSum += visits;
   }
-  EXPECT_LE(largest, 2 * kernel::kZirrKaplanyanMaxRows * kernel::kZirrKaplanyanMaxCellsPerRow);
-  EXPECT_LT(largest, kernel::kZirrKaplanyanMaxCellVisits);
+  EXPECT_LE(largest, 2 * kernel::GLINT_ZIRR_KAPLANYAN_MAX_ROWS * kernel::GLINT_ZIRR_KAPLANYAN_MAX_CELLS_PER_ROW);
+  EXPECT_LT(largest, kernel::GLINT_ZIRR_KAPLANYAN_MAX_CELL_VISITS);
   const double isotropicMean = isotropicSum / kCases;
   EXPECT_GE(isotropicMean, 6.0);
   EXPECT_LE(isotropicMean, 14.0);
@@ -302,7 +302,7 @@ TEST(ZirrKaplanyan, IsContinuousAcrossLevelsOfDetail) {
   // larger value, or the smooth BRDF). The slope can be steep: a sparse glint of the finer level,
   // 40 times the smooth value, enters with the level weight 1 - |level - lod| ~ d / ln 2.
   Pcg32 rng(23, 4);
-  const ZirrKaplanyanParameters p = kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 18.0f, 18.0f));
+  const ZirrKaplanyanParameters p = kernel::glintZirrKaplanyanFromGlint(randomGlintParameters(rng, 18.0f, 18.0f));
   int nonZero = 0;
   int steep = 0;
   for (int i = 0; i < 2000; ++i) {
@@ -326,7 +326,7 @@ TEST(ZirrKaplanyan, IsContinuousAcrossLevelsOfDetail) {
 
 TEST(ZirrKaplanyan, PatternDependsOnPositionAndSeed) {
   Pcg32 rng(1, 1);
-  const ZirrKaplanyanParameters p = kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, 17.0f, 17.0f));
+  const ZirrKaplanyanParameters p = kernel::glintZirrKaplanyanFromGlint(randomGlintParameters(rng, 17.0f, 17.0f));
   ZirrKaplanyanParameters other = p;
   other.patternSeed = p.patternSeed + 1u;
   const glm::vec3 wo = directionAt(0.3f, 0.2f);
@@ -348,12 +348,12 @@ TEST(ZirrKaplanyan, BsdfAppliesFresnelAndReflectance) {
   const GlintParameters glint = defaultGlintParameters();
   const glm::vec3 wo = directionAt(0.5f, 0.1f);
   const glm::vec3 wi = reflectAtSlope(wo, glm::vec2(0.1f, -0.05f));
-  const float value = zkValue(kernel::zirrKaplanyanFromGlint(glint), footprint, wo, wi);
+  const float value = zkValue(kernel::glintZirrKaplanyanFromGlint(glint), footprint, wo, wi);
   ASSERT_GT(value, 0.0f);
   const Spectrum f0(0.9f, 0.5f, 0.2f);
   const Spectrum f = ZirrKaplanyanBsdf(glint, footprint, Fresnel::schlick(f0), Spectrum(0.5f)).f(wo, wi);
   const Spectrum expected =
-      0.5f * kernel::fresnelSchlick(f0, glm::dot(wo, glm::normalize(wo + wi))) * value;
+      0.5f * kernel::glintFresnelSchlick(f0, glm::dot(wo, glm::normalize(wo + wi))) * value;
   for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(f[c], expected[c]);
 }
 
@@ -407,7 +407,7 @@ void binomialMoments(float n, float p, double& mean, double& variance) {
   double sum = 0.0;
   double sum2 = 0.0;
   for (int j = 0; j < kStrata; ++j) {
-    const double k = kernel::zirrKaplanyanBinomial((j + 0.5f) / kStrata, n, p);
+    const double k = kernel::glintZirrKaplanyanBinomial((j + 0.5f) / kStrata, n, p);
     sum += k;
     sum2 += k * k;
   }
@@ -461,7 +461,7 @@ TEST(ZirrKaplanyanStat, MeanOverPositionsIsCookTorranceWithGgxSmith) {
   GlintParameters glint = defaultGlintParameters();
   glint.alpha = alpha;
   glint.logDensity = 20.0f;
-  const ZirrKaplanyanParameters p = kernel::zirrKaplanyanFromGlint(glint);
+  const ZirrKaplanyanParameters p = kernel::glintZirrKaplanyanFromGlint(glint);
   for (glm::vec2 slopeOverAlpha : {glm::vec2(0.0f), glm::vec2(0.3f, -0.2f), glm::vec2(-0.6f, 0.5f)}) {
     const glm::vec3 wo = directionAt(0.4f, 1.0f);
     const glm::vec3 wi = reflectAtSlope(wo, slopeOverAlpha * alpha);
@@ -494,7 +494,7 @@ TEST(ZirrKaplanyanStat, LowerDensityMeansStrongerGlints) {
   for (float logDensity : {14.0f, 18.0f, 22.0f, 26.0f, 30.0f}) {
     GlintParameters glint = defaultGlintParameters();
     glint.logDensity = logDensity;
-    const ZirrKaplanyanParameters p = kernel::zirrKaplanyanFromGlint(glint);
+    const ZirrKaplanyanParameters p = kernel::glintZirrKaplanyanFromGlint(glint);
     Pcg32 rng(17, 7);
     double sum = 0.0;
     double sum2 = 0.0;
@@ -548,9 +548,9 @@ TEST(ZirrKaplanyanStat, WhiteFurnaceAlbedoIsTheSmoothOnesOnAverageNotPerPixel) {
   GlintParameters glint = defaultGlintParameters();
   glint.alpha = alpha;
   glint.logDensity = 24.0f;
-  const ZirrKaplanyanParameters mapped = kernel::zirrKaplanyanFromGlint(glint);
+  const ZirrKaplanyanParameters mapped = kernel::glintZirrKaplanyanFromGlint(glint);
   glint.logDensity = 14.0f;
-  ZirrKaplanyanParameters sparse = kernel::zirrKaplanyanFromGlint(glint);
+  ZirrKaplanyanParameters sparse = kernel::glintZirrKaplanyanFromGlint(glint);
   sparse.variation = 100.0f;
   sparse.dynamicRange = 50000.0f;
   const ZirrKaplanyanParameters snow = defaultZirrKaplanyanParameters();
@@ -595,7 +595,7 @@ struct GpuInput {
   glm::vec4 uvAndDuvdx, duvdyAndRoughness, woAndLogDensity, wiAndSearchCone, microRoughnessEtc, anisotropyAndSeed;
 };
 struct GpuOutput {
-  float f, glints, visits, fReference;  // fReference: zirrKaplanyanReferenceReflectance
+  float f, glints, visits, fReference;  // fReference: glintZirrKaplanyanReferenceReflectance
 };
 struct GlCase {
   ZirrKaplanyanParameters parameters;
@@ -623,7 +623,7 @@ std::vector<GpuOutput> evaluateOnGpu(const std::vector<GlCase>& cases) {
 // the model's own.
 ZirrKaplanyanParameters mappedOrNativeParameters(Pcg32& rng, int i, float minLogDensity, float maxLogDensity) {
   return i % 2 ? randomNativeParameters(rng)
-               : kernel::zirrKaplanyanFromGlint(randomGlintParameters(rng, minLogDensity, maxLogDensity));
+               : kernel::glintZirrKaplanyanFromGlint(randomGlintParameters(rng, minLogDensity, maxLogDensity));
 }
 
 // Half mapped from our parameters, half the model's own over wide ranges; footprints from
@@ -683,9 +683,9 @@ struct ScheduleUse {
 ScheduleUse scheduleUse(const GlCase& c) {
   int tunedVisits = 0;
   int referenceVisits = 0;
-  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+  kernel::glintZirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
                                        c.parameters, false, tunedVisits);
-  kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
+  kernel::glintZirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy, c.wo, c.wi,
                                        c.parameters, true, referenceVisits);
   return {tunedVisits == 0 && referenceVisits > 0, c.parameters.variation == 0.0f};
 }
@@ -709,9 +709,9 @@ TEST(ZirrKaplanyan, TunedScheduleIsBitIdenticalToTheReference) {
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const GlCase& c = cases[i];
     int visits = 0;
-    const float tuned = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
+    const float tuned = kernel::glintZirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
                                                              c.wo, c.wi, c.parameters, false, visits);
-    const float reference = kernel::zirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx,
+    const float reference = kernel::glintZirrKaplanyanGlintsScheduled(c.footprint.uv, c.footprint.duvdx,
                                                                  c.footprint.duvdy, c.wo, c.wi, c.parameters, true, visits);
     if (!sameBits(tuned, reference) && ++differing <= 10) {
       ADD_FAILURE() << "tuned " << tuned << ", reference " << reference;
@@ -760,7 +760,7 @@ TEST(ZirrKaplanyanGl, CpuAndGlslAgreeOnTenThousandRandomInputs) {
     exits += scheduleUse(c).exits;
     const float cpu = evaluateOnCpu(c);
     int visits = 0;
-    const float glints = kernel::zirrKaplanyanGlintsCounted(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
+    const float glints = kernel::glintZirrKaplanyanGlintsCounted(c.footprint.uv, c.footprint.duvdx, c.footprint.duvdy,
                                                             c.wo, c.wi, c.parameters, visits);
     visitMismatches += static_cast<int>(gpu[i].visits) != visits;
     nonZero += cpu > 1e-3f;

@@ -108,8 +108,8 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   const glm::vec3 sum = wo + wi;
   const glm::vec3 wh = glm::length(sum) > 0.0f ? glm::normalize(sum) : glm::vec3(0.0f);
   auto report = [&](const auto& bsdf) {
-    const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::slopeFromNormal(wh)) : 0.0f;
-    const float d = wh.z > 0.0f ? kernel::ndfFromP22(p22, wh.z) : 0.0f;
+    const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::glintSlopeFromNormal(wh)) : 0.0f;
+    const float d = wh.z > 0.0f ? kernel::glintNdfFromP22(p22, wh.z) : 0.0f;
     return json{{"f", bsdf.f(wo, wi).x}, {"D", d}, {"P22", p22}};
   };
   if (brdf == "glint") return report(GlintBsdf(dictionary, parameters, footprint));

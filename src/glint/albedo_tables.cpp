@@ -40,7 +40,7 @@ double singleScatteringAlbedo(int ndf, int masking, double alpha, double mu) {
       if (woDotM <= 0.0) continue;
       const glm::dvec3 wi = 2.0 * woDotM * m - glm::dvec3(wo);
       if (wi.z <= 0.0) continue;
-      const double f = kernel::targetCookTorranceReflectance(ndf, masking, roughness, 0.0f, wo, glm::vec3(wi));
+      const double f = kernel::glintTargetCookTorranceReflectance(ndf, masking, roughness, 0.0f, wo, glm::vec3(wi));
       // dwi = 4 (wo . m) dwm, dwm = m.z^3 ds, ds = r dr dphi.
       ring += f * wi.z * 4.0 * woDotM * m.z * m.z * m.z;
     }
@@ -50,8 +50,8 @@ double singleScatteringAlbedo(int ndf, int masking, double alpha, double mu) {
 }
 
 AlbedoTables computeAlbedoTables() {
-  constexpr int kMu = kernel::kAlbedoMuNodes;
-  constexpr int kAlpha = kernel::kAlbedoAlphaNodes;
+  constexpr int kMu = kernel::GLINT_ALBEDO_MU_NODES;
+  constexpr int kAlpha = kernel::GLINT_ALBEDO_ALPHA_NODES;
   AlbedoTables tables;
   tables.albedo.assign(static_cast<std::size_t>(kTables * kAlpha * kMu), 0.0f);
   tables.average.assign(static_cast<std::size_t>(kTables * kAlpha), 0.0f);
@@ -59,7 +59,7 @@ AlbedoTables computeAlbedoTables() {
     const int table = row / kAlpha;
     const int i = row % kAlpha;
     const double y = static_cast<double>(i) / (kAlpha - 1);
-    const double alpha = kernel::kAlbedoMaxAlpha * y * y;
+    const double alpha = kernel::GLINT_ALBEDO_MAX_ALPHA * y * y;
     for (int j = 0; j < kMu; ++j) {
       const double x = static_cast<double>(j) / (kMu - 1);
       // A mirror reflects everything; at grazing incidence the lobe's limit (mu -> 0) is taken a
@@ -113,8 +113,8 @@ std::string albedoTablesHeader(const AlbedoTables& tables) {
     }
     out << "GLINT_TABLE_END\n\n";
   };
-  table("kAlbedoTable", tables.albedo, 8);
-  table("kAverageAlbedoTable", tables.average, 8);
+  table("GLINT_ALBEDO_TABLE", tables.albedo, 8);
+  table("GLINT_AVERAGE_ALBEDO_TABLE", tables.average, 8);
   out << "GLINT_KERNEL_END\n\n"
          "#undef GLINT_TABLE_BEGIN\n"
          "#undef GLINT_TABLE_END\n\n"

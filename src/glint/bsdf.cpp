@@ -112,8 +112,8 @@ GlintParameters defaultGlintParameters() {
   p.maxAnisotropy = 8.0f;
   p.patternSeed = 0u;
   p.colouredCells = false;
-  p.ndf = kernel::kNdfBeckmann;
-  p.masking = kernel::kMaskingVCavity;
+  p.ndf = kernel::GLINT_NDF_BECKMANN;
+  p.masking = kernel::GLINT_MASKING_VCAVITY;
   p.multipleScattering = false;
   p.footprintPolicy = exactFootprintPolicy();
   return p;
@@ -124,27 +124,27 @@ MicrofacetTarget microfacetTarget(const GlintParameters& parameters) {
 }
 
 int ndfFromName(const std::string& field, const std::string& name) {
-  if (name == "beckmann") return kernel::kNdfBeckmann;
-  if (name == "ggx") return kernel::kNdfGgx;
+  if (name == "beckmann") return kernel::GLINT_NDF_BECKMANN;
+  if (name == "ggx") return kernel::GLINT_NDF_GGX;
   throw Error(field + " must be \"beckmann\" or \"ggx\", got \"" + name + "\"");
 }
 
 int maskingFromName(const std::string& field, const std::string& name) {
-  if (name == "v-cavity") return kernel::kMaskingVCavity;
-  if (name == "smith") return kernel::kMaskingSmith;
+  if (name == "v-cavity") return kernel::GLINT_MASKING_VCAVITY;
+  if (name == "smith") return kernel::GLINT_MASKING_SMITH;
   throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
 }
 
-const char* ndfName(int ndf) { return ndf == kernel::kNdfGgx ? "ggx" : "beckmann"; }
-const char* maskingName(int masking) { return masking == kernel::kMaskingSmith ? "smith" : "v-cavity"; }
+const char* ndfName(int ndf) { return ndf == kernel::GLINT_NDF_GGX ? "ggx" : "beckmann"; }
+const char* maskingName(int masking) { return masking == kernel::GLINT_MASKING_SMITH ? "smith" : "v-cavity"; }
 
 namespace {
 
 void validateTarget(const MicrofacetTarget& target) {
-  if (target.ndf != kernel::kNdfBeckmann && target.ndf != kernel::kNdfGgx) {
+  if (target.ndf != kernel::GLINT_NDF_BECKMANN && target.ndf != kernel::GLINT_NDF_GGX) {
     throw Error("ndf must be beckmann (0) or ggx (1), got " + std::to_string(target.ndf));
   }
-  if (target.masking != kernel::kMaskingVCavity && target.masking != kernel::kMaskingSmith) {
+  if (target.masking != kernel::GLINT_MASKING_VCAVITY && target.masking != kernel::GLINT_MASKING_SMITH) {
     throw Error("masking must be v-cavity (0) or smith (1), got " + std::to_string(target.masking));
   }
 }
@@ -207,8 +207,8 @@ Fresnel Fresnel::conductor(Spectrum eta, Spectrum k) {
 Spectrum Fresnel::evaluate(float cosThetaI) const {
   switch (kind_) {
     case Kind::None: return Spectrum(1.0f);
-    case Kind::Schlick: return kernel::fresnelSchlick(a_, cosThetaI);
-    case Kind::Conductor: return kernel::fresnelConductor(a_, b_, cosThetaI);
+    case Kind::Schlick: return kernel::glintFresnelSchlick(a_, cosThetaI);
+    case Kind::Conductor: return kernel::glintFresnelConductor(a_, b_, cosThetaI);
   }
   return Spectrum(1.0f);
 }
@@ -216,14 +216,14 @@ Spectrum Fresnel::evaluate(float cosThetaI) const {
 Spectrum Fresnel::average() const {
   switch (kind_) {
     case Kind::None: return Spectrum(1.0f);
-    case Kind::Schlick: return kernel::schlickAverageFresnel(a_);
+    case Kind::Schlick: return kernel::glintSchlickAverageFresnel(a_);
     case Kind::Conductor: {
       // 2 integral of F(mu) mu dmu by 256 midpoints: F is smooth, the sum is exact to 1e-5.
       constexpr int kPoints = 256;
       Spectrum sum(0.0f);
       for (int k = 0; k < kPoints; ++k) {
         const float mu = (static_cast<float>(k) + 0.5f) / kPoints;
-        sum += kernel::fresnelConductor(a_, b_, mu) * mu;
+        sum += kernel::glintFresnelConductor(a_, b_, mu) * mu;
       }
       return sum * (2.0f / kPoints);
     }
@@ -237,8 +237,8 @@ namespace {
 // alpha: its Fresnel factor F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (0 without compensation) ...
 Spectrum compensationFresnel(const MicrofacetTarget& target, glm::vec2 alpha, const Fresnel& fresnel) {
   if (!target.multipleScattering) return Spectrum(0.0f);
-  const float averageAlbedo = kernel::averageAlbedo(target.ndf, target.masking, kernel::compensationAlpha(alpha));
-  return kernel::multipleScatteringFresnel(fresnel.average(), averageAlbedo);
+  const float averageAlbedo = kernel::glintAverageAlbedo(target.ndf, target.masking, kernel::glintCompensationAlpha(alpha));
+  return kernel::glintMultipleScatteringFresnel(fresnel.average(), averageAlbedo);
 }
 
 // ... its value, with that factor and the colour ...
@@ -246,7 +246,7 @@ Spectrum compensation(const MicrofacetTarget& target, glm::vec2 alpha, Spectrum 
                       glm::vec3 wo, glm::vec3 wi) {
   if (!target.multipleScattering) return Spectrum(0.0f);
   return reflectance * fresnelFactor *
-         kernel::multipleScatteringReflectance(target.ndf, target.masking, alpha, wo, wi);
+         kernel::glintMultipleScatteringReflectance(target.ndf, target.masking, alpha, wo, wi);
 }
 
 // ... and the probability that sample() draws it (cosine-weighted) rather than the microfacets:
@@ -254,7 +254,7 @@ Spectrum compensation(const MicrofacetTarget& target, glm::vec2 alpha, Spectrum 
 float compensationProbability(const MicrofacetTarget& target, glm::vec2 alpha, glm::vec3 wo) {
   if (!target.multipleScattering || wo.z <= 0.0f) return 0.0f;
   return std::clamp(
-      1.0f - kernel::directionalAlbedo(target.ndf, target.masking, kernel::compensationAlpha(alpha), wo.z), 0.0f,
+      1.0f - kernel::glintDirectionalAlbedo(target.ndf, target.masking, kernel::glintCompensationAlpha(alpha), wo.z), 0.0f,
       1.0f);
 }
 
@@ -271,16 +271,16 @@ CookTorranceBsdf::CookTorranceBsdf(glm::vec2 alpha, float rho, Fresnel fresnel, 
 
 Spectrum CookTorranceBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
   const Spectrum multiple = compensation(target_, alpha_, compensationFresnel_, reflectance_, wo, wi);
-  const float value = kernel::targetCookTorranceReflectance(target_.ndf, target_.masking, alpha_, rho_, wo, wi);
+  const float value = kernel::glintTargetCookTorranceReflectance(target_.ndf, target_.masking, alpha_, rho_, wo, wi);
   if (value == 0.0f) return multiple;
   return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value + multiple;
 }
 
 float CookTorranceBsdf::ndf(glm::vec3 m) const {
-  return m.z > 0.0f ? kernel::ndfFromP22(p22(kernel::slopeFromNormal(m)), m.z) : 0.0f;
+  return m.z > 0.0f ? kernel::glintNdfFromP22(p22(kernel::glintSlopeFromNormal(m)), m.z) : 0.0f;
 }
 
-float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::targetP22(target_.ndf, slope, alpha_, rho_); }
+float CookTorranceBsdf::p22(glm::vec2 slope) const { return kernel::glintTargetP22(target_.ndf, slope, alpha_, rho_); }
 
 GlintBsdf::GlintBsdf(const Dictionary& dictionary, const GlintParameters& parameters,
                      const SurfaceFootprint& footprint, Fresnel fresnel, Spectrum reflectance, GlintSampler sampler)
@@ -318,8 +318,8 @@ Spectrum cellTint(glm::vec4 colouredP22) {
 glm::vec4 GlintBsdf::colouredNdf(glm::vec3 m) const {
   if (m.z <= 0.0f) return glm::vec4(0.0f);
   const glm::vec4 p = kernel::glintP22Coloured(dictionary_, parameters_, footprint_.uv, footprint_.duvdx,
-                                               footprint_.duvdy, kernel::slopeFromNormal(m));
-  const float toNdf = kernel::ndfFromP22(1.0f, m.z);
+                                               footprint_.duvdy, kernel::glintSlopeFromNormal(m));
+  const float toNdf = kernel::glintNdfFromP22(1.0f, m.z);
   return p * toNdf;
 }
 
@@ -332,7 +332,7 @@ Spectrum GlintBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
 }
 
 float GlintBsdf::ndf(glm::vec3 m) const {
-  return m.z > 0.0f ? kernel::ndfFromP22(p22(kernel::slopeFromNormal(m)), m.z) : 0.0f;
+  return m.z > 0.0f ? kernel::glintNdfFromP22(p22(kernel::glintSlopeFromNormal(m)), m.z) : 0.0f;
 }
 
 float GlintBsdf::p22(glm::vec2 slope) const {
@@ -355,7 +355,7 @@ glm::vec3 sampleTargetVisibleNormal(int ndf, glm::vec2 alpha, float rho, glm::ve
 }
 
 float targetNdf(int ndf, glm::vec2 alpha, float rho, glm::vec3 m) {
-  return m.z > 0.0f ? kernel::ndfFromP22(kernel::targetP22(ndf, kernel::slopeFromNormal(m), alpha, rho), m.z) : 0.0f;
+  return m.z > 0.0f ? kernel::glintNdfFromP22(kernel::glintTargetP22(ndf, kernel::glintSlopeFromNormal(m), alpha, rho), m.z) : 0.0f;
 }
 
 // Density of a direction reflected about visible normals: D_wo(wh) / (4 wo.wh), the Jacobian of
@@ -536,7 +536,7 @@ ZirrKaplanyanParameters defaultZirrKaplanyanParameters() {
   p.variation = 100.0f;
   p.dynamicRange = 50000.0f;
   p.logDensity = std::log(5e8f);
-  p.maxAnisotropy = kernel::kZirrKaplanyanReferenceMaxAnisotropy;
+  p.maxAnisotropy = kernel::GLINT_ZIRR_KAPLANYAN_REFERENCE_MAX_ANISOTROPY;
   p.patternSeed = 0u;
   return p;
 }
@@ -560,7 +560,7 @@ ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const GlintParameters& parameters, const Su
     : footprint_(footprint), fresnel_(fresnel), reflectance_(reflectance) {
   validateGlintParameters(parameters);
   validateFootprint(footprint);
-  parameters_ = kernel::zirrKaplanyanFromGlint(parameters);
+  parameters_ = kernel::glintZirrKaplanyanFromGlint(parameters);
 }
 
 ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
@@ -571,7 +571,7 @@ ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, 
 }
 
 Spectrum ZirrKaplanyanBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
-  const float value = kernel::zirrKaplanyanReflectance(footprint_.uv, footprint_.duvdx, footprint_.duvdy, wo, wi,
+  const float value = kernel::glintZirrKaplanyanReflectance(footprint_.uv, footprint_.duvdx, footprint_.duvdy, wo, wi,
                                                        parameters_);
   if (value == 0.0f) return Spectrum(0.0f);
   return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;

@@ -22,7 +22,7 @@ namespace glint {
 
 using Spectrum = glm::vec3;
 using GlintParameters = kernel::GlintParameters;
-using ZirrKaplanyanParameters = kernel::ZirrKaplanyanParameters;
+using ZirrKaplanyanParameters = kernel::GlintZirrKaplanyanParameters;
 
 // The renderer's footprint policy (kernel::GlintFootprintPolicy; docs/antialiasing.md, "Footprint
 // policies"), `--footprint` on the command line: "exact" (the paper's footprint, the default), or
@@ -100,8 +100,8 @@ enum class GlintSampler { Mixture, Gaussian };
 // The smooth target and masking of a microfacet BRDF (kernel/microfacet_targets.h): the 2020
 // paper's Beckmann with V-cavity by default; glTF's is GGX with Smith.
 struct MicrofacetTarget {
-  int ndf = kernel::kNdfBeckmann;
-  int masking = kernel::kMaskingVCavity;
+  int ndf = kernel::GLINT_NDF_BECKMANN;
+  int masking = kernel::GLINT_MASKING_VCAVITY;
   bool multipleScattering = false;  // the compensation lobe of kernel/multiple_scattering.h
 };
 MicrofacetTarget microfacetTarget(const GlintParameters& parameters);
@@ -161,7 +161,7 @@ class GlintBsdf {
   // (colour * D_P, D_P) at m: the P-NDF and its cells' colour weighting (kernel::glintP22Coloured).
   glm::vec4 colouredNdf(glm::vec3 m) const;
 
-  kernel::DictionaryView dictionary_;
+  kernel::GlintDictionaryView dictionary_;
   GlintParameters parameters_;
   SurfaceFootprint footprint_;
   Fresnel fresnel_;
@@ -200,7 +200,7 @@ class GlintDielectricBsdf {
 
 // The glint BRDF of Zirr & Kaplanyan 2016 (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md), the
 // baseline, at one shading point. Built from our parameters through the spec's mapping
-// (kernel::zirrKaplanyanFromGlint), or from the model's own parameters.
+// (kernel::glintZirrKaplanyanFromGlint), or from the model's own parameters.
 class ZirrKaplanyanBsdf {
  public:
   ZirrKaplanyanBsdf(const GlintParameters& parameters, const SurfaceFootprint& footprint,

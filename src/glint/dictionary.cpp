@@ -83,8 +83,8 @@ float DictionaryParameters::texelSpacing() const { return slopeDomain() / static
 
 void DictionaryParameters::validate() const {
   // 16 levels at most: the kernel's 32-bit cell seed holds 2^16 level-0 cells per axis
-  // (kernel/glint_brdf.h, kCellIndexMask), and its level draw has room for 16 thresholds.
-  requireInRange("levels", numLevels, 1, kernel::kMaxDictionaryLevels);
+  // (kernel/glint_brdf.h, GLINT_CELL_INDEX_MASK), and its level draw has room for 16 thresholds.
+  requireInRange("levels", numLevels, 1, kernel::GLINT_MAX_DICTIONARY_LEVELS);
   // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellDistributions).
   requireInRange("distributions", numDistributions, 1, 4096);
   requireInRange("texels", texelsPerDistribution, 2, 4096);
@@ -227,7 +227,7 @@ float Dictionary::mipTexel(int mip, int level, int distribution, int texel) cons
       .x;
 }
 
-kernel::DictionaryView Dictionary::view() const {
+kernel::GlintDictionaryView Dictionary::view() const {
   return {values_.data(),   parameters_.numLevels, parameters_.numDistributions, parameters_.texelsPerDistribution,
           parameters_.alpha, filteredValues_.data(), numMips_, mipRowLength_};
 }

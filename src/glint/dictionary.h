@@ -45,7 +45,7 @@ class Dictionary {
   Dictionary(const DictionaryParameters& parameters, std::span<const float> values);
 
   const DictionaryParameters& parameters() const { return parameters_; }
-  kernel::DictionaryView view() const;
+  kernel::GlintDictionaryView view() const;
 
   float texel(int level, int distribution, int texel) const;
   // The marginal density at any slope, with the kernel's interpolation; 0 outside the domain.
@@ -61,7 +61,7 @@ class Dictionary {
   // The mip chain that anti-aliasing filters the marginals with (docs/dictionary.md, "Mip chain"),
   // made from the texels at construction: 1 + (the number of times 2 divides R) levels, level m of
   // R / 2^m box averages 2^m texels wide. mipTexel is texel k of level m (level 0: texel());
-  // filteredTexels the kernel's layout (prelude.h, DictionaryView), four binary16 values a texel.
+  // filteredTexels the kernel's layout (prelude.h, GlintDictionaryView), four binary16 values a texel.
   int numMips() const { return numMips_; }
   int mipRowLength() const { return mipRowLength_; }
   float mipTexel(int mip, int level, int distribution, int texel) const;

@@ -290,7 +290,7 @@ float srgbToLinear(float encoded) {
 float linearToSrgb(float linear) {
   if (!(linear > 0.0f)) return 0.0f;  // also NaN
   if (linear >= 1.0f) return 1.0f;
-  return kernel::srgbEncode(linear);  // the one sRGB encoding, shared with the shaders
+  return kernel::glintSrgbEncode(linear);  // the one sRGB encoding, shared with the shaders
 }
 
 std::uint8_t linearToSrgb8(float linear) {
@@ -301,7 +301,7 @@ ImageRgb8 displayEncode(const ImageRgbF& radiance, float exposure) {
   ImageRgb8 display(radiance.width, radiance.height, {0, 0, 0});
   for (int y = 0; y < radiance.height; ++y) {
     for (int x = 0; x < radiance.width; ++x) {
-      const glm::vec3 code = kernel::displayCodeValues(radiance.at(x, y), exposure, glm::ivec2(x, y));
+      const glm::vec3 code = kernel::glintDisplayCodeValues(radiance.at(x, y), exposure, glm::ivec2(x, y));
       display.at(x, y) = {static_cast<std::uint8_t>(code.r), static_cast<std::uint8_t>(code.g),
                           static_cast<std::uint8_t>(code.b)};
     }

@@ -18,10 +18,10 @@ glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
     float theta;
     if (std::abs(offset.x) > std::abs(offset.y)) {
       r = offset.x;
-      theta = 0.25f * kernel::kPi * (offset.y / offset.x);
+      theta = 0.25f * kernel::GLINT_PI * (offset.y / offset.x);
     } else {
       r = offset.y;
-      theta = 0.5f * kernel::kPi - 0.25f * kernel::kPi * (offset.x / offset.y);
+      theta = 0.5f * kernel::GLINT_PI - 0.25f * kernel::GLINT_PI * (offset.x / offset.y);
     }
     d = r * glm::vec2(std::cos(theta), std::sin(theta));
   }
@@ -38,7 +38,7 @@ namespace {
 // (exactly the uncorrelated sigma z when rho = 0). Beckmann, GGX and its remainder are all
 // elliptical with this scale matrix: only their radius differs.
 glm::vec2 ellipticalSlope(glm::vec2 alpha, float rho, float radius, float v) {
-  const float phi = 2.0f * kernel::kPi * v;
+  const float phi = 2.0f * kernel::GLINT_PI * v;
   const float c = std::cos(phi);
   const float s = std::sin(phi);
   return alpha * 0.70710678f * radius * glm::vec2(std::sqrt(1.0f - rho * rho) * c + rho * s, s);
@@ -60,7 +60,7 @@ glm::vec2 sampleGgxSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
 glm::vec2 sampleGgxTailSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
   // Solve S(y) = v for y = 1 + t, S(y) = (1 - e^(-y W)) / (y (1 - e^-W)), decreasing from S(1) = 1;
   // S(y) <= 1 / (y (1 - e^-W)) bounds the root by 1 / (v (1 - e^-W)).
-  const double w = kernel::kGgxTailPrecision;
+  const double w = kernel::GLINT_GGX_TAIL_PRECISION;
   const double mass = -std::expm1(-w);
   const double v = 1.0 - std::min(u.x, kOneMinusEpsilon);
   double low = 1.0;
@@ -74,10 +74,10 @@ glm::vec2 sampleGgxTailSlope(glm::vec2 alpha, float rho, glm::vec2 u) {
 }
 
 glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u) {
-  return ndf == kernel::kNdfGgx ? sampleGgxSlope(alpha, rho, u) : sampleBeckmannSlope(alpha, rho, u);
+  return ndf == kernel::GLINT_NDF_GGX ? sampleGgxSlope(alpha, rho, u) : sampleBeckmannSlope(alpha, rho, u);
 }
 
-float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u) {
+float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, float u) {
   // The even density, one half each side, inverted monotonically: u in [0, 1/2) covers
   // (-4 sigma_d, 0], u in [1/2, 1) covers [0, 4 sigma_d); v is the CDF of |x| on its half (exact in
   // double).
@@ -114,7 +114,7 @@ float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distr
   return sign * static_cast<float>((segment + t) * spacing);
 }
 
-std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const kernel::GlintParameters& params,
+std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, const kernel::GlintParameters& params,
                                           glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy, float& uChoice,
                                           glm::vec2 u) {
   const kernel::GlintFootprint footprint = kernel::glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
@@ -200,7 +200,7 @@ glm::vec3 sampleVCavityVisibleNormal(glm::vec3 wo, glm::vec3 m, float& u) {
 float visibleNdf(glm::vec3 wo, glm::vec3 m, float ndf) {
   const float cosine = glm::dot(wo, m);
   if (wo.z <= 0.0f || m.z <= 0.0f || cosine <= 0.0f) return 0.0f;
-  return kernel::vcavityG1(wo, m) * cosine * ndf / wo.z;
+  return kernel::glintVCavityG1(wo, m) * cosine * ndf / wo.z;
 }
 
 float vcavityG1TwoSided(glm::vec3 w, glm::vec3 m) {

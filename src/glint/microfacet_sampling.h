@@ -32,21 +32,21 @@ inline float cosineHemispherePdf(float cosTheta) { return cosTheta > 0.0f ? cosT
 // A microfacet normal from its slope: m = (-x, -y, 1) / sqrt(1 + x^2 + y^2) (method.md, notation).
 glm::vec3 normalFromSlope(glm::vec2 slope);
 
-// A slope of the anisotropic Beckmann P22 with correlation rho (microfacet.h, beckmannP22): a
+// A slope of the anisotropic Beckmann P22 with correlation rho (microfacet.h, glintBeckmannP22): a
 // centred Gaussian of std alpha / sqrt(2) per axis and correlation rho, by the Box-Muller transform
 // and the covariance's Cholesky factor.
 glm::vec2 sampleBeckmannSlope(glm::vec2 alpha, float rho, glm::vec2 u);
 
-// A slope of the GGX P22 (kernel/microfacet_targets.h, ggxP22): the Student t's radius t = q / 2
+// A slope of the GGX P22 (kernel/microfacet_targets.h, glintGgxP22): the Student t's radius t = q / 2
 // has the CDF 1 - 1 / (1 + t), inverted, then the same angle and Cholesky factor as Beckmann's.
 glm::vec2 sampleGgxSlope(glm::vec2 alpha, float rho, glm::vec2 u);
 
-// A slope of the GGX scale mixture's smooth remainder (studentTailSlopeP22): its radius t = q / 2
-// has P(T > t) = (1 - e^(-(1 + t) W)) / ((1 + t) (1 - e^-W)), W = kGgxTailPrecision, inverted by
+// A slope of the GGX scale mixture's smooth remainder (glintStudentTailSlopeP22): its radius t = q / 2
+// has P(T > t) = (1 - e^(-(1 + t) W)) / ((1 + t) (1 - e^-W)), W = GLINT_GGX_TAIL_PRECISION, inverted by
 // bisection in double.
 glm::vec2 sampleGgxTailSlope(glm::vec2 alpha, float rho, glm::vec2 u);
 
-// A slope of the smooth target (kernel::kNdfBeckmann or kNdfGgx).
+// A slope of the smooth target (kernel::GLINT_NDF_BECKMANN or GLINT_NDF_GGX).
 glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u);
 
 // A signed dictionary-space slope of distribution `distribution` at level `level`, by inverting
@@ -54,7 +54,7 @@ glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u);
 // linear between texels, falling to 0 at 4 sigma_d). The marginal is even: u < 1/2 picks the
 // negative side, u >= 1/2 the positive one, and within each |x| follows the CDF of one half, so that
 // x is monotonic in u (the inverse of the full CDF).
-float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distribution, float u);
+float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, float u);
 
 // A slope of the P-SDF P22_P (method.md 2.3-2.5, section 5): the LOD il or il + 1 by the blend
 // weight, a cell of that level by its normalised EWA weight (the cells glintLevelP22 visits, with
@@ -64,7 +64,7 @@ float sampleDictionaryMarginal(kernel::DictionaryView dict, int level, int distr
 // scale too). Returns nullopt when the chosen cell holds no microfacets (relative area
 // mask) or the level has no cell: with probability 1 - integral of P22_P. `uChoice` makes the
 // discrete choices and comes back rescaled to [0, 1), for the caller's next choice.
-std::optional<glm::vec2> sampleGlintSlope(kernel::DictionaryView dict, const kernel::GlintParameters& params,
+std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, const kernel::GlintParameters& params,
                                           glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy, float& uChoice,
                                           glm::vec2 u);
 

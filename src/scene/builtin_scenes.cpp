@@ -20,11 +20,11 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // ---- Deterministic noise ----------------------------------------------------------------------
-// The kernel's pcg4d is a bijection with fixed integer arithmetic: the same bytes everywhere.
+// The kernel's glintPcg4d is a bijection with fixed integer arithmetic: the same bytes everywhere.
 
 float hashUnit(int x, int y, std::uint32_t seed) {
-  const glm::uvec4 h = kernel::pcg4d(glm::uvec4(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), seed, 0u));
-  return kernel::hashToUnitOpen(h.x);
+  const glm::uvec4 h = kernel::glintPcg4d(glm::uvec4(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), seed, 0u));
+  return kernel::glintHashToUnitOpen(h.x);
 }
 
 // Value noise in [0, 1): smoothstep interpolation of lattice hashes.
@@ -137,7 +137,7 @@ PlankPoint plankAt(glm::vec2 metres) {
   const float along = metres.x + kPlankLength * hashUnit(row, 0, 11u);
   const int column = static_cast<int>(std::floor(along / kPlankLength));
   PlankPoint point;
-  point.id = kernel::pcg4d(glm::uvec4(static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(column), 12u, 0u)).x;
+  point.id = kernel::glintPcg4d(glm::uvec4(static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(column), 12u, 0u)).x;
   point.local = glm::vec2(along - column * kPlankLength, metres.y - row * kPlankWidth);
   point.edgeDistance = std::min(std::min(point.local.x, kPlankLength - point.local.x),
                                 std::min(point.local.y, kPlankWidth - point.local.y));
@@ -168,8 +168,8 @@ std::pair<Texture, Texture> parquetTextures(float metres) {
       // Texel centre in metres; texture rows go with v, which the floor quad lays along +z.
       const glm::vec2 metresAt = (glm::vec2(static_cast<float>(x), static_cast<float>(y)) + 0.5f) * (metres / size);
       const PlankPoint plank = plankAt(metresAt);
-      const float tone = kernel::hashToUnitOpen(plank.id);
-      const float wear = kernel::hashToUnitOpen(kernel::pcg4d(glm::uvec4(plank.id, 13u, 0u, 0u)).x);
+      const float tone = kernel::glintHashToUnitOpen(plank.id);
+      const float wear = kernel::glintHashToUnitOpen(kernel::glintPcg4d(glm::uvec4(plank.id, 13u, 0u, 0u)).x);
       const float grain = grainAt(plank);
       const bool joint = plank.edgeDistance < 0.5f * kGapWidth;
       const float fine = valueNoise(metresAt * 300.0f, 14u);

@@ -193,7 +193,7 @@ glm::mat2 UvTransform::linear() const {
 }
 
 glm::vec2 Light::coneScaleOffset() const {
-  return type == Type::Spot ? kernel::spotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
+  return type == Type::Spot ? kernel::glintSpotConeScaleOffset(innerConeAngle, outerConeAngle) : glm::vec2(0.0f, 1.0f);
 }
 
 float Light::inverseRange() const { return positional() && range > 0.0f ? 1.0f / range : 0.0f; }

@@ -116,7 +116,7 @@ struct Material {
 
 // glTF's metallic-roughness specular lobe: GGX, height-correlated Smith, and the compensation of
 // the energy its single scattering loses.
-inline constexpr MicrofacetTarget kGltfSpecular{kernel::kNdfGgx, kernel::kMaskingSmith, true};
+inline constexpr MicrofacetTarget kGltfSpecular{kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH, true};
 
 struct Light {
   enum class Type { Point, Directional, Spot };
@@ -129,12 +129,12 @@ struct Light {
   float range = 0.0f;              // point and spot lights: dark from this distance on (kernel/lights.h); 0: no range
 
   bool positional() const { return type != Type::Directional; }
-  // kernel::spotConeScaleOffset of a spot's cones; (0, 1), no falloff, for the other lights.
+  // kernel::glintSpotConeScaleOffset of a spot's cones; (0, 1), no falloff, for the other lights.
   glm::vec2 coneScaleOffset() const;
-  // A spot's unit axis, as kernel::spotAttenuation takes it; any unit vector for the other lights,
+  // A spot's unit axis, as kernel::glintSpotAttenuation takes it; any unit vector for the other lights,
   // whose cone (0, 1) ignores it.
   glm::vec3 spotAxis() const;
-  // 1 / range, as kernel::rangeWindow takes it; 0 for a light without a range and for directional
+  // 1 / range, as kernel::glintRangeWindow takes it; 0 for a light without a range and for directional
   // lights.
   float inverseRange() const;
 };

@@ -21,7 +21,7 @@ Spectrum GlintTint::operator()(glm::vec3 wo, glm::vec3 wi) const {
   const glm::vec3 wh = glm::normalize(wo + wi);
   if (!(wh.z > 0.0f)) return Spectrum(1.0f);
   const glm::vec4 p22 = kernel::glintP22Coloured(dictionary, parameters, footprint.uv, footprint.duvdx,
-                                                 footprint.duvdy, kernel::slopeFromNormal(wh));
+                                                 footprint.duvdy, kernel::glintSlopeFromNormal(wh));
   return p22.w > 0.0f ? Spectrum(p22) / p22.w : Spectrum(1.0f);
 }
 
@@ -174,8 +174,8 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
     const glm::vec2 dy = at.footprint.duvdy;
     const glm::vec3 first = moments->first.sample(at.uv, dx, dy);
     const glm::vec3 second = moments->second.sample(at.uv, dx, dy);
-    leanCovariance = kernel::leanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
-    const glm::vec3 mapped = kernel::leanMeanNormal(first);
+    leanCovariance = kernel::glintLeanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
+    const glm::vec3 mapped = kernel::glintLeanMeanNormal(first);
     n = glm::normalize(t * mapped.x + b * mapped.y + n * mapped.z);
   } else if (m.normalTexture >= 0) {
     glm::vec3 mapped = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
@@ -212,7 +212,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   }
   params.relativeArea =
       std::clamp(layer.relativeArea * texture(layer.relativeAreaTexture, uv, footprint).r, 1e-4f, 1.0f);
-  const glm::vec3 leanRoughness = kernel::leanCombinedRoughness(params.alpha, params.rho, leanCovariance);
+  const glm::vec3 leanRoughness = kernel::glintLeanCombinedRoughness(params.alpha, params.rho, leanCovariance);
   params.alpha = glm::vec2(leanRoughness);
   params.rho = leanRoughness.z;
   if (model_ == SpecularModel::CookTorrance) {

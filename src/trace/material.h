@@ -48,7 +48,7 @@ struct MaterialSample {
 // The tint of coloured glint cells at a half vector (the shader's p22.rgb / p22.w): white unless
 // the layer has random colours.
 struct GlintTint {
-  kernel::DictionaryView dictionary;
+  kernel::GlintDictionaryView dictionary;
   GlintParameters parameters;
   SurfaceFootprint footprint;
   Spectrum operator()(glm::vec3 wo, glm::vec3 wi) const;

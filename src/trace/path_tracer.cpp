@@ -110,8 +110,8 @@ glm::vec3 PathTracer::deltaLights(const SurfacePoint& point, const ShadedPoint& 
       if (!(distance2 > 0.0f)) continue;
       distance = std::sqrt(distance2);
       toLight /= distance;
-      falloff = kernel::spotAttenuation(light.spotAxis(), toLight, light.coneScaleOffset()) *
-                kernel::rangeWindow(distance2, light.inverseRange()) / distance2;
+      falloff = kernel::glintSpotAttenuation(light.spotAxis(), toLight, light.coneScaleOffset()) *
+                kernel::glintRangeWindow(distance2, light.inverseRange()) / distance2;
       if (!(falloff > 0.0f)) continue;
     } else {
       toLight = -glm::normalize(light.direction);

@@ -66,7 +66,7 @@ glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv) const {
 
 float MipTexture::levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const {
   const glm::vec2 size(static_cast<float>(levels_.front().width), static_cast<float>(levels_.front().height));
-  return kernel::textureLevelOfDetail(duvdx, duvdy, size);
+  return kernel::glintTextureLevelOfDetail(duvdx, duvdy, size);
 }
 
 glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {

@@ -8,14 +8,14 @@
 GLINT_KERNEL_BEGIN
 
 // The dictionary's slope support 4 sigma_d = 4 alpha_d / sqrt(2): marginals vanish beyond it.
-GLINT_FN float glintDictionaryDomain(DictionaryView dict) {
+GLINT_FN float glintDictionaryDomain(GlintDictionaryView dict) {
   return 2.82842712f * dict.alpha;
 }
 
 // One tabulated 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R and
 // the marginal falls linearly to 0 at 4 sigma_d (docs/dictionary.md, "Texel convention"). The
 // caller guarantees 0 <= absSlope < 4 sigma_d.
-GLINT_FN float glintMarginal(DictionaryView dict, int level, int distribution, float absSlope) {
+GLINT_FN float glintMarginal(GlintDictionaryView dict, int level, int distribution, float absSlope) {
   float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict));
   int k = min(int(x), dict.texelsPerDistribution - 1);
   float f = x - float(k);

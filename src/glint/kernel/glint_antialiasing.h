@@ -5,7 +5,7 @@
 // 1. Slope correlation rho (the paper's Eq. 18): each cell's map to the dictionary's space becomes
 //    upper-triangular, M^-1 = sigma_d [[1 / (sx s), -rho / (sy s)], [0, 1 / sy]], s = sqrt(1 - rho^2),
 //    so that sigma_d^2 M M^T is the full covariance [[sx^2, rho sx sy], [rho sx sy, sy^2]] and the
-//    cells converge to the correlated Beckmann (microfacet.h, beckmannP22).
+//    cells converge to the correlated Beckmann (microfacet.h, glintBeckmannP22).
 // 2. Geometric glint anti-aliasing (GGAA). Within a pixel the half vector's slope moves: to first
 //    order h(p) = h0 + dx p.x + dy p.y over the pixel's box p in [-1/2, 1/2]^2, with dx, dy its
 //    screen derivatives. The pixel's mean P-SDF is then the P-SDF convolved with that box pushed into
@@ -98,7 +98,7 @@ GLINT_FN float glintKernelVariance(vec3 unscaledCovariance) {
 //
 // No logarithm: the mip level, floor(log4(4 v)), is half the binary exponent of 4 v, read from its
 // bits (exact; llvmpipe runs a log2 for every lane of every cell).
-GLINT_FN float glintMarginalLod(DictionaryView dict, float variance) {
+GLINT_FN float glintMarginalLod(GlintDictionaryView dict, float variance) {
   float spacing = glintDictionaryDomain(dict) / float(dict.texelsPerDistribution);
   float v = min(max(variance, 0.0f) / (spacing * spacing), 1e30f);  // in texels^2
   int exponent = ((floatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
@@ -119,7 +119,7 @@ struct GlintMarginalFilter {
   float blend;           // lod - mip
 };
 
-GLINT_FN GlintMarginalFilter glintMarginalFilter(DictionaryView dict, float lod) {
+GLINT_FN GlintMarginalFilter glintMarginalFilter(GlintDictionaryView dict, float lod) {
   int mip = int(lod);
   GlintMarginalFilter marginalFilter;
   marginalFilter.texelsPerSlope = (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict)) * (1.0f / float(1 << mip));
@@ -134,7 +134,7 @@ GLINT_FN GlintMarginalFilter glintMarginalFilter(DictionaryView dict, float lod)
 // fetch: a mip texel holds its own pair and the next level's interpolation at the same two
 // positions (docs/dictionary.md, "Mip chain"), so both levels share the texel's fraction and the
 // blend is of the pairs. At lod 0 it is glintMarginal exactly (the blend adds exact zeros).
-GLINT_FN float glintFilteredMarginal(DictionaryView dict, GlintMarginalFilter marginalFilter, int level, int distribution,
+GLINT_FN float glintFilteredMarginal(GlintDictionaryView dict, GlintMarginalFilter marginalFilter, int level, int distribution,
                                      float absSlope) {
   float x = absSlope * marginalFilter.texelsPerSlope;
   int k = min(int(x), marginalFilter.lastTexel);
@@ -147,12 +147,12 @@ GLINT_FN float glintFilteredMarginal(DictionaryView dict, GlintMarginalFilter ma
 // ---- 3. The smooth lobe ----------------------------------------------------------------------
 
 // The Beckmann P22 (roughness alpha, correlation rho) convolved with a kernel of slope covariance
-// K: the Gaussian of covariance Sigma + K; exactly beckmannP22 where there is no kernel.
+// K: the Gaussian of covariance Sigma + K; exactly glintBeckmannP22 where there is no kernel.
 GLINT_FN float glintFilteredBeckmannP22(vec2 slope, vec2 alpha, float rho, vec3 kernelCovariance) {
   if (kernelCovariance.x + kernelCovariance.z > 0.0f) {
-    return gaussianSlopeP22(slope, beckmannSlopeCovariance(alpha, rho) + kernelCovariance);
+    return glintGaussianSlopeP22(slope, glintBeckmannSlopeCovariance(alpha, rho) + kernelCovariance);
   }
-  return beckmannP22(slope, alpha, rho);
+  return glintBeckmannP22(slope, alpha, rho);
 }
 
 GLINT_KERNEL_END

@@ -17,12 +17,12 @@
 
 GLINT_KERNEL_BEGIN
 
-GLINT_CONST float kInvLn4 = 0.72134752f;  // 1 / ln(4): log4(n) = ln(n) / ln(4)
+GLINT_CONST float GLINT_INV_LN4 = 0.72134752f;  // 1 / ln(4): log4(n) = ln(n) / ln(4)
 // Gaussian filter of pbrt-v3's EWA: exp(-alpha r^2) - exp(-alpha), alpha = 2.
-GLINT_CONST float kEwaFilterFloor = 0.13533528f;  // exp(-2)
+GLINT_CONST float GLINT_EWA_FILTER_FLOOR = 0.13533528f;  // exp(-2)
 // The level-0 cell grid wraps after 2^16 cells per axis, which makes the 32-bit cell seed
 // (s | t << 16) collision-free over the whole period; see glintFootprintPeriod().
-GLINT_CONST uint kCellIndexMask = 0xFFFFu;
+GLINT_CONST uint GLINT_CELL_INDEX_MASK = 0xFFFFu;
 
 // How far the renderer may depart from the paper's pixel footprint to bound the cost of the walk
 // over its cells (docs/antialiasing.md, "Footprint policies"): a setting of the renderer, not of the
@@ -44,8 +44,8 @@ struct GlintParameters {
   float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
   uint patternSeed;            // selects an independent glint pattern for the same uv
   bool colouredCells;          // each cell reflects a random hue (car paint's coloured flakes)
-  int ndf;                     // the smooth target: kNdfBeckmann (the paper's) or kNdfGgx (microfacet_targets.h)
-  int masking;                 // kMaskingVCavity (the paper's) or kMaskingSmith
+  int ndf;                     // the smooth target: GLINT_NDF_BECKMANN (the paper's) or GLINT_NDF_GGX (microfacet_targets.h)
+  int masking;                 // GLINT_MASKING_VCAVITY (the paper's) or GLINT_MASKING_SMITH
   // Adds the smooth target's multiple-scattering compensation lobe (multiple_scattering.h); the
   // BRDF's users add it (the host's BSDFs, the renderer), the P-SDF does not see it.
   bool multipleScattering;
@@ -136,7 +136,7 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
 // hues, so mix(1, hue, 0.7) averages 0.65: dividing by it makes the expected colour white, and the
 // mean appearance that of uncoloured glints.
 GLINT_FN vec3 glintCellColour(uvec4 h) {
-  float hue = hashToUnitOpen(pcg4d(h).x) * 6.0f;
+  float hue = glintHashToUnitOpen(glintPcg4d(h).x) * 6.0f;
   vec3 rgb = clamp(vec3(abs(hue - 3.0f) - 1.0f, 2.0f - abs(hue - 2.0f), 2.0f - abs(hue - 4.0f)), 0.0f, 1.0f);
   return mix(vec3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
 }
@@ -146,16 +146,16 @@ GLINT_FN vec3 glintCellColour(uvec4 h) {
 //
 // Coherent index: the level-0 index of the cell's first child, so that a cell and its descendants
 // draw the same random numbers (method.md 2.5). Masked to the period, the pair is a collision-free
-// seed; pcg4d's four lanes are the cell's four draws.
+// seed; glintPcg4d's four lanes are the cell's four draws.
 GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
-  uint s = (uint(cellX) << uint(level)) & kCellIndexMask;
-  uint t = (uint(cellY) << uint(level)) & kCellIndexMask;
-  return pcg4d(uvec4(s, t, params.patternSeed, 0u));
+  uint s = (uint(cellX) << uint(level)) & GLINT_CELL_INDEX_MASK;
+  uint t = (uint(cellY) << uint(level)) & GLINT_CELL_INDEX_MASK;
+  return glintPcg4d(uvec4(s, t, params.patternSeed, 0u));
 }
 
 // Microfacet relative area: the cell holds microfacets with probability MRA (method.md 2.5).
 GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
-  return !(hashToUnitOpen(h.x) > params.relativeArea);
+  return !(glintHashToUnitOpen(h.x) > params.relativeArea);
 }
 
 // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
@@ -169,51 +169,51 @@ GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
 // cell's level is the number of thresholds its u passes: L comparisons instead of a logarithm and
 // two polynomials per cell (the inverse error function was 19% of the glint shader's instructions).
 // Thresholds past the dictionary's L are above every u, so the loop has a fixed length.
-GLINT_CONST int kMaxDictionaryLevels = 16;  // the largest L a Dictionary accepts
+GLINT_CONST int GLINT_MAX_DICTIONARY_LEVELS = 16;  // the largest L a Dictionary accepts
 
 struct GlintLevelDraw {
-  float threshold[kMaxDictionaryLevels];  // threshold[j - 1]: the u from which the level is >= j
+  float threshold[GLINT_MAX_DICTIONARY_LEVELS];  // threshold[j - 1]: the u from which the level is >= j
 };
 
 // The threshold from which a cell of this footprint level reaches dictionary level j. The margin
 // j - log4(n) - 1/2 is an exact integer minus a part that is the same at every level, so the
 // thresholds of level + 1 are bit for bit those of level shifted by one (glintNextLevelDraw).
-GLINT_FN float glintLevelThreshold(DictionaryView dict, GlintParameters params, float logDensity, int level, int j) {
+GLINT_FN float glintLevelThreshold(GlintDictionaryView dict, GlintParameters params, float logDensity, int level, int j) {
   if (j > dict.numLevels) {
     return 2.0f;  // never: u < 2
   }
-  float margin = float(j + (dict.numLevels - 1) - level) - (logDensity * kInvLn4 + 0.5f);
+  float margin = float(j + (dict.numLevels - 1) - level) - (logDensity * GLINT_INV_LN4 + 0.5f);
   if (params.densityRandomisation > 0.0f) {
-    return normalCdf(margin / params.densityRandomisation);  // the normal must reach margin / zeta
+    return glintNormalCdf(margin / params.densityRandomisation);  // the normal must reach margin / zeta
   }
   return margin <= 0.0f ? 0.0f : 2.0f;  // no randomisation: round(log4(n)) itself
 }
 
-GLINT_FN GlintLevelDraw glintLevelDraw(DictionaryView dict, GlintParameters params, float logDensity, int level) {
+GLINT_FN GlintLevelDraw glintLevelDraw(GlintDictionaryView dict, GlintParameters params, float logDensity, int level) {
   GlintLevelDraw draw;
-  for (int j = 1; j <= kMaxDictionaryLevels; ++j) {
+  for (int j = 1; j <= GLINT_MAX_DICTIONARY_LEVELS; ++j) {
     draw.threshold[j - 1] = glintLevelThreshold(dict, params, logDensity, level, j);
   }
   return draw;
 }
 
-// glintLevelDraw(level + 1) from glintLevelDraw(level), with one normalCdf instead of L: the next
+// glintLevelDraw(level + 1) from glintLevelDraw(level), with one glintNormalCdf instead of L: the next
 // level's cells are 4 times larger, so log4(n) is one more and its threshold for j is this level's
 // for j - 1.
-GLINT_FN GlintLevelDraw glintNextLevelDraw(DictionaryView dict, GlintParameters params, float logDensity, int level,
+GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParameters params, float logDensity, int level,
                                            GlintLevelDraw draw) {
   GlintLevelDraw next;
   next.threshold[0] = glintLevelThreshold(dict, params, logDensity, level + 1, 1);
-  for (int j = 2; j <= kMaxDictionaryLevels; ++j) {
+  for (int j = 2; j <= GLINT_MAX_DICTIONARY_LEVELS; ++j) {
     next.threshold[j - 1] = j > dict.numLevels ? 2.0f : draw.threshold[j - 2];
   }
   return next;
 }
 
 GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
-  float u = hashToUnitOpen(h.y);
+  float u = glintHashToUnitOpen(h.y);
   int dictLevel = 0;
-  for (int j = 0; j < kMaxDictionaryLevels; ++j) {
+  for (int j = 0; j < GLINT_MAX_DICTIONARY_LEVELS; ++j) {
     dictLevel += u >= draw.threshold[j] ? 1 : 0;
   }
   return dictLevel;
@@ -225,7 +225,7 @@ GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
 // 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
 // their own: the pair was 12% of the glint shader's instructions, this is about a third of that.
 GLINT_FN vec2 glintCellRotation(uvec4 h) {
-  float quarterTurns = 4.0f * hashToUnitOpen(h.z);
+  float quarterTurns = 4.0f * glintHashToUnitOpen(h.z);
   float quadrant = floor(quarterTurns + 0.5f);
   float phi = (quarterTurns - quadrant) * 1.57079633f;
   float phi2 = phi * phi;
@@ -239,7 +239,7 @@ GLINT_FN vec2 glintCellRotation(uvec4 h) {
 
 // The cell's two distributions (i, j) from the 16-bit halves of the last lane: exact integer
 // arithmetic, the same in both languages.
-GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
+GLINT_FN ivec2 glintCellDistributions(GlintDictionaryView dict, uvec4 h) {
   uint n = uint(dict.numDistributions);
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
@@ -247,12 +247,12 @@ GLINT_FN ivec2 glintCellDistributions(DictionaryView dict, uvec4 h) {
 // Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5), in two steps: undo
 // the roughness scaling and correlation M (the same for every cell of a pixel; with rho = 0 the
 // 2020 model's S = alpha / alpha_d) ...
-GLINT_FN vec2 glintUnscaledSlope(DictionaryView dict, GlintParameters params, vec2 slope) {
+GLINT_FN vec2 glintUnscaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
   return glintCorrelatedUnscale(slope, params.alpha, params.rho, dict.alpha);
 }
 
 // ... whose inverse takes a dictionary-space slope, rotated back, to the target's slopes.
-GLINT_FN vec2 glintScaledSlope(DictionaryView dict, GlintParameters params, vec2 unscaled) {
+GLINT_FN vec2 glintScaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 unscaled) {
   return glintCorrelatedScale(unscaled, params.alpha, params.rho, dict.alpha);
 }
 
@@ -264,13 +264,13 @@ GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
 }
 
 // Jacobian of the scaling, det(M^-1) (method.md 2.5; with correlation, glintCorrelatedJacobian).
-GLINT_FN float glintScalingJacobian(DictionaryView dict, GlintParameters params) {
+GLINT_FN float glintScalingJacobian(GlintDictionaryView dict, GlintParameters params) {
   return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
 }
 
 // Whether an unscaled slope (glintUnscaledSlope) lies beyond the circumradius of the dictionary's
 // square support, 4 sigma_d sqrt 2: outside it at every cell rotation.
-GLINT_FN bool glintBeyondEveryRotatedSupport(DictionaryView dict, vec2 unscaled) {
+GLINT_FN bool glintBeyondEveryRotatedSupport(GlintDictionaryView dict, vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
   return dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma;
 }
@@ -280,11 +280,11 @@ GLINT_FN bool glintBeyondEveryRotatedSupport(DictionaryView dict, vec2 unscaled)
 // = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for
 // that light, and skips the walk of the footprint's cells when no light is left. The CPU BSDF
 // keeps the exact value: its sampler can draw such a slope from a smooth cell and must find a
-// non-zero pdf there. With the GGX target the widest cell reaches kGgxWidestCell = 10 times
+// non-zero pdf there. With the GGX target the widest cell reaches GLINT_GGX_WIDEST_CELL = 10 times
 // further, a slope of 40 alpha, where the smooth GGX P22 (and its remainder) is below
 // (1 + 1600)^-2 = 3.9e-7 of its peak.
-GLINT_FN bool glintSlopeIsNegligible(DictionaryView dict, GlintParameters params, vec2 slope) {
-  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / targetWidestCell(params.ndf));
+GLINT_FN bool glintSlopeIsNegligible(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
+  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / glintTargetWidestCell(params.ndf));
 }
 
 // One cell's contribution to P22 (method.md 2.5), split so that what is the same for every cell of
@@ -304,7 +304,7 @@ struct GlintCell {
   float unscale;
 };
 
-GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
+GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
                              int level) {
   GlintCell cell;
   cell.hash = glintCellHash(params, cellX, cellY, level);
@@ -319,11 +319,11 @@ GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintL
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
     cell.readsDictionary = !cell.smoothLimit;
-    if (params.ndf == kNdfGgx && cell.readsDictionary) {
+    if (params.ndf == GLINT_NDF_GGX && cell.readsDictionary) {
       // The GGX scale mixture (microfacet_targets.h): glints of roughness alpha / sqrt(w), or the
       // smooth remainder below the cut.
       float w = glintCellPrecision(cell.hash);
-      cell.ggxTail = w < kGgxTailPrecision;
+      cell.ggxTail = w < GLINT_GGX_TAIL_PRECISION;
       cell.readsDictionary = !cell.ggxTail;
       cell.scalePrecision = w;
       cell.unscale = sqrt(w);
@@ -334,7 +334,7 @@ GLINT_FN GlintCell glintCell(DictionaryView dict, GlintParameters params, GlintL
 
 // The product of a dictionary cell's two marginals at an unscaled slope (glintUnscaledSlope),
 // without the scaling Jacobian; 0 outside the cell's rotated support.
-GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions, vec2 rotation,
+GLINT_FN float glintCellMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions, vec2 rotation,
                                   vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
@@ -347,7 +347,7 @@ GLINT_FN float glintCellMarginals(DictionaryView dict, int dictionaryLevel, ivec
 
 // The same product with both marginals filtered by the anti-aliasing kernel (glint_antialiasing.h)
 // at the level of detail of its variance (glintKernelVariance, glintMarginalLod, glintMarginalFilter).
-GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLevel, ivec2 distributions,
+GLINT_FN float glintCellFilteredMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions,
                                           vec2 rotation, vec2 unscaled, GlintMarginalFilter marginalFilter) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
@@ -362,10 +362,10 @@ GLINT_FN float glintCellFilteredMarginals(DictionaryView dict, int dictionaryLev
 // Beckmann exactly glintFilteredBeckmannP22; for GGX the Student t of scale covariance Sigma + K, an
 // approximation (a t convolved with a Gaussian is no t), exact where there is no kernel.
 GLINT_FN float glintFilteredTargetP22(GlintParameters params, vec2 slope, vec3 kernelCovariance) {
-  if (params.ndf != kNdfGgx) {
+  if (params.ndf != GLINT_NDF_GGX) {
     return glintFilteredBeckmannP22(slope, params.alpha, params.rho, kernelCovariance);
   }
-  return studentSlopeP22(slope, beckmannSlopeCovariance(params.alpha, params.rho) + kernelCovariance);
+  return glintStudentSlopeP22(slope, glintBeckmannSlopeCovariance(params.alpha, params.rho) + kernelCovariance);
 }
 
 // The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
@@ -505,7 +505,7 @@ GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
   vec2 a1 = footprint.minorAxis * cellsPerUv;
   float determinant = (dot(a0, a0) + 1.0f) * (dot(a1, a1) + 1.0f);
   float across = min(a0.y * a0.y + a1.y * a1.y, a0.x * a0.x + a1.x * a1.x) + 1.0f;
-  return kPi * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
+  return GLINT_PI * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
 }
 
 // The EWA weight of the cell at walk coordinates (s, t) (method.md 2.4): exp(-2 r^2) - exp(-2) for
@@ -517,7 +517,7 @@ GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
   float dy = float(t) - grid.centre.y;
   float r2 = grid.ea * dx * dx + grid.eb * dx * dy + grid.ec * dy * dy;
-  return max(exp(-2.0f * r2) - kEwaFilterFloor, 0.0f);
+  return max(exp(-2.0f * r2) - GLINT_EWA_FILTER_FLOOR, 0.0f);
 }
 
 // The EWA weight of the walk's current step: its cell's, or 0 on a line that misses the ellipse.
@@ -529,7 +529,7 @@ GLINT_FN float glintWalkWeight(GlintCellGrid grid, GlintCellWalk walk) {
 // mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
 // Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
 // once. Uncoloured cells are white, so their .rgb is .w: only coloured ones sum colours.
-GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
+GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                                    int level, GlintLevelDraw draw, GlintSlopeSet slopes) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   vec2 unscaled[GLINT_SLOPE_COUNT];
@@ -547,8 +547,8 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
   GlintMarginalFilter kernelFilter[GLINT_SLOPE_COUNT];
   float kernelVariance[GLINT_SLOPE_COUNT];  // GGX cells filter at their own scale
   bool anyDerivative = false;
-  // A GGX cell's support reaches kGgxWidestCell times further (exactly 1 for Beckmann).
-  float widestUnscale = 1.0f / targetWidestCell(params.ndf);
+  // A GGX cell's support reaches GLINT_GGX_WIDEST_CELL times further (exactly 1 for Beckmann).
+  float widestUnscale = 1.0f / glintTargetWidestCell(params.ndf);
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
@@ -592,7 +592,7 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
           if (inSupport[k]) {
             vec2 cellUnscaled = unscaled[k] * cell.unscale;
             GlintMarginalFilter cellFilter = kernelFilter[k];
-            if (filtering && params.ndf == kNdfGgx) {
+            if (filtering && params.ndf == GLINT_NDF_GGX) {
               cellFilter = glintMarginalFilter(dict, glintMarginalLod(dict, cell.scalePrecision * kernelVariance[k]));
             }
             p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
@@ -616,12 +616,12 @@ GLINT_FN GlintP22Set glintLevelP22(DictionaryView dict, GlintParameters params, 
       p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
         float smoothP22 = filtering ? glintFilteredTargetP22(params, slopes.slope[k], slopeKernel[k])
-                                 : targetP22(params.ndf, slopes.slope[k], params.alpha, params.rho);
+                                 : glintTargetP22(params.ndf, slopes.slope[k], params.alpha, params.rho);
         p22.p22[k] += vec4(smoothWeightSum * smoothP22);
       }
       if (tailWeightSum > 0.0f) {
-        vec3 covariance = beckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : vec3(0.0f));
-        p22.p22[k] += vec4(tailWeightSum * studentTailSlopeP22(slopes.slope[k], covariance));
+        vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : vec3(0.0f));
+        p22.p22[k] += vec4(tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance));
       }
       p22.p22[k] = p22.p22[k] / weightSum;
     }
@@ -725,7 +725,7 @@ GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParamet
 // The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
 // slope of the set, in .w; .rgb weighted by the cells' colours (equal to .w unless
 // params.colouredCells).
-GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+GLINT_FN GlintP22Set glintP22Set(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                  GlintSlopeSet slopes) {
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   GlintP22Set p22;
@@ -754,18 +754,18 @@ GLINT_FN GlintP22Set glintP22Set(DictionaryView dict, GlintParameters params, ve
 }
 
 // The P-SDF at one slope.
-GLINT_FN vec4 glintP22Coloured(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+GLINT_FN vec4 glintP22Coloured(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                vec2 slope) {
   return glintP22Set(dict, params, uv, duvdx, duvdy, glintSingleSlope(slope)).p22[0];
 }
 
-GLINT_FN float glintP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
+GLINT_FN float glintP22(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 slope) {
   return glintP22Coloured(dict, params, uv, duvdx, duvdy, slope).w;
 }
 
 // The anti-aliased P-SDF at one slope whose screen derivatives (times the kernel size) are
 // `derivatives` (dx.x, dx.y, dy.x, dy.y) (glint_antialiasing.h); zero derivatives give glintP22.
-GLINT_FN float glintFilteredP22(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+GLINT_FN float glintFilteredP22(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec2 slope, vec4 derivatives) {
   GlintSlopeSet slopes = glintSingleSlope(slope);
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
@@ -775,18 +775,18 @@ GLINT_FN float glintFilteredP22(DictionaryView dict, GlintParameters params, vec
 }
 
 // The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4.
-GLINT_FN float glintNdf(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec3 m) {
-  return ndfFromP22(glintP22(dict, params, uv, duvdx, duvdy, slopeFromNormal(m)), m.z);
+GLINT_FN float glintNdf(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec3 m) {
+  return glintNdfFromP22(glintP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(m)), m.z);
 }
 
 // The Cook-Torrance frame around a P-NDF value with the material's masking (microfacet_targets.h):
 // V-cavity is the paper's, Smith takes the smooth target's Lambda.
 GLINT_FN float glintMaskedReflectance(GlintParameters params, vec3 wo, vec3 wi, vec3 wh, float ndf) {
-  return maskedMicrofacetReflectance(params.masking, params.ndf, params.alpha, params.rho, wo, wi, wh, ndf);
+  return glintMaskedMicrofacetReflectance(params.masking, params.ndf, params.alpha, params.rho, wo, wi, wh, ndf);
 }
 
 // The glint BRDF without Fresnel and colour (F = 1), without the cosine.
-GLINT_FN float glintReflectance(DictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+GLINT_FN float glintReflectance(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;

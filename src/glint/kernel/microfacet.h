@@ -7,10 +7,10 @@
 
 GLINT_KERNEL_BEGIN
 
-GLINT_CONST float kPi = 3.14159265358979f;
+GLINT_CONST float GLINT_PI = 3.14159265358979f;
 
 // Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (method.md, notation).
-GLINT_FN vec2 slopeFromNormal(vec3 m) {
+GLINT_FN vec2 glintSlopeFromNormal(vec3 m) {
   return vec2(-m.x / m.z, -m.y / m.z);
 }
 
@@ -20,53 +20,53 @@ GLINT_FN vec2 slopeFromNormal(vec3 m) {
 // correlation of Chermain et al. 2021, "Real-Time Geometric Glint Anti-Aliasing with Normal Map
 // Filtering", I3D, Section 5). rho = 0 computes exactly the uncorrelated expression: the terms
 // rho adds are exact zeros and its divisions exact ones.
-GLINT_FN float beckmannP22(vec2 slope, vec2 alpha, float rho) {
+GLINT_FN float glintBeckmannP22(vec2 slope, vec2 alpha, float rho) {
   vec2 sigma = alpha * 0.70710678f;
   vec2 t = slope / sigma;
   float oneMinusRho2 = 1.0f - rho * rho;
   float q = (dot(t, t) - 2.0f * rho * t.x * t.y) / oneMinusRho2;
-  return exp(-0.5f * q) / (2.0f * kPi * sigma.x * sigma.y * sqrt(oneMinusRho2));
+  return exp(-0.5f * q) / (2.0f * GLINT_PI * sigma.x * sigma.y * sqrt(oneMinusRho2));
 }
 
 // A centred Gaussian slope distribution of any covariance (xx, xy, yy), positive definite: the
 // Beckmann P22 widened by a filter kernel of covariance K is this with covariance Sigma + K.
-GLINT_FN float gaussianSlopeP22(vec2 slope, vec3 covariance) {
+GLINT_FN float glintGaussianSlopeP22(vec2 slope, vec3 covariance) {
   float determinant = covariance.x * covariance.z - covariance.y * covariance.y;
   float q = (covariance.z * slope.x * slope.x - 2.0f * covariance.y * slope.x * slope.y +
              covariance.x * slope.y * slope.y) / determinant;
-  return exp(-0.5f * q) / (2.0f * kPi * sqrt(determinant));
+  return exp(-0.5f * q) / (2.0f * GLINT_PI * sqrt(determinant));
 }
 
 // The covariance (xx, xy, yy) of the Beckmann slopes of roughness alpha and correlation rho.
-GLINT_FN vec3 beckmannSlopeCovariance(vec2 alpha, float rho) {
+GLINT_FN vec3 glintBeckmannSlopeCovariance(vec2 alpha, float rho) {
   vec2 sigma = alpha * 0.70710678f;
   return vec3(sigma.x * sigma.x, rho * sigma.x * sigma.y, sigma.y * sigma.y);
 }
 
 // Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m).
-GLINT_FN float ndfFromP22(float p22, float cosThetaM) {
+GLINT_FN float glintNdfFromP22(float p22, float cosThetaM) {
   float c2 = cosThetaM * cosThetaM;
   return p22 / (c2 * c2);
 }
 
 // V-cavity masking (Heitz & d'Eon 2014, Eq. 5; the glint paper's choice):
 // G1(w, m) = min(1, 2 (m.z)(w.z) / (w.m)).
-GLINT_FN float vcavityG1(vec3 w, vec3 m) {
+GLINT_FN float glintVCavityG1(vec3 w, vec3 m) {
   return min(1.0f, 2.0f * m.z * w.z / dot(w, m));
 }
 
 // The Cook-Torrance frame around any normal distribution value D(wh), Fresnel excluded:
 // f = G1(wo) G1(wi) D / (4 wo.z wi.z) (method.md, section 3). Zero below either horizon and for
 // back-facing microfacets. Without the cosine (docs/conventions.md).
-GLINT_FN float microfacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
+GLINT_FN float glintMicrofacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
   if (wo.z <= 0.0f || wi.z <= 0.0f || wh.z <= 0.0f || dot(wo, wh) <= 0.0f || dot(wi, wh) <= 0.0f) {
     return 0.0f;
   }
-  return vcavityG1(wo, wh) * vcavityG1(wi, wh) * ndf / (4.0f * wo.z * wi.z);
+  return glintVCavityG1(wo, wh) * glintVCavityG1(wi, wh) * ndf / (4.0f * wo.z * wi.z);
 }
 
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering".
-GLINT_FN vec3 fresnelSchlick(vec3 f0, float cosThetaI) {
+GLINT_FN vec3 glintFresnelSchlick(vec3 f0, float cosThetaI) {
   float c = clamp(1.0f - cosThetaI, 0.0f, 1.0f);
   float c2 = c * c;
   return f0 + (vec3(1.0f) - f0) * (c2 * c2 * c);
@@ -75,7 +75,7 @@ GLINT_FN vec3 fresnelSchlick(vec3 f0, float cosThetaI) {
 // Fresnel reflectance of a conductor with complex index of refraction eta + i k (relative to the
 // outside medium), unpolarised light; the exact expression of Born & Wolf as written in pbrt-v3
 // (FrConductor), per colour channel.
-GLINT_FN vec3 fresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
+GLINT_FN vec3 glintFresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
   float c = clamp(cosThetaI, 0.0f, 1.0f);
   float c2 = c * c;
   float s2 = 1.0f - c2;
@@ -95,12 +95,12 @@ GLINT_FN vec3 fresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
 
 // The Cook-Torrance baseline the glint BRDF converges to: Beckmann D (correlation rho), V-cavity G,
 // F = 1.
-GLINT_FN float cookTorranceReflectance(vec2 alpha, float rho, vec3 wo, vec3 wi) {
+GLINT_FN float glintCookTorranceReflectance(vec2 alpha, float rho, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;
   }
   vec3 wh = normalize(wo + wi);
-  return microfacetReflectance(wo, wi, wh, ndfFromP22(beckmannP22(slopeFromNormal(wh), alpha, rho), wh.z));
+  return glintMicrofacetReflectance(wo, wi, wh, glintNdfFromP22(glintBeckmannP22(glintSlopeFromNormal(wh), alpha, rho), wh.z));
 }
 
 GLINT_KERNEL_END

@@ -24,37 +24,37 @@ GLINT_KERNEL_BEGIN
 // The tables' grid: mu_j = (j / 31)^2 and alpha_i = 2 (i / 31)^2, denser towards grazing views and
 // smooth surfaces, where E changes fastest; read with bilinear interpolation in (sqrt(mu),
 // sqrt(alpha / 2)), clamped to the grid (alpha above 2 reads alpha = 2).
-GLINT_CONST int kAlbedoMuNodes = 32;
-GLINT_CONST int kAlbedoAlphaNodes = 32;
-GLINT_CONST float kAlbedoMaxAlpha = 2.0f;
+GLINT_CONST int GLINT_ALBEDO_MU_NODES = 32;
+GLINT_CONST int GLINT_ALBEDO_ALPHA_NODES = 32;
+GLINT_CONST float GLINT_ALBEDO_MAX_ALPHA = 2.0f;
 
 // The table of a target and masking: 2 ndf + masking.
-GLINT_FN int albedoTableIndex(int ndf, int masking) {
+GLINT_FN int glintAlbedoTableIndex(int ndf, int masking) {
   return 2 * ndf + masking;
 }
 
 // The grid coordinates of mu and alpha, in nodes.
-GLINT_FN float albedoMuCoordinate(float mu) {
-  return sqrt(clamp(mu, 0.0f, 1.0f)) * float(kAlbedoMuNodes - 1);
+GLINT_FN float glintAlbedoMuCoordinate(float mu) {
+  return sqrt(clamp(mu, 0.0f, 1.0f)) * float(GLINT_ALBEDO_MU_NODES - 1);
 }
 
-GLINT_FN float albedoAlphaCoordinate(float alpha) {
-  return sqrt(clamp(alpha, 0.0f, kAlbedoMaxAlpha) / kAlbedoMaxAlpha) * float(kAlbedoAlphaNodes - 1);
+GLINT_FN float glintAlbedoAlphaCoordinate(float alpha) {
+  return sqrt(clamp(alpha, 0.0f, GLINT_ALBEDO_MAX_ALPHA) / GLINT_ALBEDO_MAX_ALPHA) * float(GLINT_ALBEDO_ALPHA_NODES - 1);
 }
 
 // The isotropic roughness whose table an anisotropic, correlated lobe reads.
-GLINT_FN float compensationAlpha(vec2 alpha) {
+GLINT_FN float glintCompensationAlpha(vec2 alpha) {
   return sqrt(alpha.x * alpha.y);
 }
 
 // Fresnel's cosine-weighted hemispherical mean for Schlick's approximation: 2 integral of
 // (f0 + (1 - f0)(1 - mu)^5) mu dmu = f0 + (1 - f0) / 21.
-GLINT_FN vec3 schlickAverageFresnel(vec3 f0) {
+GLINT_FN vec3 glintSchlickAverageFresnel(vec3 f0) {
   return f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f);
 }
 
 // The Fresnel factor of the compensation lobe: F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (1 with F = 1).
-GLINT_FN vec3 multipleScatteringFresnel(vec3 averageFresnel, float averageAlbedo) {
+GLINT_FN vec3 glintMultipleScatteringFresnel(vec3 averageFresnel, float averageAlbedo) {
   return averageFresnel * averageFresnel * averageAlbedo /
          (vec3(1.0f) - averageFresnel * (1.0f - averageAlbedo));
 }
@@ -67,36 +67,36 @@ GLINT_KERNEL_END
 GLINT_KERNEL_BEGIN
 
 // E(mu) of the single-scattering lobe of roughness alpha (isotropic), F = 1.
-GLINT_FN float directionalAlbedo(int ndf, int masking, float alpha, float mu) {
-  float x = albedoMuCoordinate(mu);
-  float y = albedoAlphaCoordinate(alpha);
-  int i = min(int(y), kAlbedoAlphaNodes - 2);
-  int j = min(int(x), kAlbedoMuNodes - 2);
+GLINT_FN float glintDirectionalAlbedo(int ndf, int masking, float alpha, float mu) {
+  float x = glintAlbedoMuCoordinate(mu);
+  float y = glintAlbedoAlphaCoordinate(alpha);
+  int i = min(int(y), GLINT_ALBEDO_ALPHA_NODES - 2);
+  int j = min(int(x), GLINT_ALBEDO_MU_NODES - 2);
   float fy = y - float(i);
   float fx = x - float(j);
-  int base = (albedoTableIndex(ndf, masking) * kAlbedoAlphaNodes + i) * kAlbedoMuNodes + j;
-  float low = mix(kAlbedoTable[base], kAlbedoTable[base + 1], fx);
-  float high = mix(kAlbedoTable[base + kAlbedoMuNodes], kAlbedoTable[base + kAlbedoMuNodes + 1], fx);
+  int base = (glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i) * GLINT_ALBEDO_MU_NODES + j;
+  float low = mix(GLINT_ALBEDO_TABLE[base], GLINT_ALBEDO_TABLE[base + 1], fx);
+  float high = mix(GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES], GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES + 1], fx);
   return mix(low, high, fy);
 }
 
 // E_avg of the lobe of roughness alpha.
-GLINT_FN float averageAlbedo(int ndf, int masking, float alpha) {
-  float y = albedoAlphaCoordinate(alpha);
-  int i = min(int(y), kAlbedoAlphaNodes - 2);
-  int base = albedoTableIndex(ndf, masking) * kAlbedoAlphaNodes + i;
-  return mix(kAverageAlbedoTable[base], kAverageAlbedoTable[base + 1], y - float(i));
+GLINT_FN float glintAverageAlbedo(int ndf, int masking, float alpha) {
+  float y = glintAlbedoAlphaCoordinate(alpha);
+  int i = min(int(y), GLINT_ALBEDO_ALPHA_NODES - 2);
+  int base = glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i;
+  return mix(GLINT_AVERAGE_ALBEDO_TABLE[base], GLINT_AVERAGE_ALBEDO_TABLE[base + 1], y - float(i));
 }
 
 // f_ms(wo, wi) with F = 1, without the cosine; 0 below either horizon.
-GLINT_FN float multipleScatteringReflectance(int ndf, int masking, vec2 alpha, vec3 wo, vec3 wi) {
+GLINT_FN float glintMultipleScatteringReflectance(int ndf, int masking, vec2 alpha, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;
   }
-  float a = compensationAlpha(alpha);
-  float average = averageAlbedo(ndf, masking, a);
-  return (1.0f - directionalAlbedo(ndf, masking, a, wo.z)) * (1.0f - directionalAlbedo(ndf, masking, a, wi.z)) /
-         (kPi * max(1.0f - average, 1e-6f));
+  float a = glintCompensationAlpha(alpha);
+  float average = glintAverageAlbedo(ndf, masking, a);
+  return (1.0f - glintDirectionalAlbedo(ndf, masking, a, wo.z)) * (1.0f - glintDirectionalAlbedo(ndf, masking, a, wi.z)) /
+         (GLINT_PI * max(1.0f - average, 1e-6f));
 }
 
 GLINT_KERNEL_END

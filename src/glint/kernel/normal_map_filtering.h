@@ -16,15 +16,15 @@
 GLINT_KERNEL_BEGIN
 
 // The normal whose slope is the footprint's mean slope, in the tangent frame.
-GLINT_FN vec3 leanMeanNormal(vec3 firstMoments) {
+GLINT_FN vec3 glintLeanMeanNormal(vec3 firstMoments) {
   return normalize(vec3(-firstMoments.x, -firstMoments.y, 1.0f));
 }
 
 // The slopes' covariance (xx, xy, yy) over the footprint from the two moment lookups. Each
 // variance is clamped at 0 on its own (filtering and half precision can take E[s^2] - E[s]^2 a hair
 // below 0; the authors' shader drops both variances when either is small, which loses a ridge's
-// filtering), and the correlation to at most kLeanMaxCorrelation.
-GLINT_CONST float kLeanMaxCorrelation = 0.99f;
+// filtering), and the correlation to at most GLINT_LEAN_MAX_CORRELATION.
+GLINT_CONST float GLINT_LEAN_MAX_CORRELATION = 0.99f;
 
 //
 // Under magnification the moments are interpolated between texels, and E[s^2] - E[s]^2 is then the
@@ -33,17 +33,17 @@ GLINT_CONST float kLeanMaxCorrelation = 0.99f;
 // for the lookup's level of detail lambda < 0 (OpenGL's, log2 of the longer uv derivative in
 // texels), so that a normal map seen up close adds no roughness and the covariance is continuous
 // at lambda = 0.
-GLINT_FN vec3 leanSlopeCovariance(vec3 firstMoments, vec3 secondMoments, float lambda) {
+GLINT_FN vec3 glintLeanSlopeCovariance(vec3 firstMoments, vec3 secondMoments, float lambda) {
   float vx = max(firstMoments.z - firstMoments.x * firstMoments.x, 0.0f);
   float vy = max(secondMoments.x - firstMoments.y * firstMoments.y, 0.0f);
-  float bound = kLeanMaxCorrelation * sqrt(vx * vy);
+  float bound = GLINT_LEAN_MAX_CORRELATION * sqrt(vx * vy);
   float cxy = clamp(secondMoments.y - firstMoments.x * firstMoments.y, -bound, bound);
   return vec3(vx, cxy, vy) * exp2(2.0f * min(lambda, 0.0f));
 }
 
 // OpenGL's level of detail of a lookup (OpenGL 4.5 core, section 8.14): log2 of the longer of the
 // two uv derivatives in texels of a texture of this size.
-GLINT_FN float textureLevelOfDetail(vec2 duvdx, vec2 duvdy, vec2 size) {
+GLINT_FN float glintTextureLevelOfDetail(vec2 duvdx, vec2 duvdy, vec2 size) {
   float longest = max(length(duvdx * size), length(duvdy * size));
   return longest > 0.0f ? log2(longest) : -128.0f;
 }
@@ -52,13 +52,13 @@ GLINT_FN float textureLevelOfDetail(vec2 duvdx, vec2 duvdy, vec2 size) {
 // the covariances add. Returns (alpha_x, alpha_y, rho), alpha clamped to the model's [0.01, 2] and
 // rho to the slope correlation's range; exactly (alpha, rho) without a covariance (a constant
 // normal map changes nothing).
-GLINT_FN vec3 leanCombinedRoughness(vec2 alpha, float rho, vec3 covariance) {
+GLINT_FN vec3 glintLeanCombinedRoughness(vec2 alpha, float rho, vec3 covariance) {
   if (!(covariance.x + covariance.z > 0.0f)) {
     return vec3(alpha, rho);
   }
-  vec3 total = beckmannSlopeCovariance(alpha, rho) + covariance;
+  vec3 total = glintBeckmannSlopeCovariance(alpha, rho) + covariance;
   vec2 sigma = sqrt(vec2(total.x, total.z));
-  float combinedRho = clamp(total.y / (sigma.x * sigma.y), -kLeanMaxCorrelation, kLeanMaxCorrelation);
+  float combinedRho = clamp(total.y / (sigma.x * sigma.y), -GLINT_LEAN_MAX_CORRELATION, GLINT_LEAN_MAX_CORRELATION);
   vec2 combinedAlpha = clamp(sigma * 1.41421356f, vec2(0.01f), vec2(2.0f));
   return vec3(combinedAlpha, combinedRho);
 }

@@ -10,7 +10,7 @@
 // The kernel reaches the dictionary only through glintDictionaryTexelPair() (texels k and k+1 of a
 // distribution, 0 past the last) and glintDictionaryFilteredTexels() (the same pair from a level
 // of the dictionary's mip chain, with the next level's pair: docs/dictionary.md, "Mip chain"),
-// which each language defines: below for C++ (a DictionaryView over host memory), in shaders/ for
+// which each language defines: below for C++ (a GlintDictionaryView over host memory), in shaders/ for
 // GLSL (buffer textures). The host's own code reads single texels with glintDictionaryTexel().
 #ifndef GLINT_KERNEL_PRELUDE_H
 #define GLINT_KERNEL_PRELUDE_H
@@ -35,7 +35,7 @@ GLINT_KERNEL_BEGIN
 // Read-only view of a dictionary in host memory: texels[(level * numDistributions + distribution)
 // * texelsPerDistribution + texel], each a float that is exactly representable as binary16, so the
 // CPU reads the very values the GPU's R16F texture holds.
-struct DictionaryView {
+struct GlintDictionaryView {
   const float* texels;
   int numLevels;
   int numDistributions;
@@ -50,11 +50,11 @@ struct DictionaryView {
   int mipRowLength;
 };
 
-GLINT_FN float glintDictionaryTexel(DictionaryView dict, int level, int distribution, int texel) {
+GLINT_FN float glintDictionaryTexel(GlintDictionaryView dict, int level, int distribution, int texel) {
   return dict.texels[(level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel];
 }
 
-GLINT_FN vec2 glintDictionaryTexelPair(DictionaryView dict, int level, int distribution, int texel) {
+GLINT_FN vec2 glintDictionaryTexelPair(GlintDictionaryView dict, int level, int distribution, int texel) {
   const float* row = dict.texels + (level * dict.numDistributions + distribution) * dict.texelsPerDistribution;
   return vec2(row[texel], texel + 1 < dict.texelsPerDistribution ? row[texel + 1] : 0.0f);
 }
@@ -66,9 +66,18 @@ GLINT_FN int glintMipOffset(int texelsPerDistribution, int mip) {
 
 // Texel `index` of a distribution's row of the mip chain: glintMipOffset(R, m) + k for texel k of
 // level m.
-GLINT_FN vec4 glintDictionaryFilteredTexels(DictionaryView dict, int level, int distribution, int index) {
+GLINT_FN vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level, int distribution, int index) {
   const float* t = dict.filteredTexels + 4 * ((level * dict.numDistributions + distribution) * dict.mipRowLength + index);
   return vec4(t[0], t[1], t[2], t[3]);
+}
+
+// GLSL's findLSB and ldexp, under the kernel's names (the GLSL ES branch below writes them out).
+GLINT_FN int glintFindLSB(uint v) {
+  return glm::findLSB(v);
+}
+
+GLINT_FN float glintLdexp(float x, int e) {
+  return glm::ldexp(x, e);
 }
 
 GLINT_KERNEL_END
@@ -80,17 +89,23 @@ GLINT_KERNEL_END
 // 3.10 built-ins, given here exactly (through the float's bits, no exp2 or log2 rounding); and
 // buffer textures do not exist, so the host lays a buffer's texels row after row in a 2D texture
 // 2048 texels wide (web/src/gl45_on_webgl2.cpp, kTexelBufferWidth).
-int findLSB(uint v) {
+int glintFindLSB(uint v) {
   return v == 0u ? -1 : (floatBitsToInt(float(v & (0u - v))) >> 23) - 127;
 }
-float ldexp(float x, int e) {
+float glintLdexp(float x, int e) {
   return x * intBitsToFloat((e + 127) << 23);
 }
 #define GLINT_TEXEL_BUFFER highp sampler2D
-#define glintTexelBufferFetch(buffer, index) texelFetch(buffer, ivec2((index) & 2047, (index) >> 11), 0)
+#define GLINT_TEXEL_BUFFER_FETCH(buffer, index) texelFetch(buffer, ivec2((index) & 2047, (index) >> 11), 0)
 #else
+int glintFindLSB(uint v) {
+  return findLSB(v);
+}
+float glintLdexp(float x, int e) {
+  return ldexp(x, e);
+}
 #define GLINT_TEXEL_BUFFER samplerBuffer
-#define glintTexelBufferFetch(buffer, index) texelFetch(buffer, index)
+#define GLINT_TEXEL_BUFFER_FETCH(buffer, index) texelFetch(buffer, index)
 #endif
 #include "glint_dictionary.glsl"
 

@@ -6,11 +6,11 @@
 
 GLINT_KERNEL_BEGIN
 
-// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)), pcg4d: a bijection of
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): their pcg4d, a bijection of
 // uvec4 (every step is invertible), so distinct inputs never give the same 128-bit output. The
 // glint model feeds it a collision-free cell seed and takes its four lanes as four independent
 // uniform draws.
-GLINT_FN uvec4 pcg4d(uvec4 v) {
+GLINT_FN uvec4 glintPcg4d(uvec4 v) {
   v = v * 1664525u + 1013904223u;
   v.x += v.y * v.w;
   v.y += v.z * v.x;
@@ -28,14 +28,14 @@ GLINT_FN uvec4 pcg4d(uvec4 v) {
 // (k + 1/2) / 2^24, which float rounds to a multiple of 2^-24 once k >= 2^23 (24-bit mantissa), so
 // the top value is exactly 1 (a 2^-24 chance, which every caller tolerates). Never 0: erfinv(2u - 1)
 // and log(u) stay finite.
-GLINT_FN float hashToUnitOpen(uint h) {
+GLINT_FN float glintHashToUnitOpen(uint h) {
   return (float(h >> 8u) + 0.5f) * (1.0f / 16777216.0f);
 }
 
 // Inverse error function, single precision: Giles 2010, "Approximating the erfinv function"
 // (GPU Computing Gems Jade, ch. 10), relative error below 4e-7 on (-1, 1). Branch on w as in the
 // paper: central and tail polynomials in w = -log((1-x)(1+x)).
-GLINT_FN float erfinvApprox(float x) {
+GLINT_FN float glintErfinvApprox(float x) {
   float w = -log((1.0f - x) * (1.0f + x));
   float p;
   if (w < 5.0f) {
@@ -68,7 +68,7 @@ GLINT_FN float erfinvApprox(float x) {
 // al., "Numerical Recipes" (2nd ed., section 6.2, erfcc): fractional error below 1.2e-7 for every
 // argument, so Phi keeps its relative precision deep in the lower tail, where the dictionary-level
 // thresholds of glintLevelDraw lie.
-GLINT_FN float normalCdf(float z) {
+GLINT_FN float glintNormalCdf(float z) {
   float x = abs(z) * 0.70710678f;
   float t = 1.0f / (1.0f + 0.5f * x);
   float p = 0.17087277f;
