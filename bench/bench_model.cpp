@@ -8,9 +8,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "bsdf.h"
-#include "dictionary.h"
-#include "pcg.h"
+#include "glint/bsdf.h"
+#include "glint/dictionary.h"
+#include "glint/pcg.h"
 
 namespace {
 

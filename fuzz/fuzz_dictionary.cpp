@@ -1,13 +1,14 @@
 // The dictionary readers (src/glint/dictionary.cpp): glint's binary format (Dictionary::deserialise)
-// and one EXR file of the authors' dictionary folder (Dictionary::loadAuthorsExr).
+// and one EXR file of the authors' dictionary folder (loadAuthorsExrDictionary).
 #include <cstring>
 #include <fstream>
 #include <vector>
 
 #include <zlib.h>
 
-#include "dictionary.h"
-#include "error.h"
+#include "glint/dictionary.h"
+#include "glint/dictionary_exr.h"
+#include "glint/error.h"
 #include "fuzz_support.h"
 
 namespace {
@@ -54,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     file.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    Dictionary::loadAuthorsExr(folder);
+    loadAuthorsExrDictionary(folder);
   } catch (const glint::Error&) {
   }
   return 0;

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "app/eval_line.h"
-#include "dictionary.h"
-#include "error.h"
+#include "glint/dictionary.h"
+#include "glint/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const glint::Dictionary dictionary = glint::generateDictionary(glint::DictionaryParameters{});

@@ -1,6 +1,6 @@
 // The glTF loader (scene/gltf_loader.cpp with its checks in gltf_field_types.cpp and
 // gltf_precheck.cpp): .gltf JSON and .glb, through tinygltf, as `glint render FILE` reads them.
-#include "error.h"
+#include "glint/error.h"
 #include "fuzz_support.h"
 #include "scene/gltf_loader.h"
 

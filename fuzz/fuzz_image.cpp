@@ -10,11 +10,11 @@
 
 #include <tiny_gltf.h>
 
-#include "decoder_checks.h"
-#include "error.h"
+#include "glint/decoder_checks.h"
+#include "glint/error.h"
 #include "fuzz_support.h"
-#include "image_io.h"
-#include "radiance_hdr.h"
+#include "glint/image_io.h"
+#include "glint/radiance_hdr.h"
 
 namespace {
 constexpr std::uint64_t kFuzzMaxPixels = std::uint64_t{1} << 22;

@@ -13,9 +13,9 @@
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
-#include "dictionary.h"
-#include "image_io.h"
-#include "radiance_hdr.h"
+#include "glint/dictionary.h"
+#include "glint/image_io.h"
+#include "glint/radiance_hdr.h"
 #include "scene/gltf_writer.h"
 #include "scene/scene.h"
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "kernel/multiple_scattering.h"
+#include "glint/kernel/multiple_scattering.h"
 
 namespace glint::test {
 

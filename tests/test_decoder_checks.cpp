@@ -11,11 +11,11 @@
 
 #include <gtest/gtest.h>
 
-#include "decoder_checks.h"
-#include "error.h"
-#include "file_io.h"
-#include "image_io.h"
-#include "radiance_hdr.h"
+#include "glint/decoder_checks.h"
+#include "glint/error.h"
+#include "glint/file_io.h"
+#include "glint/image_io.h"
+#include "glint/radiance_hdr.h"
 #include "scene/gltf_loader.h"
 #include "test_support.h"
 

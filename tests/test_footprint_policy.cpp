@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "error.h"
+#include "glint/error.h"
 #include "test_support.h"
 
 namespace glint {

@@ -13,10 +13,10 @@
 #include <gtest/gtest.h>
 #include <tinyexr.h>
 
-#include "error.h"
-#include "image_io.h"
-#include "kernel/tonemap.h"
-#include "pcg.h"
+#include "glint/error.h"
+#include "glint/image_io.h"
+#include "glint/kernel/tonemap.h"
+#include "glint/pcg.h"
 #include "test_support.h"
 
 namespace glint {

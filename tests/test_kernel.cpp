@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "half.h"
-#include "kernel/glint_brdf.h"
-#include "kernel/lights.h"
-#include "pcg.h"
+#include "glint/half.h"
+#include "glint/kernel/glint_brdf.h"
+#include "glint/kernel/lights.h"
+#include "glint/pcg.h"
 #include "test_support.h"
 
 namespace glint {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "error.h"
-#include "microfacet_sampling.h"
+#include "glint/error.h"
+#include "glint/microfacet_sampling.h"
 #include "test_support.h"
 
 namespace glint {
@@ -135,7 +135,8 @@ TEST(MicrofacetTargets, GgxTailSamplerFollowsItsDistribution) {
 
 TEST(GlintTargets, ConvergesPointwiseAtLogDensity80ForBothTargetsAndMaskings) {
   // At log density 80 every cell is in the smooth limit, whose P22 is the target's: glint equals
-  // Cook-Torrance with the same target and masking, within 1e-3 relative (the tolerance),
+  // Cook-Torrance with the same target and masking, within 1e-3 relative (float rounding of two
+  // arithmetic paths to the same value; a lobe of another width or masking is off by percents),
   // over random directions, anisotropic roughnesses from 0.02 to 1, correlations and footprints.
   double worst = 0.0;
   int nonZero = 0;
@@ -184,7 +185,8 @@ TEST(GlintTargets, SmithMaskingDiffersFromVCavityAndGgxFromBeckmann) {
 
 TEST(GlintTargetsStat, MeanOverPositionsIsGgxAtModerateDensity) {
   // At log density 22 (dictionary levels around 3 to 9) a single position shows glints; the mean of
-  // D_P over 20000 random positions must match GGX within 2% (the tolerance), in the peak
+  // D_P over 20000 random positions must match GGX within 2% (four standard errors of that mean,
+  // as for Beckmann in GlintBrdfStat.MeanOverPositionsIsBeckmannAtModerateDensity), in the peak
   // and out in the tail, where the wide cells and the remainder carry GGX's extra mass.
   const glm::vec2 alpha(0.3f, 0.5f);
   GlintParameters parameters = withTarget(defaultGlintParameters(), kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH);
@@ -203,7 +205,7 @@ TEST(GlintTargetsStat, MeanOverPositionsIsGgxAtModerateDensity) {
 
 TEST(GlintTargetsStat, GgxPNdfIsNormalisedForEveryFootprint) {
   // The P-SDF with the GGX target integrates to 1 (MRA = 1) over 200 random footprints,
-  // roughnesses and densities, within 0.5% (the tolerance), over the slope plane out to
+  // roughnesses and densities, within 0.5% (the quadrature's own error, below), over the slope plane out to
   // 60 alpha (integrateOverWholeSlopePlane). The widest glint cell reaches 56 alpha; the smooth GGX
   // cells and the remainder keep 3e-4 of their mass beyond. A 250 x 250 grid (0.038 alpha steps at
   // the peak, 0.085 alpha at 2 alpha) is coarse for the sparsest glints, whose few lobes of 0.04

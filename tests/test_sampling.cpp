@@ -17,8 +17,8 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
-#include "error.h"
-#include "microfacet_sampling.h"
+#include "glint/error.h"
+#include "glint/microfacet_sampling.h"
 #include "test_support.h"
 
 namespace glint {
@@ -696,8 +696,8 @@ TEST(Sampling, EverySampleCarriesFAndPdfAndItsWeight) {
   // 400 random materials, footprints (magnified to minified), view directions down to 88 degrees
   // (and from inside, for the dielectric), conductor Fresnel and colour, both samplers; 64 samples
   // each. For every sample: pdf > 0 and finite; f and pdf equal f(wo, wi) and pdf(wo, wi) (the
-  // same arithmetic: 1e-6 relative); weight = f |cos| / pdf within 1e-3 relative (the issue's
-  // tolerance; seen below 1e-6). Both smooth targets, both maskings, with and without the
+  // same arithmetic: 1e-6 relative); weight = f |cos| / pdf within 1e-3 relative (seen below
+  // 1e-6; a weight that forgot the cosine or a mixture's pdf is off by far more). Both smooth targets, both maskings, with and without the
   // multiple-scattering lobe, drawn from a stream of their own (the other draws are those of the
   // Beckmann-only cases before).
   Pcg32 rng(77, 11);

@@ -13,7 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "glint/dictionary_exr.h"
+#include "glint/error.h"
 #include <tbb/parallel_for.h>
 
 namespace glint::test {
@@ -30,7 +31,7 @@ std::filesystem::path authorsDictionaryFolder() {
 const Dictionary* authorsDictionary() {
   static const std::unique_ptr<Dictionary> dictionary = []() -> std::unique_ptr<Dictionary> {
     if (!std::filesystem::is_directory(authorsDictionaryFolder())) return nullptr;
-    return std::make_unique<Dictionary>(Dictionary::loadAuthorsExr(authorsDictionaryFolder()));
+    return std::make_unique<Dictionary>(loadAuthorsExrDictionary(authorsDictionaryFolder()));
   }();
   return dictionary.get();
 }

@@ -10,9 +10,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bsdf.h"
-#include "dictionary.h"
-#include "pcg.h"
+#include "glint/bsdf.h"
+#include "glint/dictionary.h"
+#include "glint/pcg.h"
 
 namespace glint::test {
 

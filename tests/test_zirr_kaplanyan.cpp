@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
-#include "error.h"
+#include "glint/error.h"
 #include "gl/context.h"
 #include "gl/shader.h"
 #include "gl_support.h"

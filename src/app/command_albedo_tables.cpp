@@ -7,9 +7,9 @@
 #include <span>
 #include <string>
 
-#include "albedo_tables.h"
+#include "glint/albedo_tables.h"
 #include "commands.h"
-#include "file_io.h"
+#include "glint/file_io.h"
 
 namespace glint::app {
 

@@ -8,9 +8,10 @@
 #include <tbb/global_control.h>
 
 #include "commands.h"
-#include "dictionary.h"
-#include "dictionary_plot.h"
-#include "error.h"
+#include "glint/dictionary.h"
+#include "glint/dictionary_exr.h"
+#include "glint/dictionary_plot.h"
+#include "glint/error.h"
 
 namespace glint::app {
 
@@ -56,7 +57,7 @@ void runDict(const DictOptions& options, const CLI::App& command) {
         throw Error(std::string("glint dict: ") + name + " cannot be combined with --from (the parameters come from the file)");
       }
     }
-    dictionary = std::make_unique<Dictionary>(Dictionary::loadAny(options.from));
+    dictionary = std::make_unique<Dictionary>(loadAnyDictionary(options.from));
   } else {
     DictionaryParameters parameters = options.parameters;
     parameters.placement = lobePlacementFromString(options.placement);

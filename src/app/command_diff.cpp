@@ -5,8 +5,8 @@
 #include <string>
 
 #include "commands.h"
-#include "error.h"
-#include "image_io.h"
+#include "glint/error.h"
+#include "glint/image_io.h"
 
 namespace glint::app {
 

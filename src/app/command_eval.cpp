@@ -4,8 +4,9 @@
 #include <string>
 
 #include "commands.h"
-#include "dictionary.h"
-#include "error.h"
+#include "glint/dictionary.h"
+#include "glint/dictionary_exr.h"
+#include "glint/error.h"
 #include "eval_line.h"
 
 namespace glint::app {
@@ -14,7 +15,7 @@ namespace {
 
 void runEval(const std::string& dictionaryPath) {
   const Dictionary dictionary =
-      dictionaryPath.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionaryPath);
+      dictionaryPath.empty() ? generateDictionary(DictionaryParameters{}) : loadAnyDictionary(dictionaryPath);
   std::string line;
   for (long number = 1; std::getline(std::cin, line); ++number) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;

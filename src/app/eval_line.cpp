@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bsdf.h"
-#include "error.h"
+#include "glint/bsdf.h"
+#include "glint/error.h"
 
 namespace glint::app {
 
@@ -20,7 +20,7 @@ const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy", 
                                        "wi",          "alpha",         "rho",            "brdf",
                                        "log_density", "relative_area", "density_randomisation",
                                        "max_anisotropy", "pattern_seed", "ndf",
-                                       "masking"};
+                                       "masking",     "multiple_scattering"};
 
 // An array of N finite numbers, read as T (a float value must be finite as a float).
 template <int N, typename T = float>
@@ -48,6 +48,13 @@ std::string readString(const json& object, const char* field) {
   if (it == object.end()) return "";
   if (!it->is_string()) throw Error(std::string("field '") + field + "' must be a string");
   return it->get<std::string>();
+}
+
+bool readBool(const json& object, const char* field, bool fallback) {
+  const auto it = object.find(field);
+  if (it == object.end()) return fallback;
+  if (!it->is_boolean()) throw Error(std::string("field '") + field + "' must be true or false");
+  return it->get<bool>();
 }
 
 float readNumber(const json& object, const char* field, float fallback) {
@@ -92,6 +99,7 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   if (const std::string masking = readString(input, "masking"); !masking.empty()) {
     parameters.masking = maskingFromName("field 'masking'", masking);
   }
+  parameters.multipleScattering = readBool(input, "multiple_scattering", parameters.multipleScattering);
   SurfaceFootprint footprint;
   footprint.uv = readVector<2>(input, "uv", footprint.uv);
   footprint.duvdx = readVector<2>(input, "duvdx", footprint.duvdx);

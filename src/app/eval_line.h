@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "dictionary.h"
+#include "glint/dictionary.h"
 
 namespace glint::app {
 

@@ -6,7 +6,8 @@
 #include <vector>
 
 #include "commands.h"
-#include "error.h"
+#include "glint/error.h"
+#include "glint/version.h"
 
 namespace {
 
@@ -63,7 +64,7 @@ std::string refusingCommand(const CLI::App& app) {
 int main(int argc, char** argv) {
   CLI::App app{"glint: procedural physically based glints (Chermain et al. 2020)", "glint"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "glint 0.1.0");
+  app.set_version_flag("--version", "glint " GLINT_VERSION_STRING);
   glint::app::registerDictCommand(app);
   glint::app::registerEvalCommand(app);
   glint::app::registerDiffCommand(app);

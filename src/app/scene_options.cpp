@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "gl/renderer.h"
+#include "glint/dictionary_exr.h"
 #include "glint/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/environment_map.h"
@@ -28,6 +29,15 @@ void EnvironmentOptions::addTo(CLI::App& command) {
   command.add_option("--env-rotation", rotationDegrees, "Turn the environment about +y by DEG (counter-clockwise from above)");
   command.add_option("--env-lights", rasterLights,
                      "The rasteriser draws the map's N brightest small regions as directional lights (0-8, default 4)");
+  command.add_flag("--keep-default-lights", keepDefaultLights,
+                   "With --env or --sky, keep the point and directional light invented for a glTF file without lights");
+}
+
+bool EnvironmentOptions::dropDefaultLights(scene::Scene& scene) const {
+  if (!scene.defaultLights || keepDefaultLights) return false;
+  scene.lights.clear();
+  scene.defaultLights = false;
+  return true;
 }
 
 void EnvironmentOptions::applyTo(scene::Scene& scene) const {
@@ -105,6 +115,7 @@ scene::Scene SceneOptions::loadScene() const {
     s.environment = scene::skyEnvironment(*sky);
   }
   environment.applyTo(s);
+  const bool droppedDefaultLights = (sky || !environment.file.empty()) && environment.dropDefaultLights(s);
   if (patternSeed && !(*patternSeed >= 0 && *patternSeed <= 0xffffffffLL)) {
     throw Error("--pattern-seed must be a whole number in [0, 4294967295], got " + std::to_string(*patternSeed));
   }
@@ -137,6 +148,12 @@ scene::Scene SceneOptions::loadScene() const {
   // Which density the new layers got, unless --log-density replaced it; only once nothing above
   // failed, so that an error stays the one line on stderr.
   if (!layered.empty() && !logDensity) std::fprintf(stderr, "glint: %s\n", describeDefaultGlintDensity(s, layered).c_str());
+  if (droppedDefaultLights) {
+    std::fprintf(stderr,
+                 "glint: the environment replaces the default lights of %s, which has none of its own "
+                 "(--keep-default-lights keeps them)\n",
+                 scene.c_str());
+  }
   return s;
 }
 
@@ -151,7 +168,7 @@ const scene::Camera& SceneOptions::findCamera(const scene::Scene& s) const {
 }
 
 Dictionary SceneOptions::loadDictionary() const {
-  return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : Dictionary::loadAny(dictionary);
+  return dictionary.empty() ? generateDictionary(DictionaryParameters{}) : loadAnyDictionary(dictionary);
 }
 
 std::string SceneOptions::outputNamedAfterScene(const std::string& extension) const {

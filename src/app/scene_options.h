@@ -24,10 +24,16 @@ struct EnvironmentOptions {
   std::optional<float> intensity;    // scales the environment's radiance
   std::optional<float> rotationDegrees;  // turns it about +y
   std::optional<int> rasterLights;   // scene::Environment::rasterLights
+  bool keepDefaultLights = false;    // keep the invented lights of a file without lights under --env/--sky
 
   void addTo(CLI::App& command);
   // Validates the values (one line naming the option or the file and the problem) and applies them.
   void applyTo(scene::Scene& scene) const;
+  // For a user's environment (--env, --sky): a scene whose lights were invented for it
+  // (scene::Scene::defaultLights) loses them unless --keep-default-lights, so that the light is the
+  // user's environment alone (a white furnace reads 1, not 1 plus the invented lights). True when
+  // it dropped them, for the caller to say so once nothing else failed.
+  bool dropDefaultLights(scene::Scene& scene) const;
 };
 
 struct SceneOptions {

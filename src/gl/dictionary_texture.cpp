@@ -38,8 +38,8 @@ DictionaryTexture::DictionaryTexture(const Dictionary& dictionary)
   const std::vector<std::uint16_t> pairs = dictionary.halfTexelPairs();
   // A buffer texture, not a texture array: llvmpipe's texelFetch on an array computes a mip level,
   // row and layer stride per pixel, about 100 instructions around each fetch; on a buffer it is a
-  // bounds check and a gather (docs/benchmarks.md, third round). The mip chain likewise: four
-  // values a texel, so that one fetch serves both levels of a filtered lookup.
+  // bounds check and a gather (docs/benchmarks.md, "What made it fast, and why"). The mip chain
+  // likewise: four values a texel, so that one fetch serves both levels of a filtered lookup.
   createBufferTexture(pairs, 2, GL_RG16F, "dictionary", buffer_, texture_);
   createBufferTexture(dictionary.filteredHalfTexels(), 4, GL_RGBA16F, "dictionary mip chain", mipBuffer_, mipTexture_);
 }

@@ -171,7 +171,7 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 // every branch for all pixels, so a uniform flag made every glint material pay for the colour's
 // hash and hue (15% of the glint shader's instructions). So are the glTF features most meshes do
 // not use: texture transforms cost 14% of a Cook-Torrance frame's instructions and vertex colours
-// 2% where every pixel paid for them (docs/benchmarks.md, "Eighth round").
+// 2% where every pixel paid for them (docs/benchmarks.md, "What made it fast, and why").
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
@@ -581,7 +581,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   // Depth pre-pass: every mesh's depth first, without colour, so that the shading passes below run
   // the forward shader only for the fragment that stays visible in each pixel. Without it every
   // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
-  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "Sixth round").
+  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "What made it fast, and
+  // why").
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   drawDepths(projection, false, glm::vec3(0.0f), 0.0f, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

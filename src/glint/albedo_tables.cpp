@@ -1,4 +1,4 @@
-#include "albedo_tables.h"
+#include "glint/albedo_tables.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "kernel/multiple_scattering.h"
+#include "glint/kernel/multiple_scattering.h"
 
 namespace glint {
 

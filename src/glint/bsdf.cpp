@@ -1,4 +1,4 @@
-#include "bsdf.h"
+#include "glint/bsdf.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "error.h"
-#include "kernel/multiple_scattering.h"
-#include "microfacet_sampling.h"
+#include "glint/error.h"
+#include "glint/kernel/multiple_scattering.h"
+#include "glint/microfacet_sampling.h"
 
 namespace glint {
 

@@ -14,9 +14,9 @@
 
 #include <glm/glm.hpp>
 
-#include "dictionary.h"
-#include "kernel/glint_brdf.h"
-#include "kernel/zirr_kaplanyan.h"
+#include "glint/dictionary.h"
+#include "glint/kernel/glint_brdf.h"
+#include "glint/kernel/zirr_kaplanyan.h"
 
 namespace glint {
 

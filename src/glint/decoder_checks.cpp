@@ -1,8 +1,8 @@
-#include "decoder_checks.h"
+#include "glint/decoder_checks.h"
 
 #include <string>
 
-#include "error.h"
+#include "glint/error.h"
 
 namespace glint {
 

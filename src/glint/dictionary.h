@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "kernel/prelude.h"
+#include "glint/kernel/prelude.h"
 
 namespace glint {
 
@@ -72,10 +72,8 @@ class Dictionary {
   static Dictionary deserialise(std::span<const std::byte> bytes, const std::string& name);
   void save(const std::filesystem::path& path) const;
   static Dictionary load(const std::filesystem::path& path);
-  // The authors' published dictionary: a folder dict_<L>_<N>_<R>_<alpha>_<s> of EXR files.
-  static Dictionary loadAuthorsExr(const std::filesystem::path& folder);
-  // A folder is read as the authors' EXR dictionary, a file as ours.
-  static Dictionary loadAny(const std::filesystem::path& path);
+  // The authors' published EXR dictionary is read by glint::image (glint/dictionary_exr.h), which
+  // has the EXR decoder that this library does without.
 
  private:
   DictionaryParameters parameters_;

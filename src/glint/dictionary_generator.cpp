@@ -8,9 +8,9 @@
 
 #include <tbb/parallel_for.h>
 
-#include "dictionary.h"
-#include "error.h"
-#include "pcg.h"
+#include "glint/dictionary.h"
+#include "glint/error.h"
+#include "glint/pcg.h"
 
 namespace glint {
 

@@ -1,11 +1,11 @@
-#include "dictionary_plot.h"
+#include "glint/dictionary_plot.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "error.h"
+#include "glint/error.h"
 
 namespace glint {
 

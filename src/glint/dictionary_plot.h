@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "dictionary.h"
-#include "image.h"
+#include "glint/dictionary.h"
+#include "glint/image.h"
 
 namespace glint {
 

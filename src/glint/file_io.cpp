@@ -1,4 +1,4 @@
-#include "file_io.h"
+#include "glint/file_io.h"
 
 #include <cerrno>
 #include <cstring>
@@ -8,7 +8,7 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include "error.h"
+#include "glint/error.h"
 
 namespace glint {
 

@@ -1,4 +1,4 @@
-#include "image.h"
+#include "glint/image.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <stb_easy_font.h>
 #include <stb_image_write.h>
 
-#include "error.h"
-#include "file_io.h"
+#include "glint/error.h"
+#include "glint/file_io.h"
 
 namespace glint {
 

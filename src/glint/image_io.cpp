@@ -1,4 +1,4 @@
-#include "image_io.h"
+#include "glint/image_io.h"
 
 #include <algorithm>
 #include <array>
@@ -16,10 +16,10 @@
 #include <stb_image.h>
 #include <tinyexr.h>
 
-#include "decoder_checks.h"
-#include "error.h"
-#include "file_io.h"
-#include "kernel/tonemap.h"
+#include "glint/decoder_checks.h"
+#include "glint/error.h"
+#include "glint/file_io.h"
+#include "glint/kernel/tonemap.h"
 
 namespace glint {
 

@@ -11,8 +11,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "decoder_checks.h"
-#include "image.h"
+#include "glint/decoder_checks.h"
+#include "glint/image.h"
 
 namespace glint {
 

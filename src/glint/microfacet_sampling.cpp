@@ -1,4 +1,4 @@
-#include "microfacet_sampling.h"
+#include "glint/microfacet_sampling.h"
 
 #include <algorithm>
 #include <cmath>

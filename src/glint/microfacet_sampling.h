@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "kernel/glint_brdf.h"
+#include "glint/kernel/glint_brdf.h"
 
 namespace glint::sampling {
 

@@ -1,4 +1,4 @@
-#include "pcg.h"
+#include "glint/pcg.h"
 
 #include <cmath>
 

@@ -1,13 +1,13 @@
-#include "radiance_hdr.h"
+#include "glint/radiance_hdr.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 
-#include "decoder_checks.h"
-#include "error.h"
-#include "file_io.h"
+#include "glint/decoder_checks.h"
+#include "glint/error.h"
+#include "glint/file_io.h"
 
 namespace glint {
 

@@ -392,7 +392,10 @@ class GltfReader {
     std::vector<Light> fileLights = std::move(scene_.lights);
     scene_.lights.clear();
     addDefaultLighting(scene_);
-    if (!fileLights.empty()) scene_.lights = std::move(fileLights);
+    if (!fileLights.empty()) {
+      scene_.lights = std::move(fileLights);
+      scene_.defaultLights = false;
+    }
     scene_.exposure = 1.0f;
     noteUnreadFeatures();
     return std::move(scene_);

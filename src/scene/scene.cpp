@@ -219,6 +219,7 @@ void addDefaultLighting(Scene& scene) {
   sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, -0.5f));
   sun.intensity = glm::vec3(1.0f, 0.97f, 0.92f);
   scene.lights.push_back(sun);
+  scene.defaultLights = true;
 
   scene.environment = Environment{};
   scene.environment.uniform = glm::vec3(0.26f, 0.3f, 0.36f);

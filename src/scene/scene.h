@@ -179,6 +179,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Light> lights;
+  // True when `lights` are the ones addDefaultLighting invented for a file that brings none: an
+  // environment given by the user (--env, --sky) replaces them (app::SceneOptions::loadScene).
+  bool defaultLights = false;
   Environment environment;
   std::map<std::string, Camera> cameras;  // always holds "default"
   float exposure = 1.0f;
@@ -244,7 +247,7 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high);
 
 // Lighting for a scene that brings none: a point light above, right and in front of the bounding
 // box, a directional light from the upper left, and a uniform grey-blue environment (0.3), scaled
-// so that a white diffuse surface facing the lights is about as bright as 1.
+// so that a white diffuse surface facing the lights is about as bright as 1. Sets defaultLights.
 void addDefaultLighting(Scene& scene);
 
 }  // namespace glint::scene

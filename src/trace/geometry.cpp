@@ -66,16 +66,46 @@ struct SceneGeometry::AlphaMask {
     return a >= cutoff;
   }
 
-  // Embree's intersection and occlusion filter: clearing valid[i] makes the ray go on.
-  static void filter(const RTCFilterFunctionNArguments* args) {
-    const auto* mask = static_cast<const AlphaMask*>(args->geometryUserPtr);
+};
+
+// What a mesh's hits go through before they count: glTF alphaMode MASK (AlphaMask), and glTF's
+// back-face culling of single-sided materials. A ray that finds a surface (from the camera, or
+// scattered) goes through the back of a single-sided triangle, as the rasteriser culls it; a
+// shadow ray is stopped by both sides, as the rasteriser's shadow maps draw both.
+struct SceneGeometry::HitFilter {
+  const AlphaMask* mask = nullptr;  // null: no alpha mask
+  bool cullBackFaces = false;       // a single-sided material
+
+  // Embree's filters: clearing valid[i] makes the ray go on.
+  static void intersection(const RTCFilterFunctionNArguments* args) {
+    const auto* filter = static_cast<const HitFilter*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
       if (args->valid[i] == 0) continue;
-      if (!mask->keeps(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                       RTCHitN_v(args->hit, args->N, i))) {
-        args->valid[i] = 0;
+      if (filter->cullBackFaces) {
+        // Embree's Ng points out of the counter-clockwise front side (unnormalised): a ray meets
+        // the front when it runs against Ng.
+        const float along = RTCRayN_dir_x(args->ray, args->N, i) * RTCHitN_Ng_x(args->hit, args->N, i) +
+                            RTCRayN_dir_y(args->ray, args->N, i) * RTCHitN_Ng_y(args->hit, args->N, i) +
+                            RTCRayN_dir_z(args->ray, args->N, i) * RTCHitN_Ng_z(args->hit, args->N, i);
+        if (!(along < 0.0f)) {
+          args->valid[i] = 0;
+          continue;
+        }
       }
+      if (filter->mask && !keptByMask(*filter->mask, args, i)) args->valid[i] = 0;
     }
+  }
+  static void occlusion(const RTCFilterFunctionNArguments* args) {
+    const auto* filter = static_cast<const HitFilter*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] != 0 && filter->mask && !keptByMask(*filter->mask, args, i)) args->valid[i] = 0;
+    }
+  }
+
+ private:
+  static bool keptByMask(const AlphaMask& mask, const RTCFilterFunctionNArguments* args, unsigned i) {
+    return mask.keeps(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                      RTCHitN_v(args->hit, args->N, i));
   }
 };
 
@@ -135,10 +165,13 @@ SceneGeometry::SceneGeometry(const scene::Scene& scene) {
       }
       std::copy(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3),
                 indices);
-      if (mask) {
-        rtcSetGeometryUserData(geometry, mask);
-        rtcSetGeometryIntersectFilterFunction(geometry, &AlphaMask::filter);
-        rtcSetGeometryOccludedFilterFunction(geometry, &AlphaMask::filter);
+      if (mask || !material.doubleSided) {
+        HitFilter* filter = filters_.emplace_back(std::make_unique<HitFilter>()).get();
+        filter->mask = mask;
+        filter->cullBackFaces = !material.doubleSided;
+        rtcSetGeometryUserData(geometry, filter);
+        rtcSetGeometryIntersectFilterFunction(geometry, &HitFilter::intersection);
+        if (mask) rtcSetGeometryOccludedFilterFunction(geometry, &HitFilter::occlusion);
       }
       rtcCommitGeometry(geometry);
       rtcAttachGeometryByID(scene_, geometry, static_cast<unsigned>(m));

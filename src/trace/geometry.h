@@ -35,9 +35,11 @@ class SceneGeometry {
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
 
-  // The closest hit along the ray within (0, tMax). Thread-safe.
+  // The closest hit along the ray within (0, tMax), passing through the back of single-sided
+  // triangles (glTF's back-face culling). Thread-safe.
   std::optional<Hit> intersect(const Ray& ray, float tMax = std::numeric_limits<float>::infinity()) const;
-  // Whether anything lies along the ray within (0, tMax). Thread-safe.
+  // Whether anything lies along the ray within (0, tMax), either side of any triangle (as the
+  // rasteriser's shadow maps). Thread-safe.
   bool occluded(const Ray& ray, float tMax) const;
   // Whether glTF alphaMode MASK cuts the surface away at this point of a triangle (where rays go
   // through it): for points that no ray found, such as a light's samples.
@@ -47,7 +49,9 @@ class SceneGeometry {
   struct AlphaMask;  // glTF alphaMode MASK: what an Embree filter needs to drop a hit
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
-  std::vector<std::unique_ptr<AlphaMask>> masks_;  // the filters' user data, one per masked mesh
+  struct HitFilter;  // a mesh's Embree filter: its alpha mask, back-face culling
+  std::vector<std::unique_ptr<AlphaMask>> masks_;  // one per masked mesh
+  std::vector<std::unique_ptr<HitFilter>> filters_;  // the filters' user data, one per filtered mesh
   std::vector<const AlphaMask*> maskOfMesh_;         // per mesh, null when it has none
 };
 

@@ -17,17 +17,8 @@ constexpr float kMinimumAlpha = 0.005f;
 
 }  // namespace
 
-Spectrum GlintTint::operator()(glm::vec3 wo, glm::vec3 wi) const {
-  const glm::vec3 wh = glm::normalize(wo + wi);
-  if (!(wh.z > 0.0f)) return Spectrum(1.0f);
-  const glm::vec4 p22 = kernel::glintP22Coloured(dictionary, parameters, footprint.uv, footprint.duvdx,
-                                                 footprint.duvdy, kernel::glintSlopeFromNormal(wh));
-  return p22.w > 0.0f ? Spectrum(p22) / p22.w : Spectrum(1.0f);
-}
-
-SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, std::optional<GlintTint> tint,
-                                 Spectrum specularAlbedo)
-    : diffuse_(diffuse), specular_(std::move(specular)), tint_(tint) {
+SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo)
+    : diffuse_(diffuse), specular_(std::move(specular)) {
   const float d = luminance(diffuse * kPi);
   const float s = luminance(specularAlbedo);
   // Each lobe keeps at least 10% of the samples when it reflects anything, so that neither is
@@ -36,9 +27,7 @@ SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, std::optio
 }
 
 Spectrum SurfaceMaterial::specularF(glm::vec3 wo, glm::vec3 wi) const {
-  const Spectrum value = std::visit([&](const auto& bsdf) { return bsdf.f(wo, wi); }, specular_);
-  if (tint_ && (value.x > 0.0f || value.y > 0.0f || value.z > 0.0f)) return value * (*tint_)(wo, wi);
-  return value;
+  return std::visit([&](const auto& bsdf) { return bsdf.f(wo, wi); }, specular_);
 }
 
 float SurfaceMaterial::specularPdf(glm::vec3 wo, glm::vec3 wi) const {
@@ -68,9 +57,7 @@ std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoic
     const auto lobe = std::visit([&](const auto& bsdf) { return bsdf.sample(wo, uLobe, u); }, specular_);
     if (!lobe || lobe->transmission || !(lobe->pdf > 0.0f) || !(lobe->wi.z > 0.0f)) return std::nullopt;
     s.wi = lobe->wi;
-    Spectrum specular = lobe->f;
-    if (tint_) specular *= (*tint_)(wo, s.wi);
-    s.f = diffuse_ + specular;
+    s.f = diffuse_ + lobe->f;
     s.pdf = ps * lobe->pdf + (1.0f - ps) * cosineHemispherePdf(s.wi.z);
   } else {
     s.wi = sampleCosineHemisphere(u);
@@ -199,7 +186,7 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   if (!layer.enabled) {
     const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), 0.0f, fresnel,
                                     Spectrum(1.0f), m.specular);
-    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
+    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
   }
 
   // The glint layer's parameters, textures applied as in the shader.
@@ -217,17 +204,16 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   params.rho = leanRoughness.z;
   if (model_ == SpecularModel::CookTorrance) {
     const CookTorranceBsdf specular(params.alpha, params.rho, fresnel, Spectrum(1.0f), m.specular);
-    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, std::nullopt, specularAlbedo)};
+    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
   }
-  // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives.
+  // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives. Coloured cells
+  // (params.colouredCells, the layer's random colours) are the BSDF's own tint.
   SurfaceFootprint glintFootprint;
   glintFootprint.uv = uv * layer.uvScale;
   glintFootprint.duvdx = footprint.duvdx * layer.uvScale;
   glintFootprint.duvdy = footprint.duvdy * layer.uvScale;
   const GlintBsdf specular(dictionary_, params, glintFootprint, fresnel, Spectrum(1.0f), sampler_);
-  std::optional<GlintTint> tint;
-  if (layer.randomColours) tint = GlintTint{dictionary_.view(), params, glintFootprint};
-  return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, tint, specularAlbedo)};
+  return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
 }
 
 }  // namespace glint::trace

@@ -5,7 +5,7 @@
 //   - Lambertian diffuse baseColour (1 - metallic) / pi;
 //   - plus a specular lobe times Schlick's Fresnel with F0 = mix(0.04, baseColour, metallic): the
 //     glint BRDF when the material has a glint layer and the glint model is selected (coloured
-//     cells tint it), else Cook-Torrance with the layer's alpha, or alpha = roughness^2 without one.
+//     cells tint it, inside GlintBsdf), else Cook-Torrance with the layer's alpha, or alpha = roughness^2 without one.
 // Everything the shader computes per fragment happens once, in SceneMaterials::shade; what the
 // integrator asks of a material (f, sample, pdf over its lobes) is in SurfaceMaterial.
 #pragma once
@@ -45,15 +45,6 @@ struct MaterialSample {
   Spectrum weight;   // f wi.z / pdf
 };
 
-// The tint of coloured glint cells at a half vector (the shader's p22.rgb / p22.w): white unless
-// the layer has random colours.
-struct GlintTint {
-  kernel::GlintDictionaryView dictionary;
-  GlintParameters parameters;
-  SurfaceFootprint footprint;
-  Spectrum operator()(glm::vec3 wo, glm::vec3 wi) const;
-};
-
 // Lambertian diffuse plus one specular lobe, in the local shading frame (docs/conventions.md:
 // directions away from the surface, f without the cosine). Lobes are chosen for sampling in
 // proportion to estimates of their albedos, and pdf() is the mixture's (one-sample MIS over lobes).
@@ -62,7 +53,7 @@ class SurfaceMaterial {
   using Specular = std::variant<CookTorranceBsdf, GlintBsdf>;
   // `specularAlbedo`: an estimate of the specular lobe's reflectance (Fresnel at wo), to split
   // samples between the lobes.
-  SurfaceMaterial(Spectrum diffuse, Specular specular, std::optional<GlintTint> tint, Spectrum specularAlbedo);
+  SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo);
 
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
   float pdf(glm::vec3 wo, glm::vec3 wi) const;
@@ -79,7 +70,6 @@ class SurfaceMaterial {
 
   Spectrum diffuse_;
   Specular specular_;
-  std::optional<GlintTint> tint_;
   float specularProbability_;
 };
 

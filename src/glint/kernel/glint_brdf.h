@@ -512,7 +512,7 @@ GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
 // r^2 < 1, else 0. The quadratic form is symmetric in the transposition, so the weights are the
 // cells'. Each cell takes its own exp: stepping the Gaussian along a line by forward differencing
 // needs two exps at the start of every line, which the single-loop walk of glintLevelP22 would pay
-// on every iteration (docs/benchmarks.md, "Fifth round").
+// on every iteration (docs/benchmarks.md, "What made it fast, and why").
 GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
   float dy = float(t) - grid.centre.y;
@@ -571,7 +571,8 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   // lines around a loop over a line's cells: pixels shaded in lockstep (llvmpipe's SIMD lanes, GPU
   // warps) then pay for the most cells any of them visits, not for the longest line of any of them,
   // line after line. Where branches are predicated (llvmpipe) every iteration pays for the move to
-  // the next line; measured, the single loop still costs less (docs/benchmarks.md, "Fifth round").
+  // the next line; measured, the single loop still costs less (docs/benchmarks.md, "What made it
+  // fast, and why").
   // The cells, their weights and their order are those of the nested loops, bit for bit.
   GlintCellWalk walk = glintWalkStart(grid);
   while (glintWalkGoing(grid, walk)) {

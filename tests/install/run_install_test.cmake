@@ -1,0 +1,79 @@
+# The install test (ctest label install; tests/CMakeLists.txt): glint as a renderer's developer
+# meets it. Installs the build into a fresh prefix, checks the installed command, configures the
+# examples (examples/CMakeLists.txt: every example folder) from that prefix alone, builds them, runs
+# the path tracer and checks its images (check_example_image.cpp).
+#   cmake -DSOURCE_DIR=... -DBUILD_DIR=... -DWORK=... -DVERSION=... -DCXX_COMPILER=... -DBUILD_TYPE=...
+#         -DCHECKER=... [-DEXAMPLE_FLAGS=...] -P run_install_test.cmake
+# An example added later (examples/opengl, examples/vulkan) is configured and built here with no
+# edit; to run and check it too, add its run below the path tracer's.
+foreach(variable IN ITEMS SOURCE_DIR BUILD_DIR WORK VERSION CXX_COMPILER BUILD_TYPE CHECKER)
+  if(NOT DEFINED ${variable})
+    message(FATAL_ERROR "run_install_test.cmake needs -D${variable}=...")
+  endif()
+endforeach()
+
+# Runs a command; stops the test with its output when it fails.
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${what}: ok")
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+set(prefix ${WORK}/prefix)
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+
+# The layout docs/integration.md describes.
+foreach(file IN ITEMS include/glint/bsdf.h include/glint/dictionary.h include/glint/version.h
+                      include/glint/kernel/glint_brdf.h include/glint/kernel/prelude.h
+                      lib/cmake/glint/glintConfig.cmake lib/cmake/glint/glintConfigVersion.cmake
+                      share/glint/shaders/forward.frag share/glint/shaders/glint_dictionary.glsl
+                      share/glint/shaders/glint_brdf.h bin/glint)
+  if(NOT EXISTS ${prefix}/${file})
+    message(FATAL_ERROR "cmake --install wrote no ${file}")
+  endif()
+endforeach()
+
+run("glint --version" ${prefix}/bin/glint --version)
+if(NOT run_output STREQUAL "glint ${VERSION}\n")
+  message(FATAL_ERROR "the installed glint --version printed '${run_output}', expected 'glint ${VERSION}'")
+endif()
+run("glint dict" ${prefix}/bin/glint dict -o ${WORK}/dictionary.gdict)
+
+# The examples see the prefix and nothing else of glint: no package registry, and the build tree
+# exports no package (CMakeLists.txt has no export()).
+set(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples -B ${WORK}/build -DCMAKE_BUILD_TYPE=${BUILD_TYPE}
+    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
+if(EXAMPLE_FLAGS)  # the sanitizer build's libraries need the sanitizers' run time
+  list(APPEND configure "-DCMAKE_CXX_FLAGS=${EXAMPLE_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXAMPLE_FLAGS}")
+endif()
+run("configure the examples" ${configure})
+file(STRINGS ${WORK}/build/CMakeCache.txt glint_dir REGEX "^glint_DIR:")
+if(NOT glint_dir STREQUAL "glint_DIR:PATH=${prefix}/lib/cmake/glint")
+  message(FATAL_ERROR "the examples found glint elsewhere than in the prefix: ${glint_dir}")
+endif()
+# Compile and link lines: headers from the prefix, never from the sources or the build tree.
+file(GLOB_RECURSE build_lines ${WORK}/build/*/flags.make ${WORK}/build/*/link.txt)
+foreach(file IN LISTS build_lines)
+  file(READ ${file} text)
+  foreach(outside IN ITEMS "${SOURCE_DIR}/src" "${BUILD_DIR}/generated" "${BUILD_DIR}/libglint")
+    string(FIND "${text}" "${outside}" at)
+    if(NOT at EQUAL -1)
+      message(FATAL_ERROR "${file} uses ${outside}: the examples must see the installed glint only")
+    endif()
+  endforeach()
+endforeach()
+run("build the examples" ${CMAKE_COMMAND} --build ${WORK}/build --parallel 2)
+
+# The path tracer: the glinty sphere with the dictionary the installed glint wrote, the smooth one
+# with a dictionary generated at start (which it does not shade with).
+set(tracer ${WORK}/build/path_tracer/glint_path_tracer)
+run("path tracer, glints" ${tracer} ${WORK}/glint.exr --dictionary ${WORK}/dictionary.gdict)
+run("path tracer, smooth" ${tracer} ${WORK}/smooth.exr --smooth --dictionary ${WORK}/dictionary.gdict)
+run("check the images" ${CHECKER} ${WORK}/glint.exr ${WORK}/smooth.exr)
+message(STATUS "${run_output}")
