@@ -28,13 +28,11 @@
 #ifndef GLINT_MASKING
 #define GLINT_MASKING 0
 #endif
-#ifndef GLINT_MULTIPLE_SCATTERING
-#define GLINT_MULTIPLE_SCATTERING 0
-#endif
 #include "glint_brdf.h"
 #include "multiple_scattering.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
+#include "glint_dictionary_gl.glsl"
 #include "environment.glsl"
 #if ZIRR_KAPLANYAN
 #include "zirr_kaplanyan.h"
@@ -57,7 +55,7 @@ in vec4 vColour;  // glTF COLOR_0
 
 layout(location = 0) out vec4 outRadiance;
 
-// Texture units; unit 0 is the dictionary (glint_dictionary.glsl), 9 the environment
+// Texture units; unit 0 is the dictionary (glint_dictionary_gl.glsl), 9 the environment
 // (environment.glsl).
 layout(binding = 1) uniform sampler2D uBaseColourTexture;
 layout(binding = 2) uniform sampler2D uMetallicRoughnessTexture;

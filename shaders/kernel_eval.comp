@@ -2,6 +2,7 @@
 // (tests/test_gl_kernel.cpp). Each case as kernel_eval.glsl evaluates it; with SLOPE_SET defined
 // it evaluates the renderer's several-slopes walk instead.
 #include "kernel_eval.glsl"
+#include "glint_dictionary_gl.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -51,6 +52,6 @@ void main() {
     slopeSetOutputs[i].alone[k] = above[k] ? alone : vec4(0.0f);
   }
 #else
-  outputs[i] = evaluateCase(inputs[i]);
+  outputs[i] = evaluateCase(glintDictionary(), inputs[i]);
 #endif
 }

@@ -2,6 +2,7 @@
 // shaders, so each pixel of an RGBA32F target evaluates one case (kernel_eval.glsl), read from
 // eight RGBA32F texels of the input texture, one case per pixel, row after row.
 #include "kernel_eval.glsl"
+#include "glint_dictionary_gl.glsl"
 
 layout(location = 0) out vec4 outValues;  // f, D(wh), P22(wh), Cook-Torrance f
 layout(binding = 1) uniform sampler2D uInputs;
@@ -17,5 +18,5 @@ void main() {
   data.slopeDerivatives = texelFetch(uInputs, ivec2(8 * pixel.x + 5, pixel.y), 0);
   data.target = texelFetch(uInputs, ivec2(8 * pixel.x + 6, pixel.y), 0);
   data.footprintPolicy = texelFetch(uInputs, ivec2(8 * pixel.x + 7, pixel.y), 0);
-  outValues = evaluateCase(data);
+  outValues = evaluateCase(glintDictionary(), data);
 }

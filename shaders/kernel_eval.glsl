@@ -1,8 +1,11 @@
 // One case of the CPU-versus-GPU kernel test: its inputs as eight vec4s and its evaluation, shared by
-// the compute shader of the desktop test (kernel_eval.comp, tests/test_gl_kernel.cpp) and the
-// fragment shader of the WebGL2 test (kernel_eval.frag, tests/test_web.cpp). Same functions, same
-// argument order as glint::GlintBsdf; with GLINT_FILTERED 1 the P-SDF is the anti-aliased one
-// (glintFilteredP22) at the case's slope derivatives.
+// the compute shader of the desktop test (kernel_eval.comp, tests/test_gl_kernel.cpp), the
+// fragment shader of the WebGL2 test (kernel_eval.frag, tests/test_web.cpp) and the Vulkan GLSL and
+// HLSL compute entries (tests/kernel/kernel_eval_vulkan.comp, kernel_eval.hlsl). Same functions,
+// same argument order as glint::GlintBsdf; with GLINT_FILTERED 1 the P-SDF is the anti-aliased one
+// (glintFilteredP22) at the case's slope derivatives. Written in the kernel's dialect
+// (src/glint/kernel/prelude.h), so that it compiles in every language the kernel does; the
+// dictionary comes from the caller, who defines the kernel's dictionary hook.
 #ifndef KERNEL_EVAL_GLSL
 #define KERNEL_EVAL_GLSL
 
@@ -22,8 +25,8 @@ struct KernelInput {
 };
 
 // The case's parameters, footprint and directions.
-void readCase(KernelInput data, out GlintParameters params, out vec2 uv, out vec2 duvdx, out vec2 duvdy, out vec3 wo,
-              out vec3 wi) {
+void readCase(KernelInput data, GLINT_OUT(GlintParameters) params, GLINT_OUT(vec2) uv, GLINT_OUT(vec2) duvdx,
+              GLINT_OUT(vec2) duvdy, GLINT_OUT(vec3) wo, GLINT_OUT(vec3) wi) {
   params.alpha = data.duvdyAndAlpha.zw;
   params.logDensity = data.woAndLogDensity.w;
   params.relativeArea = data.wiAndRelativeArea.w;
@@ -46,12 +49,11 @@ void readCase(KernelInput data, out GlintParameters params, out vec2 uv, out vec
 }
 
 // (f, D(wh), P22(wh), Cook-Torrance f) of one case.
-vec4 evaluateCase(KernelInput data) {
+vec4 evaluateCase(GlintDictionaryView dict, KernelInput data) {
   GlintParameters params;
   vec2 uv, duvdx, duvdy;
   vec3 wo, wi;
   readCase(data, params, uv, duvdx, duvdy, wo, wi);
-  GlintDictionaryView dict = glintDictionary();
   vec3 wh = normalize(wo + wi);
 #if GLINT_FILTERED
   float p22 = wh.z > 0.0f ? glintFilteredP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(wh),

@@ -1,5 +1,5 @@
 // CPU versus GLSL: the same kernel source evaluated by the library and by a compute shader on the
-// headless context must agree (docs/conventions.md, "One model, two languages").
+// headless context must agree (docs/conventions.md, "One model, five languages").
 #include <cmath>
 
 #include <gtest/gtest.h>

@@ -589,7 +589,7 @@ TEST(ZirrKaplanyanStat, WhiteFurnaceAlbedoIsTheSmoothOnesOnAverageNotPerPixel) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// CPU versus GLSL (docs/conventions.md, "One model, two languages")
+// CPU versus GLSL (docs/conventions.md, "One model, five languages")
 
 struct GpuInput {
   glm::vec4 uvAndDuvdx, duvdyAndRoughness, woAndLogDensity, wiAndSearchCone, microRoughnessEtc, anisotropyAndSeed;

@@ -21,7 +21,7 @@ class DictionaryTexture {
   DictionaryTexture& operator=(const DictionaryTexture&) = delete;
 
   // Binds the texture to unit 0 and the mip chain to unit 10, and sets the shape uniforms of
-  // shaders/glint_dictionary.glsl for `program`, which must be in use.
+  // shaders/glint_dictionary_gl.glsl for `program`, which must be in use.
   void bind(const ShaderProgram& program) const;
 
  private:

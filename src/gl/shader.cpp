@@ -1,5 +1,6 @@
 #include "gl/shader.h"
 
+#include <algorithm>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -10,26 +11,51 @@ namespace glint::gl {
 
 namespace {
 
-std::string expand(const std::string& name, std::set<std::string>& stack) {
-  const auto& files = embeddedFiles();
-  const auto file = files.find(name);
-  if (file == files.end()) throw Error("shader source '" + name + "' is not embedded");
+// The source string number of a file: its place in `files`, from 1.
+int sourceString(const std::string& name, std::vector<std::string>& files) {
+  const auto known = std::find(files.begin(), files.end(), name);
+  if (known != files.end()) return static_cast<int>(known - files.begin()) + 1;
+  files.push_back(name);
+  return static_cast<int>(files.size());
+}
+
+// Line n of source string S is numbered S * kLinesPerSource + n: Mesa reports every compile error
+// in source string 0 (its parser does not keep the number #line sets), so the line carries the
+// file too. Source string 0, the version and defines, keeps its own numbers.
+constexpr int kLinesPerSource = 100000;
+
+std::string lineDirective(int line, int source) {
+  return "#line " + std::to_string(source * kLinesPerSource + line) + " " + std::to_string(source) + "\n";
+}
+
+void expand(const std::string& name, const std::map<std::string, std::string>& sources, std::set<std::string>& stack,
+            ExpandedSource& out) {
+  const auto file = sources.find(name);
+  if (file == sources.end()) throw Error("shader source '" + name + "' is not embedded");
   if (!stack.insert(name).second) throw Error("shader source '" + name + "' includes itself");
   static const std::regex quoted(R"re(^\s*#\s*include\s+"(?:[^"]*/)?([^"/]+)"\s*$)re");
   static const std::regex angled(R"(^\s*#\s*include\s+<[^>]*>\s*$)");
+  // A #line inside a conditional block that is skipped is itself skipped, while the block's lines
+  // still count: after each #else, #elif and #endif the numbering is set again, so that it is right
+  // wherever code is compiled, whichever blocks an include sat in.
+  static const std::regex conditional(R"(^\s*#\s*(else|elif|endif)\b.*$)");
+  const int source = sourceString(name, out.files);
+  out.text += lineDirective(1, source);
   std::istringstream lines(file->second);
-  std::string out;
   std::smatch match;
+  int number = 0;
   for (std::string line; std::getline(lines, line);) {
+    ++number;
     if (std::regex_match(line, match, quoted)) {
-      out += expand(match[1], stack);
-    } else if (!std::regex_match(line, angled)) {
-      out += line;
+      expand(match[1], sources, stack, out);
+      out.text += lineDirective(number + 1, source);
+      continue;
     }
-    out += '\n';
+    if (!std::regex_match(line, angled)) out.text += line;
+    out.text += '\n';
+    if (std::regex_match(line, conditional)) out.text += lineDirective(number + 1, source);
   }
   stack.erase(name);
-  return out;
 }
 
 // GL info logs run over several lines; an error message is one.
@@ -64,13 +90,37 @@ constexpr const char* kVersionHeader = "#version 450 core\n";
 
 }  // namespace
 
-std::string expandIncludes(const std::string& name) {
+ExpandedSource expandIncludes(const std::string& name, const std::map<std::string, std::string>& sources) {
   std::set<std::string> stack;
-  return expand(name, stack);
+  ExpandedSource out;
+  expand(name, sources, stack, out);
+  return out;
+}
+
+std::string locateInFiles(const std::string& log, const std::vector<std::string>& files) {
+  // "S:N" followed by "(" or ":" (Mesa's "0:12(5): error", ANGLE's and glslang's "ERROR: 0:12:"), or
+  // "S(N)" followed by " :" (NVIDIA's "0(12) : error"), at the start of a line or after a space.
+  static const std::regex location(R"((^|\s)(\d+)(?::(\d+)(?=[(:])|\((\d+)\)(?=\s*:)))");
+  std::string out;
+  auto last = log.cbegin();
+  for (std::sregex_iterator it(log.begin(), log.end(), location), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    const long long line = std::stoll(m[3].matched ? m.str(3) : m.str(4));
+    const long long source = line >= kLinesPerSource ? line / kLinesPerSource : std::stoll(m[2]);
+    const std::string name = source == 0                                             ? "(version and defines)"
+                             : source <= static_cast<long long>(files.size()) ? files[source - 1]
+                                                                              : "";
+    out.append(last, m[0].first);
+    out += name.empty() ? m.str(0) : m.str(1) + name + ":" + std::to_string(line % kLinesPerSource);
+    last = m[0].second;
+  }
+  out.append(last, log.cend());
+  return out;
 }
 
 ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& stages,
-                             const std::vector<std::pair<std::string, std::string>>& defines) {
+                             const std::vector<std::pair<std::string, std::string>>& defines,
+                             const std::map<std::string, std::string>& sources) {
   std::string header = kVersionHeader;
   for (const auto& [name, value] : defines) header += "#define " + name + " " + value + "\n";
   std::vector<GLuint> shaders;
@@ -81,7 +131,8 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
   std::vector<std::pair<std::string, GLint>> samplerUnits;
 #endif
   for (const auto& [type, name] : stages) {
-    std::string source = header + expandIncludes(name);
+    const ExpandedSource expanded = expandIncludes(name, sources);
+    std::string source = header + expanded.text;
 #ifdef GLINT_GLSL_ES
     for (auto& unit : takeSamplerBindings(source)) samplerUnits.push_back(unit);
 #endif
@@ -96,7 +147,7 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
       char log[4096] = {};
       glGetShaderInfoLog(shader, sizeof log, nullptr, log);
       cleanUp();
-      throw Error("shader " + name + " does not compile: " + oneLine(log));
+      throw Error("shader " + name + " does not compile: " + oneLine(locateInFiles(log, expanded.files)));
     }
   }
   id_ = glCreateProgram();

@@ -14,17 +14,34 @@ namespace glint::gl {
 // Every embedded file by name (no folders): "glint_brdf.h", "forward.frag", ...
 const std::map<std::string, std::string>& embeddedFiles();
 
-// The source of an embedded file with its `#include "name"` lines replaced by the named embedded
-// files (recursively; the kernel's include guards work in GLSL too) and `#include <...>` lines,
-// which only the C++ side of the kernel uses, removed. Throws Error for an unknown name.
-std::string expandIncludes(const std::string& name);
+// A stage's source with its `#include "name"` lines replaced by the named files (recursively; the
+// kernel's include guards work in GLSL too) and `#include <...>` lines, which only the C++ side of
+// the kernel uses, blanked out. `#line N S` directives keep the compiler's locations those of the
+// files: source string S is files[S - 1] (0 is the version and defines ShaderProgram prepends),
+// and its line n is numbered N = S * 100000 + n, so that a location names its file even where the
+// compiler reports source string 0 for every error (Mesa).
+struct ExpandedSource {
+  std::string text;
+  std::vector<std::string> files;
+};
+
+// Expands `name` from `sources` (every file by name). Throws Error for an unknown name or a file
+// that includes itself.
+ExpandedSource expandIncludes(const std::string& name,
+                              const std::map<std::string, std::string>& sources = embeddedFiles());
+
+// A compiler's info log with its locations "S:N" (Mesa, ANGLE, glslang) and "S(N)" (NVIDIA)
+// written as "file:n", the file and line of ExpandedSource's numbering (`files` its files).
+std::string locateInFiles(const std::string& log, const std::vector<std::string>& files);
 
 class ShaderProgram {
  public:
-  // Compiles and links the stages {type, embedded file name}; `defines` are prepended as
-  // `#define NAME VALUE`. Throws Error with the first lines of the GL info log on failure.
+  // Compiles and links the stages {type, file name}, from the embedded files unless `sources` are
+  // given; `defines` are prepended as `#define NAME VALUE`. Throws Error with the first lines of
+  // the GL info log on failure, its locations as file:line.
   ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& stages,
-                const std::vector<std::pair<std::string, std::string>>& defines = {});
+                const std::vector<std::pair<std::string, std::string>>& defines = {},
+                const std::map<std::string, std::string>& sources = embeddedFiles());
   ~ShaderProgram();
   ShaderProgram(ShaderProgram&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
   ShaderProgram& operator=(ShaderProgram&& other) noexcept;

@@ -5,8 +5,9 @@ GlintXxx, constants and macros GLINT_XXX (docs/conventions.md, "Kernel names"). 
 includes the kernel into its own shaders, so an unprefixed name could collide with one of its own.
 
 Usage: check_prefixes.py [--list] FILE_OR_DIR...   (a directory: its *.h files)
-The HLSL branch of prelude.h gives GLSL's vector type names to HLSL (typedefs of float3 and the
-like); those are GLSL's vocabulary, not the kernel's, and are the one listed exception."""
+The HLSL branch of prelude.h gives GLSL's vector type names to HLSL (vec3 as float3 and the like);
+those are GLSL's vocabulary, which the kernel is written in, not names of the kernel's, and are the
+one listed exception."""
 import os
 import re
 import sys
@@ -14,7 +15,7 @@ import sys
 FUNCTION = re.compile(r"^glint[A-Z0-9]\w*$")
 TYPE = re.compile(r"^Glint[A-Z0-9]\w*$")
 CONSTANT = re.compile(r"^GLINT_[A-Z0-9_]+$")
-# GLSL's own type names, declared for HLSL by prelude.h (the kernel is written in GLSL's vocabulary).
+# GLSL's own vector type names, which prelude.h maps to HLSL's.
 GLSL_TYPE_NAMES = {prefix + "vec" + n for prefix in ("", "i", "u", "b") for n in "234"}
 
 
@@ -111,8 +112,10 @@ def well_named(kind, name):
     if kind == "function":
         return bool(FUNCTION.match(name))
     if kind == "type":
-        return bool(TYPE.match(name)) or name in GLSL_TYPE_NAMES
-    if kind in ("constant", "macro"):
+        return bool(TYPE.match(name))
+    if kind == "macro":
+        return bool(CONSTANT.match(name)) or name in GLSL_TYPE_NAMES
+    if kind == "constant":
         return bool(CONSTANT.match(name))
     return False
 

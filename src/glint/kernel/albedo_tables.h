@@ -11,6 +11,9 @@
 #ifdef __cplusplus
 #define GLINT_TABLE_BEGIN(name, size) inline constexpr float name[size] = {
 #define GLINT_TABLE_END };
+#elif defined(GLINT_HLSL)
+#define GLINT_TABLE_BEGIN(name, size) static const float name[size] = {
+#define GLINT_TABLE_END };
 #else
 #define GLINT_TABLE_BEGIN(name, size) const float name[size] = float[size](
 #define GLINT_TABLE_END );

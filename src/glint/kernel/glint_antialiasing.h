@@ -27,7 +27,7 @@
 #include "dictionary_lookup.h"
 
 // Whether a walk over the footprint's cells filters. A GLSL program is compiled for one mode
-// (GLINT_FILTERED 0: the 2020 model, the default; 1: anti-aliased; shaders/glint_dictionary.glsl),
+// (GLINT_FILTERED 0: the 2020 model, the default, prelude.h; 1: anti-aliased),
 // so that neither pays for the other's code; C++ filters where a slope has derivatives, and with
 // none computes the 2020 sums exactly.
 #if defined(__cplusplus)
@@ -47,14 +47,14 @@ GLINT_KERNEL_BEGIN
 // exactly the 2020 scaling h alpha_d / alpha: the terms rho adds are exact zeros and ones.
 GLINT_FN vec2 glintCorrelatedUnscale(vec2 slope, vec2 alpha, float rho, float alphaD) {
   float s = sqrt(1.0f - rho * rho);
-  vec2 scale = vec2(alphaD) / alpha;
+  vec2 scale = glintSplat2(alphaD) / alpha;
   return vec2(scale.x * (slope.x - rho * (alpha.x / alpha.y) * slope.y) / s, scale.y * slope.y);
 }
 
 // Its inverse, M h_o: from the dictionary's space back to the target's slopes (the sampler's).
 GLINT_FN vec2 glintCorrelatedScale(vec2 unscaled, vec2 alpha, float rho, float alphaD) {
   float s = sqrt(1.0f - rho * rho);
-  vec2 scale = alpha / vec2(alphaD);
+  vec2 scale = alpha / glintSplat2(alphaD);
   return vec2(scale.x * (s * unscaled.x + rho * unscaled.y), scale.y * unscaled.y);
 }
 
@@ -71,7 +71,7 @@ GLINT_FN float glintCorrelatedJacobian(vec2 alpha, float rho, float alphaD) {
 // 1e4 slope units a pixel (a half vector a thousandth of a degree from the horizon), so that K and
 // the covariances it is added to stay finite.
 GLINT_FN vec3 glintKernelCovariance(vec4 derivatives) {
-  vec4 d = clamp(derivatives, vec4(-1e4f), vec4(1e4f));
+  vec4 d = clamp(derivatives, glintSplat4(-1e4f), glintSplat4(1e4f));
   vec2 dx = vec2(d.x, d.y);
   vec2 dy = vec2(d.z, d.w);
   return vec3(dx.x * dx.x + dy.x * dy.x, dx.x * dx.y + dy.x * dy.y, dx.y * dx.y + dy.y * dy.y) *
@@ -101,7 +101,7 @@ GLINT_FN float glintKernelVariance(vec3 unscaledCovariance) {
 GLINT_FN float glintMarginalLod(GlintDictionaryView dict, float variance) {
   float spacing = glintDictionaryDomain(dict) / float(dict.texelsPerDistribution);
   float v = min(max(variance, 0.0f) / (spacing * spacing), 1e30f);  // in texels^2
-  int exponent = ((floatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
+  int exponent = ((glintFloatBitsToInt(4.0f * max(v, 1.0f)) >> 23) & 255) - 127;  // floor(log2(4 v)) >= 2
   int mip = min(exponent / 2, dict.numMips - 1);
   float level = float(1 << (2 * mip)) * 0.25f;            // V_mip
   float lod = float(mip) + (v - level) / (3.0f * level);  // V_mip+1 - V_mip = 3 V_mip

@@ -138,7 +138,7 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
 GLINT_FN vec3 glintCellColour(uvec4 h) {
   float hue = glintHashToUnitOpen(glintPcg4d(h).x) * 6.0f;
   vec3 rgb = clamp(vec3(abs(hue - 3.0f) - 1.0f, 2.0f - abs(hue - 2.0f), 2.0f - abs(hue - 4.0f)), 0.0f, 1.0f);
-  return mix(vec3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
+  return glintMix(glintSplat3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
 }
 
 // The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
@@ -394,7 +394,7 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
   GlintSlopeSet slopes;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     slopes.slope[k] = slope;
-    slopes.derivatives[k] = vec4(0.0f);
+    slopes.derivatives[k] = glintSplat4(0.0f);
   }
   return slopes;
 }
@@ -418,7 +418,7 @@ struct GlintCellGrid {
 
 GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numLevels, int level) {
   float cellsPerUv = exp2(float(numLevels - 1 - level));
-  vec2 centre = uv * cellsPerUv - vec2(0.5f);  // cell (s, t) is centred on integer (s, t)
+  vec2 centre = uv * cellsPerUv - glintSplat2(0.5f);  // cell (s, t) is centred on integer (s, t)
   vec2 a0 = footprint.majorAxis * cellsPerUv;
   vec2 a1 = footprint.minorAxis * cellsPerUv;
   // Implicit ellipse A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so it covers at least a cell.
@@ -552,7 +552,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
-    colouredSum[k] = vec3(0.0f);
+    colouredSum[k] = glintSplat3(0.0f);
     inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k] * widestUnscale);
     anyInSupport = anyInSupport || inSupport[k];
     vec4 d = slopes.derivatives[k];
@@ -587,7 +587,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
       if (cell.readsDictionary && anyInSupport) {
         vec2 rotation = glintCellRotation(cell.hash);
         ivec2 distributions = glintCellDistributions(dict, cell.hash);
-        vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : vec3(1.0f);
+        vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : glintSplat3(1.0f);
         for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
           float p = 0.0f;
           if (inSupport[k]) {
@@ -611,18 +611,18 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   }
   GlintP22Set p22;
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-    p22.p22[k] = vec4(0.0f);
+    p22.p22[k] = glintSplat4(0.0f);
     if (weightSum > 0.0f) {
-      vec3 colourWeighted = params.colouredCells ? colouredSum[k] : vec3(dictionarySum[k]);
+      vec3 colourWeighted = params.colouredCells ? colouredSum[k] : glintSplat3(dictionarySum[k]);
       p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
         float smoothP22 = filtering ? glintFilteredTargetP22(params, slopes.slope[k], slopeKernel[k])
                                  : glintTargetP22(params.ndf, slopes.slope[k], params.alpha, params.rho);
-        p22.p22[k] += vec4(smoothWeightSum * smoothP22);
+        p22.p22[k] += glintSplat4(smoothWeightSum * smoothP22);
       }
       if (tailWeightSum > 0.0f) {
-        vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : vec3(0.0f));
-        p22.p22[k] += vec4(tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance));
+        vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : glintSplat3(0.0f));
+        p22.p22[k] += glintSplat4(tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance));
       }
       p22.p22[k] = p22.p22[k] / weightSum;
     }
@@ -732,7 +732,7 @@ GLINT_FN GlintP22Set glintP22Set(GlintDictionaryView dict, GlintParameters param
   GlintP22Set p22;
   if (footprint.degenerate) {
     for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
-      p22.p22[k] = vec4(glintFilteredTargetP22(params, slopes.slope[k], glintKernelCovariance(slopes.derivatives[k])));
+      p22.p22[k] = glintSplat4(glintFilteredTargetP22(params, slopes.slope[k], glintKernelCovariance(slopes.derivatives[k])));
     }
     return p22;
   }

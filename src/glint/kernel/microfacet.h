@@ -69,7 +69,7 @@ GLINT_FN float glintMicrofacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) 
 GLINT_FN vec3 glintFresnelSchlick(vec3 f0, float cosThetaI) {
   float c = clamp(1.0f - cosThetaI, 0.0f, 1.0f);
   float c2 = c * c;
-  return f0 + (vec3(1.0f) - f0) * (c2 * c2 * c);
+  return f0 + (glintSplat3(1.0f) - f0) * (c2 * c2 * c);
 }
 
 // Fresnel reflectance of a conductor with complex index of refraction eta + i k (relative to the
@@ -81,13 +81,13 @@ GLINT_FN vec3 glintFresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
   float s2 = 1.0f - c2;
   vec3 eta2 = eta * eta;
   vec3 k2 = k * k;
-  vec3 t0 = eta2 - k2 - vec3(s2);
+  vec3 t0 = eta2 - k2 - glintSplat3(s2);
   vec3 a2plusb2 = sqrt(t0 * t0 + 4.0f * eta2 * k2);
-  vec3 t1 = a2plusb2 + vec3(c2);
+  vec3 t1 = a2plusb2 + glintSplat3(c2);
   vec3 a = sqrt(0.5f * (a2plusb2 + t0));
   vec3 t2 = 2.0f * c * a;
   vec3 rs = (t1 - t2) / (t1 + t2);
-  vec3 t3 = c2 * a2plusb2 + vec3(s2 * s2);
+  vec3 t3 = c2 * a2plusb2 + glintSplat3(s2 * s2);
   vec3 t4 = t2 * s2;
   vec3 rp = rs * (t3 - t4) / (t3 + t4);
   return 0.5f * (rp + rs);

@@ -116,7 +116,7 @@ GLINT_FN float glintSmithLambda(int ndf, vec2 alpha, float rho, vec3 w) {
   if (ndf == GLINT_NDF_GGX) {
     return 0.5f * (sqrt(1.0f + projected) - 1.0f);
   }
-  float a = inversesqrt(projected);
+  float a = glintInverseSqrt(projected);
   return -glintNormalCdf(-a * 1.41421356f) + exp(-a * a) / (2.0f * a * 1.77245385f);
 }
 

@@ -50,13 +50,13 @@ GLINT_FN float glintCompensationAlpha(vec2 alpha) {
 // Fresnel's cosine-weighted hemispherical mean for Schlick's approximation: 2 integral of
 // (f0 + (1 - f0)(1 - mu)^5) mu dmu = f0 + (1 - f0) / 21.
 GLINT_FN vec3 glintSchlickAverageFresnel(vec3 f0) {
-  return f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f);
+  return f0 + (glintSplat3(1.0f) - f0) * (1.0f / 21.0f);
 }
 
 // The Fresnel factor of the compensation lobe: F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) (1 with F = 1).
 GLINT_FN vec3 glintMultipleScatteringFresnel(vec3 averageFresnel, float averageAlbedo) {
   return averageFresnel * averageFresnel * averageAlbedo /
-         (vec3(1.0f) - averageFresnel * (1.0f - averageAlbedo));
+         (glintSplat3(1.0f) - averageFresnel * (1.0f - averageAlbedo));
 }
 
 GLINT_KERNEL_END
@@ -75,9 +75,9 @@ GLINT_FN float glintDirectionalAlbedo(int ndf, int masking, float alpha, float m
   float fy = y - float(i);
   float fx = x - float(j);
   int base = (glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i) * GLINT_ALBEDO_MU_NODES + j;
-  float low = mix(GLINT_ALBEDO_TABLE[base], GLINT_ALBEDO_TABLE[base + 1], fx);
-  float high = mix(GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES], GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES + 1], fx);
-  return mix(low, high, fy);
+  float low = glintMix(GLINT_ALBEDO_TABLE[base], GLINT_ALBEDO_TABLE[base + 1], fx);
+  float high = glintMix(GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES], GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES + 1], fx);
+  return glintMix(low, high, fy);
 }
 
 // E_avg of the lobe of roughness alpha.
@@ -85,7 +85,7 @@ GLINT_FN float glintAverageAlbedo(int ndf, int masking, float alpha) {
   float y = glintAlbedoAlphaCoordinate(alpha);
   int i = min(int(y), GLINT_ALBEDO_ALPHA_NODES - 2);
   int base = glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i;
-  return mix(GLINT_AVERAGE_ALBEDO_TABLE[base], GLINT_AVERAGE_ALBEDO_TABLE[base + 1], y - float(i));
+  return glintMix(GLINT_AVERAGE_ALBEDO_TABLE[base], GLINT_AVERAGE_ALBEDO_TABLE[base + 1], y - float(i));
 }
 
 // f_ms(wo, wi) with F = 1, without the cosine; 0 below either horizon.

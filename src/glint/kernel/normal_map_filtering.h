@@ -59,7 +59,7 @@ GLINT_FN vec3 glintLeanCombinedRoughness(vec2 alpha, float rho, vec3 covariance)
   vec3 total = glintBeckmannSlopeCovariance(alpha, rho) + covariance;
   vec2 sigma = sqrt(vec2(total.x, total.z));
   float combinedRho = clamp(total.y / (sigma.x * sigma.y), -GLINT_LEAN_MAX_CORRELATION, GLINT_LEAN_MAX_CORRELATION);
-  vec2 combinedAlpha = clamp(sigma * 1.41421356f, vec2(0.01f), vec2(2.0f));
+  vec2 combinedAlpha = clamp(sigma * 1.41421356f, glintSplat2(0.01f), glintSplat2(2.0f));
   return vec3(combinedAlpha, combinedRho);
 }
 

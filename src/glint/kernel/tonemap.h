@@ -15,12 +15,12 @@ GLINT_FN vec3 glintTonemapAcesFit(vec3 x) {
 }
 
 // The sRGB opto-electronic transfer function (IEC 61966-2-1), linear [0, 1] to encoded [0, 1].
-GLINT_FN float glintSrgbEncode(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * pow(linear, 1.0f / 2.4f) - 0.055f;
+GLINT_FN float glintSrgbEncode(float value) {
+  return value <= 0.0031308f ? 12.92f * value : 1.055f * pow(value, 1.0f / 2.4f) - 0.055f;
 }
 
 GLINT_FN vec3 glintDisplayEncode(vec3 radiance, float exposure) {
-  vec3 mapped = glintTonemapAcesFit(max(radiance * exposure, vec3(0.0f)));
+  vec3 mapped = glintTonemapAcesFit(max(radiance * exposure, glintSplat3(0.0f)));
   return vec3(glintSrgbEncode(mapped.x), glintSrgbEncode(mapped.y), glintSrgbEncode(mapped.z));
 }
 

@@ -81,7 +81,7 @@ struct GlintZirrKaplanyanParameters {
 
 GLINT_FN vec2 glintZirrKaplanyanMesoRoughness(vec2 roughness, vec2 microRoughness) {
   // Gaussian widths add in quadrature: microdetail orientations spread by rho (spec 1.2, 3 step 2).
-  return sqrt(max(roughness * roughness - microRoughness * microRoughness, vec2(GLINT_ZIRR_KAPLANYAN_MIN_MESO_VARIANCE)));
+  return sqrt(max(roughness * roughness - microRoughness * microRoughness, glintSplat2(GLINT_ZIRR_KAPLANYAN_MIN_MESO_VARIANCE)));
 }
 
 // Our parameters to the model's (spec 4.2). What does not correspond:
@@ -355,7 +355,7 @@ GLINT_FN float glintZirrKaplanyanCell(int iu, int iv, GlintZirrKaplanyanLevel se
     float multiplier = 1.0f + params.variation * glintErfinvApprox(-GLINT_ZIRR_KAPLANYAN_VARIATION_CLAMP +
                                                               2.0f * GLINT_ZIRR_KAPLANYAN_VARIATION_CLAMP * glintHashToUnitOpen(binHash.x));
     if (multiplier <= 0.0f) {
-      multiplier = fract(multiplier) / (1.0f - multiplier);
+      multiplier = glintFract(multiplier) / (1.0f - multiplier);
     }
     multiplier = max(multiplier, GLINT_ZIRR_KAPLANYAN_MIN_MULTIPLIER);
     float expectedBase = asReference ? glintZirrKaplanyanExpectedBase(setup.level, params) : setup.expectedBase;
@@ -409,7 +409,7 @@ GLINT_FN float glintZirrKaplanyanGlintsScheduled(vec2 uv, vec2 duvdx, vec2 duvdy
   vec3 h = normalize(wo + wi);
   GlintZirrKaplanyanPixel pixel;
   pixel.binCoordinate = GLINT_ZIRR_KAPLANYAN_STEREOGRAPHIC_SCALE * vec2(h.x, h.y) / (1.0f + h.z) * gamma /
-                        (mu + vec2(params.searchConeAngle));
+                        (mu + glintSplat2(params.searchConeAngle));
   // Step 4: p0 = pi mu_x mu_y D_Beckmann(h; r); the masking Lambda = G1 G1 / (4 n.l n.v);
   // K = Lambda / (4 pi mu_x mu_y); the search cone flattens p (phenomenological, no pi).
   // (Below h.z = 1e-6 the slope exceeds 1e6 and D is exactly 0 in float; the guard avoids 0 / 0.)

@@ -1,25 +1,25 @@
-// GLSL side of the kernel's dictionary access (the C++ side is in src/glint/kernel/prelude.h):
-// the dictionary is a buffer texture of RG16F texels, distribution after distribution, level after
-// level, texel k holding (p[k], p[k+1]) so that one texelFetch serves an interpolation; read with
-// texelFetch so the kernel's own interpolation (glintMarginal) is the only one, exactly as on the
-// CPU. Its shape and alpha come from uniforms set from the Dictionary the host loaded. Programs
-// that anti-alias glints (GLINT_FILTERED = 1) also read the dictionary's mip chain
-// (docs/dictionary.md, "Mip chain").
-#ifndef GLINT_DICTIONARY_GLSL
-#define GLINT_DICTIONARY_GLSL
+// glint's renderer's side of the kernel's dictionary hook (src/glint/kernel/prelude.h): where the
+// dictionary's texels live in glint's OpenGL and WebGL2 programs, which include this file after the
+// kernel. The dictionary is a buffer texture of RG16F texels, distribution after distribution,
+// level after level, texel k holding (p[k], p[k+1]) so that one texelFetch serves an
+// interpolation; read with texelFetch so the kernel's own interpolation (glintMarginal) is the only
+// one, exactly as on the CPU. Its shape and alpha come from uniforms set from the Dictionary the
+// host loaded (src/gl/dictionary_texture.cpp). Programs that anti-alias glints (GLINT_FILTERED 1)
+// also read the dictionary's mip chain (docs/dictionary.md, "Mip chain").
+#ifndef GLINT_DICTIONARY_GL_GLSL
+#define GLINT_DICTIONARY_GL_GLSL
 
-#ifndef GLINT_FILTERED
-#define GLINT_FILTERED 0
+#include "prelude.h"
+
+#ifdef GL_ES
+// GLSL ES 3.00 (WebGL2) has no buffer textures: the host lays a buffer's texels row after row in a
+// 2D texture 2048 texels wide (web/src/gl45_on_webgl2.cpp, kTexelBufferWidth).
+#define GLINT_TEXEL_BUFFER highp sampler2D
+#define GLINT_TEXEL_BUFFER_FETCH(buffer, index) texelFetch(buffer, ivec2((index) & 2047, (index) >> 11), 0)
+#else
+#define GLINT_TEXEL_BUFFER samplerBuffer
+#define GLINT_TEXEL_BUFFER_FETCH(buffer, index) texelFetch(buffer, index)
 #endif
-
-struct GlintDictionaryView {
-  int numLevels;
-  int numDistributions;
-  int texelsPerDistribution;
-  float alpha;
-  int numMips;       // the mip chain's levels (docs/dictionary.md, "Mip chain")
-  int mipRowLength;  // texels of all mip levels of one distribution
-};
 
 layout(binding = 0) uniform GLINT_TEXEL_BUFFER uGlintDictionary;
 uniform ivec3 uGlintDictionaryShape;  // L, N, R
@@ -49,11 +49,6 @@ GlintDictionaryView glintDictionary() {
 
 vec2 glintDictionaryTexelPair(GlintDictionaryView dict, int level, int distribution, int texel) {
   return GLINT_TEXEL_BUFFER_FETCH(uGlintDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
-}
-
-// Where level m of the mip chain starts in a distribution's row (as in prelude.h).
-int glintMipOffset(int texelsPerDistribution, int mip) {
-  return 2 * texelsPerDistribution - ((2 * texelsPerDistribution) >> mip);
 }
 
 #if GLINT_FILTERED
