@@ -1,5 +1,6 @@
-// The dictionary readers (src/glint/dictionary.cpp): glint's binary format (Dictionary::deserialise)
-// and one EXR file of the authors' dictionary folder (loadAuthorsExrDictionary).
+// The dictionary readers: glint's binary format (Dictionary::deserialise, src/glint/dictionary.cpp)
+// and one EXR file of the authors' dictionary folder (loadAuthorsExrDictionary,
+// src/glint/dictionary_exr.cpp).
 #include <cstring>
 #include <fstream>
 #include <vector>
@@ -55,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     file.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    loadAuthorsExrDictionary(folder);
+    glint::loadAuthorsExrDictionary(folder);
   } catch (const glint::Error&) {
   }
   return 0;

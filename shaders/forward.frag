@@ -12,7 +12,8 @@
 // (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
 // compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
 // walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes). With SHADOWS = 1 the
-// lights cast shadows (shadows.glsl).
+// lights cast shadows (shadows.glsl). The material's glint layer is one uniform block, a
+// GlintMaterial (glint_material_block.glsl, kernel/glint_material.h).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -29,6 +30,7 @@
 #define GLINT_MASKING 0
 #endif
 #include "glint_brdf.h"
+#include "glint_material_block.glsl"
 #include "multiple_scattering.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
@@ -91,23 +93,13 @@ uniform float uAlphaCutoff;  // alphaMode MASK (ALPHA_MASK = 1): the alpha below
 // it is a constant and the Cook-Torrance side of their branches is compiled out: llvmpipe would
 // run it for every pixel.
 #if SPECULAR_MODEL == SPECULAR_COOK_TORRANCE
-uniform bool uGlintLayer;
-#define GLINT_LAYER uGlintLayer
+#define GLINT_LAYER (uGlintMaterial.enabled != 0u)
 #else
 #define GLINT_LAYER true
 #endif
-uniform vec2 uGlintAlpha;
-uniform float uGlintRho;
+// The frame's glint settings (the material's are uGlintMaterial, glint_material_block.glsl).
 uniform float uGlintFilterScale;  // the anti-aliasing kernel's size: 1 matches the pixel's box
-uniform float uGlintLogDensity;
-uniform float uGlintRelativeArea;
-uniform float uGlintDensityRandomisation;
-uniform float uGlintMaxAnisotropy;
 uniform vec3 uGlintFootprintPolicy;  // GlintFootprintPolicy: aniso, cells, drop (0: the paper's footprint)
-uniform uint uGlintPatternSeed;
-uniform float uGlintUvScale;
-uniform bool uGlintHasLogDensityTexture;
-uniform vec2 uGlintLogDensityRange;
 
 uniform vec4 uLightPosition[GLINT_SLOPE_COUNT];  // w = 1: point or spot at xyz; w = 0: xyz = unit direction towards the light
 uniform vec3 uLightIntensity[GLINT_SLOPE_COUNT];
@@ -128,7 +120,7 @@ vec3 irradiance(vec3 n) {
 void main() {
   // The glint footprint: screen-space derivatives of the glint uv, taken first, in uniform
   // control flow, before any branch that pixels of a quad could take differently.
-  vec2 glintUv = vUv * uGlintUvScale;
+  vec2 glintUv = glintMaterialUv(uGlintMaterial, vUv);
   vec2 duvdx = dFdx(glintUv);
   vec2 duvdy = dFdy(glintUv);
 
@@ -179,25 +171,23 @@ void main() {
   b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
   vec3 wo = vec3(dot(view, t), dot(view, b), max(dot(view, n), 1e-4f));
 
-  GlintParameters params;
-  params.alpha = clamp(uGlintAlpha * texture(uGlintRoughnessTexture, vUv).r, 0.01f, 2.0f);
-  params.rho = uGlintRho;
-  params.logDensity = uGlintHasLogDensityTexture
-                          ? mix(uGlintLogDensityRange.x, uGlintLogDensityRange.y, texture(uGlintLogDensityTexture, vUv).r)
-                          : uGlintLogDensity;
-  params.relativeArea = clamp(uGlintRelativeArea * texture(uGlintRelativeAreaTexture, vUv).r, 1e-4f, 1.0f);
-  params.densityRandomisation = uGlintDensityRandomisation;
-  params.maxAnisotropy = uGlintMaxAnisotropy;
-  params.footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
-  params.footprintPolicy.maxCells = uGlintFootprintPolicy.y;
-  params.footprintPolicy.minBlend = uGlintFootprintPolicy.z;
-  params.patternSeed = uGlintPatternSeed;
-  // A compile-time switch (one program per variant, src/gl/renderer.cpp): llvmpipe executes both
-  // sides of a branch, so a uniform would make every glint material pay for the colours.
-  params.colouredCells = GLINT_COLOURED_CELLS != 0;
-  params.ndf = GLINT_NDF;
-  params.masking = GLINT_MASKING;
-  params.multipleScattering = GLINT_MULTIPLE_SCATTERING != 0;
+  // The glint layer's parameters from its textures' samples (kernel/glint_material.h, as the path
+  // tracer's). Coloured cells, the target and its compensation are the material's own, compiled
+  // in (one program per variant, forwardVariant in src/gl/renderer.cpp): llvmpipe executes both
+  // sides of a branch, so read from the block they would make every glint material pay for the
+  // colours and for every target.
+  GlintMaterial material = uGlintMaterial;
+  material.colouredCells = uint(GLINT_COLOURED_CELLS);
+  material.ndf = GLINT_NDF;
+  material.masking = GLINT_MASKING;
+  material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
+  GlintFootprintPolicy footprintPolicy;
+  footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
+  footprintPolicy.maxCells = uGlintFootprintPolicy.y;
+  footprintPolicy.minBlend = uGlintFootprintPolicy.z;
+  GlintParameters params = glintMaterialParameters(material, texture(uGlintRoughnessTexture, vUv).r,
+                                                   texture(uGlintLogDensityTexture, vUv).r,
+                                                   texture(uGlintRelativeAreaTexture, vUv).r, footprintPolicy);
 #if GLINT_LEAN
   // The normal map's slope covariance over the footprint, measured in the tangent frame, added to
   // the glint layer's in the tilted shading frame (a small-tilt approximation, as the authors'),

@@ -3,6 +3,9 @@
 // glint::ZirrKaplanyanBsdf: glintZirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, params), and
 // glintZirrKaplanyanReferenceReflectance (the reference shader's schedule), which must match it bit for bit.
 #include "zirr_kaplanyan.h"
+// The dictionary hook: never called here, but zirr_kaplanyan.h includes glint_brdf.h, whose
+// functions call it, and Mesa's linker resolves the calls of every function, called or not.
+#include "glint_dictionary_gl.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -860,6 +860,38 @@ TEST(RenderGl, MultisampledEdgesHalveTheSilhouetteError) {
   }
 }
 
+// The viewer edits the renderer's materials between frames (Renderer::materials()): the next frame
+// draws the edit (the glint material buffer is written again), bit for bit the frame of a renderer
+// made with the edited scene.
+TEST(RenderGl, EditedMaterialsAreDrawnInTheNextFrame) {
+  useGlContext();
+  const scene::Scene scene = scene::makeBuiltinScene("sphere");
+  scene::Scene edited = scene;
+  int layers = 0;
+  for (scene::Material& m : edited.materials) {
+    if (!m.glint.enabled) continue;
+    m.glint.patternSeed += 1;
+    m.glint.logDensity -= 4.0f;
+    ++layers;
+  }
+  ASSERT_GT(layers, 0);
+  gl::FrameSettings frame;
+  frame.width = 96;
+  frame.height = 96;
+  frame.camera = scene.cameras.at("default");
+  gl::Renderer renderer(scene, defaultDictionary());
+  renderer.renderFrame(frame);
+  const std::vector<float> before = renderer.readRadiance();
+  renderer.materials() = edited.materials;
+  renderer.renderFrame(frame);
+  const std::vector<float> after = renderer.readRadiance();
+  gl::Renderer fresh(edited, defaultDictionary());
+  fresh.renderFrame(frame);
+  EXPECT_NE(after, before);
+  EXPECT_EQ(after, fresh.readRadiance());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
   const scene::Scene scene = scene::makeBuiltinScene("sphere");
   const ImageRgbF a = render(scene, gl::BrdfModel::Glint);

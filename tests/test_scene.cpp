@@ -873,7 +873,7 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
   EXPECT_EQ(paper.materials[0].specular.ndf, kernel::GLINT_NDF_BECKMANN);
   EXPECT_EQ(paper.materials[0].specular.masking, kernel::GLINT_MASKING_VCAVITY);
   EXPECT_FALSE(paper.materials[0].specular.multipleScattering);
-  EXPECT_EQ(glintParameters(paper.materials[0].glint, paper.materials[0].specular).ndf, kernel::GLINT_NDF_BECKMANN);
+  EXPECT_EQ(glintMaterial(paper.materials[0].glint, paper.materials[0].specular).ndf, kernel::GLINT_NDF_BECKMANN);
   for (const std::string& name : builtinSceneNames()) {
     for (const Material& m : makeBuiltinScene(name).materials) {
       EXPECT_EQ(m.specular.ndf, kernel::GLINT_NDF_BECKMANN) << name;
@@ -1437,6 +1437,87 @@ TEST(BuiltinScenes, UnknownNamesAreErrors) {
   const fs::path file = test::temporaryFolder("scene_by_path") / "textured.glb";
   writeGltf(file, test::texturedTestScene());
   EXPECT_EQ(loadScene(file.string()).name, "textured");
+}
+
+// ---- The glint material (kernel/glint_material.h): what the renderers store and read ----------
+
+// Every field of the layer and the target lands in its own field of the packed material, the flags
+// as 0 or 1, the padding zero.
+TEST(GlintMaterial, PacksEveryFieldOfTheLayerAndTheTarget) {
+  GlintLayer layer;
+  layer.enabled = true;
+  layer.alpha = {0.3f, 0.7f};
+  layer.rho = -0.4f;
+  layer.logDensity = 21.5f;
+  layer.relativeArea = 0.6f;
+  layer.densityRandomisation = 3.5f;
+  layer.maxAnisotropy = 12.0f;
+  layer.patternSeed = 0xDEADBEEFu;
+  layer.uvScale = 4.0f;
+  layer.randomColours = true;
+  layer.logDensityTexture = 2;
+  layer.logDensityRange = {18.0f, 33.0f};
+  const kernel::GlintMaterial m = glintMaterial(layer, kGltfSpecular);
+  EXPECT_EQ(m.alpha, glm::vec2(0.3f, 0.7f));
+  EXPECT_EQ(m.rho, -0.4f);
+  EXPECT_EQ(m.logDensity, 21.5f);
+  EXPECT_EQ(m.relativeArea, 0.6f);
+  EXPECT_EQ(m.densityRandomisation, 3.5f);
+  EXPECT_EQ(m.maxAnisotropy, 12.0f);
+  EXPECT_EQ(m.patternSeed, 0xDEADBEEFu);
+  EXPECT_EQ(m.logDensityRange, glm::vec2(18.0f, 33.0f));
+  EXPECT_EQ(m.uvScale, 4.0f);
+  EXPECT_EQ(m.hasLogDensityTexture, 1u);
+  EXPECT_EQ(m.ndf, kernel::GLINT_NDF_GGX);
+  EXPECT_EQ(m.masking, kernel::GLINT_MASKING_SMITH);
+  EXPECT_EQ(m.colouredCells, 1u);
+  EXPECT_EQ(m.multipleScattering, 1u);
+  EXPECT_EQ(m.enabled, 1u);
+  EXPECT_EQ(m.padding0 | m.padding1 | m.padding2, 0u);
+  const kernel::GlintMaterial plain = glintMaterial(GlintLayer{});
+  EXPECT_EQ(plain.enabled, 0u);
+  EXPECT_EQ(plain.hasLogDensityTexture, 0u);
+  EXPECT_EQ(plain.colouredCells, 0u);
+  EXPECT_EQ(plain.ndf, kernel::GLINT_NDF_BECKMANN);
+  EXPECT_EQ(plain.masking, kernel::GLINT_MASKING_VCAVITY);
+  EXPECT_EQ(plain.multipleScattering, 0u);
+}
+
+// The layer's textures as docs/scenes.md says: R multiplies alpha (clamped to [0.01, 2]), maps
+// linearly onto log_density_range in place of log_density, multiplies relative_area (kept at least
+// 1e-4); the rest passes through, and the glint uv is the mesh uv times uv_scale.
+TEST(GlintMaterial, TexturesApplyAsTheScenesDocumentSays) {
+  GlintLayer layer;
+  layer.enabled = true;
+  layer.alpha = {0.4f, 0.8f};
+  layer.rho = 0.25f;
+  layer.logDensity = 30.0f;
+  layer.relativeArea = 0.5f;
+  layer.patternSeed = 9u;
+  layer.uvScale = 4.0f;
+  layer.logDensityRange = {15.0f, 35.0f};
+  const FootprintPolicy policy{2.0f, 64.0f, 0.25f};
+  const kernel::GlintMaterial untextured = glintMaterial(layer);
+  GlintParameters p = kernel::glintMaterialParameters(untextured, 0.5f, 0.25f, 0.5f, policy);
+  EXPECT_EQ(p.alpha, glm::vec2(0.2f, 0.4f));
+  EXPECT_EQ(p.logDensity, 30.0f);  // no log-density texture: its sample is ignored
+  EXPECT_EQ(p.relativeArea, 0.25f);
+  EXPECT_EQ(p.rho, 0.25f);
+  EXPECT_EQ(p.patternSeed, 9u);
+  EXPECT_EQ(p.footprintPolicy.maxCells, 64.0f);
+  EXPECT_EQ(p.footprintPolicy.minBlend, 0.25f);
+  p = kernel::glintMaterialParameters(untextured, 0.0f, 0.0f, 0.0f, policy);
+  EXPECT_EQ(p.alpha, glm::vec2(0.01f));
+  EXPECT_EQ(p.relativeArea, 1e-4f);
+  p = kernel::glintMaterialParameters(untextured, 1.0f, 1.0f, 1.0f, policy);
+  EXPECT_EQ(p.alpha, glm::vec2(0.4f, 0.8f));
+  EXPECT_EQ(p.relativeArea, 0.5f);
+  layer.logDensityTexture = 0;
+  const kernel::GlintMaterial textured = glintMaterial(layer);
+  EXPECT_FLOAT_EQ(kernel::glintMaterialParameters(textured, 1.0f, 0.25f, 1.0f, policy).logDensity, 20.0f);
+  EXPECT_EQ(kernel::glintMaterialParameters(textured, 1.0f, 0.0f, 1.0f, policy).logDensity, 15.0f);
+  EXPECT_EQ(kernel::glintMaterialParameters(textured, 1.0f, 1.0f, 1.0f, policy).logDensity, 35.0f);
+  EXPECT_EQ(kernel::glintMaterialUv(textured, glm::vec2(0.25f, -0.5f)), glm::vec2(1.0f, -2.0f));
 }
 
 }  // namespace

@@ -63,6 +63,11 @@ struct Ray {
   vec3 direction;  // unit length
 };
 
+// A camera ray with its offset rays through the film points one pixel right and one pixel down.
+struct RayDifferential {
+  Ray ray, offsetX, offsetY;
+};
+
 // The nearest t > 0 where the ray meets a sphere, if any.
 std::optional<float> intersectSphere(const Ray& ray, vec3 centre, float radius) {
   const vec3 oc = ray.origin - centre;
@@ -165,19 +170,20 @@ struct Options {
 // shadow ray is needed), then the light or the sky. A renderer with more geometry repeats the vertex
 // part below at each bounce, with a shadow ray for the light sample.
 vec3 radiance(const Options& options, const glint::Dictionary& dictionary, const glint::GlintParameters& parameters,
-              const glint::Fresnel& fresnel, const Ray ray[3], glint::Pcg32& rng) {
-  const std::optional<float> tSphere = intersectSphere(ray[0], vec3(0.0f), 1.0f);
-  const std::optional<float> tLight = intersectSphere(ray[0], kLightCentre, kLightRadius);
+              const glint::Fresnel& fresnel, const RayDifferential& camera, glint::Pcg32& rng) {
+  const Ray& ray = camera.ray;
+  const std::optional<float> tSphere = intersectSphere(ray, vec3(0.0f), 1.0f);
+  const std::optional<float> tLight = intersectSphere(ray, kLightCentre, kLightRadius);
   if (tLight && (!tSphere || *tLight < *tSphere)) return kLightRadiance;
-  if (!tSphere) return skyRadiance(ray[0].direction);
+  if (!tSphere) return skyRadiance(ray.direction);
 
-  const ShadingPoint s = shadeSphere(ray[0].origin + *tSphere * ray[0].direction, ray[1], ray[2]);
+  const ShadingPoint s = shadeSphere(ray.origin + *tSphere * ray.direction, camera.offsetX, camera.offsetY);
   const Material material =
       options.smooth
           ? Material{glint::CookTorranceBsdf(parameters.alpha, parameters.rho, fresnel, glint::Spectrum(1.0f),
                                              glint::microfacetTarget(parameters))}
           : Material{glint::GlintBsdf(dictionary, parameters, s.footprint, fresnel)};
-  const vec3 wo = s.toLocal(-ray[0].direction);
+  const vec3 wo = s.toLocal(-ray.direction);
   const LightCone cone(s.position);
   vec3 result(0.0f);
 
@@ -225,7 +231,7 @@ int run(const Options& options) {
       vec3 sum(0.0f);
       for (int i = 0; i < options.spp; ++i) {
         const vec2 film = vec2(x, y) + vec2(uniform(rng), uniform(rng));
-        const Ray rays[3] = {cameraRay(film), cameraRay(film + vec2(1, 0)), cameraRay(film + vec2(0, 1))};
+        const RayDifferential rays{cameraRay(film), cameraRay(film + vec2(1, 0)), cameraRay(film + vec2(0, 1))};
         sum += radiance(options, dictionary, parameters, fresnel, rays, rng);
       }
       image.at(x, y) = sum / float(options.spp);

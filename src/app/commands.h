@@ -17,5 +17,6 @@ void registerExportCommand(CLI::App& app);
 void registerAaErrorCommand(CLI::App& app);
 void registerAlbedoTablesCommand(CLI::App& app);
 void registerHdriCommand(CLI::App& app);
+void registerShaderBundleCommand(CLI::App& app);
 
 }  // namespace glint::app

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   glint::app::registerHdriCommand(app);
   glint::app::registerAaErrorCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
+  glint::app::registerShaderBundleCommand(app);
   try {
     requireKnownCommand(app, argc, argv);
     app.parse(argc, argv);

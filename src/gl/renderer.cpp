@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <string>
@@ -271,6 +272,57 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0};
 }
 
+// The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),
+// one after the other at the stride the OpenGL's uniform-buffer offset alignment allows, so that a
+// mesh's draw binds its material's range (glBindBufferRange) instead of setting uniforms by name.
+// Made with the renderer; a material the viewer edits between frames is written again.
+class GlintMaterialBuffer {
+ public:
+  GlintMaterialBuffer() = default;
+  GlintMaterialBuffer(const GlintMaterialBuffer&) = delete;
+  GlintMaterialBuffer& operator=(const GlintMaterialBuffer&) = delete;
+  ~GlintMaterialBuffer() { glDeleteBuffers(1, &buffer_); }
+
+  // Writes the materials' layers that differ from those written last (all on the first call).
+  void update(const std::vector<scene::Material>& materials) {
+    std::vector<kernel::GlintMaterial> packed;
+    packed.reserve(materials.size());
+    for (const scene::Material& m : materials) packed.push_back(scene::glintMaterial(m.glint, m.specular));
+    if (packed.size() != written_.size() || !buffer_) create(packed);
+    for (std::size_t i = 0; i < packed.size(); ++i) {
+      if (std::memcmp(&packed[i], &written_[i], sizeof(kernel::GlintMaterial)) == 0) continue;
+      glNamedBufferSubData(buffer_, static_cast<GLintptr>(i) * stride_, sizeof(kernel::GlintMaterial), &packed[i]);
+      written_[i] = packed[i];
+    }
+  }
+
+  // Binds material `index`'s layer to the forward shader's block.
+  void bind(int index) const {
+    glBindBufferRange(GL_UNIFORM_BUFFER, kGlintMaterialBinding, buffer_, static_cast<GLintptr>(index) * stride_,
+                      sizeof(kernel::GlintMaterial));
+  }
+
+ private:
+  void create(const std::vector<kernel::GlintMaterial>& packed) {
+    glDeleteBuffers(1, &buffer_);
+    GLint alignment = 1;
+    glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+    const GLintptr size = sizeof(kernel::GlintMaterial);
+    stride_ = (size + alignment - 1) / alignment * alignment;
+    std::vector<std::uint8_t> bytes(std::max<std::size_t>(packed.size(), 1) * static_cast<std::size_t>(stride_), 0);
+    for (std::size_t i = 0; i < packed.size(); ++i) {
+      std::memcpy(bytes.data() + i * static_cast<std::size_t>(stride_), &packed[i], sizeof(kernel::GlintMaterial));
+    }
+    glCreateBuffers(1, &buffer_);
+    glNamedBufferStorage(buffer_, static_cast<GLsizeiptr>(bytes.size()), bytes.data(), GL_DYNAMIC_STORAGE_BIT);
+    written_ = packed;
+  }
+
+  GLuint buffer_ = 0;
+  GLintptr stride_ = 0;
+  std::vector<kernel::GlintMaterial> written_;
+};
+
 struct Renderer::Gpu {
   std::map<ForwardVariant, ShaderProgram> forward;  // compiled on first use
   std::unique_ptr<ShaderProgram> background;        // likewise
@@ -279,6 +331,7 @@ struct Renderer::Gpu {
   ShadowMaps shadowMaps;
   GLuint emptyVertexArray = 0;                      // the background's triangle has no attributes
   std::unique_ptr<DictionaryTexture> dictionary;
+  GlintMaterialBuffer glintMaterials;
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
   // Per material with a normal map, its slope moments (scene/normal_map_moments.h), made on first use.
@@ -366,6 +419,7 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
     : scene_(scene), materials_(scene.materials), lights_(scene.lights), gpu_(std::make_unique<Gpu>()) {
   Gpu& g = *gpu_;
   g.dictionary = std::make_unique<DictionaryTexture>(dictionary);
+  g.glintMaterials.update(materials_);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   // The flat normal (0, 0, 1) exactly: 8-bit 128 would decode to 0.0039 and tilt every normal
   // of a material without a normal map by 0.32 degrees.
@@ -462,6 +516,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
                 std::to_string(maxMsaaSamples()) + " (powers of two)");
   }
   validateFootprintPolicy(settings.footprintPolicy);
+  g.glintMaterials.update(materials_);  // those the viewer edited since the last frame
   g.resizeTarget(settings.width, settings.height, settings.msaa);
   const GLuint target = g.drawFramebuffer();
   glBindFramebuffer(GL_FRAMEBUFFER, target);
@@ -618,6 +673,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glUniform1fv(p.uniform("uLightInverseRange"), lightCount, inverseRanges);
     glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
     glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
+    glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
+                settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
     glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
     glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
     glUniform2fv(p.uniform("uEnvironmentRotation"), 1, &environmentRotation.x);
@@ -655,19 +712,7 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     setUvTransform(p, "uEmissiveUv", m.emissiveUv);
     setUvTransform(p, "uOcclusionUv", m.occlusionUv);
     if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
-    glUniform1i(p.uniform("uGlintLayer"), glint.enabled);
-    glUniform2fv(p.uniform("uGlintAlpha"), 1, &glint.alpha.x);
-    glUniform1f(p.uniform("uGlintRho"), glint.rho);
-    glUniform1f(p.uniform("uGlintLogDensity"), glint.logDensity);
-    glUniform1f(p.uniform("uGlintRelativeArea"), glint.relativeArea);
-    glUniform1f(p.uniform("uGlintDensityRandomisation"), glint.densityRandomisation);
-    glUniform1f(p.uniform("uGlintMaxAnisotropy"), glint.maxAnisotropy);
-    glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
-                settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
-    glUniform1ui(p.uniform("uGlintPatternSeed"), glint.patternSeed);
-    glUniform1f(p.uniform("uGlintUvScale"), glint.uvScale);
-    glUniform1i(p.uniform("uGlintHasLogDensityTexture"), glint.logDensityTexture >= 0);
-    glUniform2fv(p.uniform("uGlintLogDensityRange"), 1, &glint.logDensityRange.x);
+    g.glintMaterials.bind(mesh.material);
     glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
     glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
     glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));

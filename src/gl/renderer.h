@@ -24,6 +24,11 @@ constexpr int kMaxLights = 8;
 // (FrameSettings::shadowCascades, shadow_maps.h).
 constexpr int kShadowCascades = 4;
 
+// The uniform-buffer binding of the forward shader's glint material block
+// (shaders/glint_material_block.glsl): each mesh's draw binds its material's range of the
+// renderer's buffer of all materials there.
+constexpr GLuint kGlintMaterialBinding = 0;
+
 // ZirrKaplanyanReference: the same images as ZirrKaplanyan on the reference shader's schedule, slower
 // (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md "Cost"), so that benchmarks measure against both.
 enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan, ZirrKaplanyanReference };

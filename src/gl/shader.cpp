@@ -74,15 +74,23 @@ constexpr const char* kVersionHeader =
     "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\n";
 
 // GLSL ES 3.00 has no layout(binding = N) (ES 3.10): the qualifiers are taken out of the source
-// and each sampler is given its unit after linking, as the desktop shaders bind them.
-std::vector<std::pair<std::string, GLint>> takeSamplerBindings(std::string& source) {
-  static const std::regex binding(R"re(layout\s*\(\s*binding\s*=\s*(\d+)\s*\)\s*(uniform\s+\w+\s+(\w+)\s*;))re");
-  std::vector<std::pair<std::string, GLint>> units;
-  for (std::sregex_iterator it(source.begin(), source.end(), binding), end; it != end; ++it) {
-    units.emplace_back((*it)[3], std::stoi((*it)[1]));
+// and each sampler is given its unit, each uniform block its binding, after linking, as the
+// desktop shaders bind them.
+struct Bindings {
+  std::vector<std::pair<std::string, GLint>> samplers;  // sampler name, texture unit
+  std::vector<std::pair<std::string, GLuint>> blocks;   // uniform block name, buffer binding
+};
+
+void takeBindings(std::string& source, Bindings& bindings) {
+  static const std::regex sampler(R"re(layout\s*\(\s*binding\s*=\s*(\d+)\s*\)\s*(uniform\s+\w+\s+(\w+)\s*;))re");
+  static const std::regex block(R"re(layout\s*\(\s*std140\s*,\s*binding\s*=\s*(\d+)\s*\)\s*uniform\s+(\w+))re");
+  for (std::sregex_iterator it(source.begin(), source.end(), sampler), end; it != end; ++it) {
+    bindings.samplers.emplace_back((*it)[3], std::stoi((*it)[1]));
   }
-  source = std::regex_replace(source, binding, "$2");
-  return units;
+  for (std::sregex_iterator it(source.begin(), source.end(), block), end; it != end; ++it) {
+    bindings.blocks.emplace_back((*it)[2], static_cast<GLuint>(std::stoul((*it)[1])));
+  }
+  source = std::regex_replace(std::regex_replace(source, sampler, "$2"), block, "layout(std140) uniform $2");
 }
 #else
 constexpr const char* kVersionHeader = "#version 450 core\n";
@@ -128,13 +136,13 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
     for (GLuint shader : shaders) glDeleteShader(shader);
   };
 #ifdef GLINT_GLSL_ES
-  std::vector<std::pair<std::string, GLint>> samplerUnits;
+  Bindings bindings;
 #endif
   for (const auto& [type, name] : stages) {
     const ExpandedSource expanded = expandIncludes(name, sources);
     std::string source = header + expanded.text;
 #ifdef GLINT_GLSL_ES
-    for (auto& unit : takeSamplerBindings(source)) samplerUnits.push_back(unit);
+    takeBindings(source, bindings);
 #endif
     const GLuint shader = glCreateShader(type);
     shaders.push_back(shader);
@@ -165,7 +173,11 @@ ShaderProgram::ShaderProgram(const std::vector<std::pair<GLenum, std::string>>& 
   }
 #ifdef GLINT_GLSL_ES
   glUseProgram(id_);
-  for (const auto& [sampler, unit] : samplerUnits) glUniform1i(uniform(sampler.c_str()), unit);
+  for (const auto& [sampler, unit] : bindings.samplers) glUniform1i(uniform(sampler.c_str()), unit);
+  for (const auto& [block, binding] : bindings.blocks) {
+    const GLuint index = glGetUniformBlockIndex(id_, block.c_str());
+    if (index != GL_INVALID_INDEX) glUniformBlockBinding(id_, index, binding);
+  }
 #endif
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <sstream>
 
@@ -38,24 +39,49 @@ glm::vec3 Scene::boundsMax() const {
 
 float alphaFromRoughness(float roughness) { return std::max(roughness * roughness, 0.01f); }
 
-GlintParameters glintParameters(const GlintLayer& layer, const MicrofacetTarget& target) {
-  GlintParameters p = defaultGlintParameters();
-  p.ndf = target.ndf;
-  p.masking = target.masking;
-  p.multipleScattering = target.multipleScattering;
-  p.alpha = layer.alpha;
-  p.rho = layer.rho;
-  p.logDensity = layer.logDensity;
-  p.relativeArea = layer.relativeArea;
-  p.densityRandomisation = layer.densityRandomisation;
-  p.maxAnisotropy = layer.maxAnisotropy;
-  p.patternSeed = layer.patternSeed;
-  p.colouredCells = layer.randomColours;
-  return p;
+// The layout of kernel/glint_material.h, which the renderers' buffers and shaders rely on.
+static_assert(sizeof(kernel::GlintMaterial) == 80, "GlintMaterial: 80 bytes, five 16-byte rows");
+static_assert(offsetof(kernel::GlintMaterial, alpha) == 0);
+static_assert(offsetof(kernel::GlintMaterial, rho) == 8);
+static_assert(offsetof(kernel::GlintMaterial, logDensity) == 12);
+static_assert(offsetof(kernel::GlintMaterial, relativeArea) == 16);
+static_assert(offsetof(kernel::GlintMaterial, densityRandomisation) == 20);
+static_assert(offsetof(kernel::GlintMaterial, maxAnisotropy) == 24);
+static_assert(offsetof(kernel::GlintMaterial, patternSeed) == 28);
+static_assert(offsetof(kernel::GlintMaterial, logDensityRange) == 32);
+static_assert(offsetof(kernel::GlintMaterial, uvScale) == 40);
+static_assert(offsetof(kernel::GlintMaterial, hasLogDensityTexture) == 44);
+static_assert(offsetof(kernel::GlintMaterial, ndf) == 48);
+static_assert(offsetof(kernel::GlintMaterial, masking) == 52);
+static_assert(offsetof(kernel::GlintMaterial, colouredCells) == 56);
+static_assert(offsetof(kernel::GlintMaterial, multipleScattering) == 60);
+static_assert(offsetof(kernel::GlintMaterial, enabled) == 64);
+static_assert(offsetof(kernel::GlintMaterial, padding0) == 68);
+
+kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTarget& target) {
+  kernel::GlintMaterial m{};  // the padding zero too, so that equal layers pack to equal bytes
+  m.alpha = layer.alpha;
+  m.rho = layer.rho;
+  m.logDensity = layer.logDensity;
+  m.relativeArea = layer.relativeArea;
+  m.densityRandomisation = layer.densityRandomisation;
+  m.maxAnisotropy = layer.maxAnisotropy;
+  m.patternSeed = layer.patternSeed;
+  m.logDensityRange = layer.logDensityRange;
+  m.uvScale = layer.uvScale;
+  m.hasLogDensityTexture = layer.logDensityTexture >= 0 ? 1u : 0u;
+  m.ndf = target.ndf;
+  m.masking = target.masking;
+  m.colouredCells = layer.randomColours ? 1u : 0u;
+  m.multipleScattering = target.multipleScattering ? 1u : 0u;
+  m.enabled = layer.enabled ? 1u : 0u;
+  return m;
 }
 
 void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount) {
-  validateGlintParameters(glintParameters(layer));
+  // The layer's own values, before any texture: the kernel's view of them, validated by its rules.
+  const GlintParameters constants = kernel::glintMaterialConstants(glintMaterial(layer), exactFootprintPolicy());
+  validateGlintParameters(constants);
   if (!(layer.uvScale > 0.0f) || !std::isfinite(layer.uvScale)) {
     std::ostringstream message;
     message << "uv_scale must be positive and finite, got " << layer.uvScale;
@@ -63,7 +89,7 @@ void validateGlintLayer(const GlintLayer& layer, std::size_t textureCount) {
   }
   // The ends of the range are log densities too: check them with the kernel's own rule.
   for (float end : {layer.logDensityRange.x, layer.logDensityRange.y}) {
-    GlintParameters p = glintParameters(layer);
+    GlintParameters p = constants;
     p.logDensity = end;
     try {
       validateGlintParameters(p);

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/bsdf.h"
+#include "glint/kernel/glint_material.h"
 
 namespace glint::scene {
 
@@ -201,9 +202,11 @@ inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0
 // convention), at least 0.01 so the glint BRDF stays within its dictionary.
 float alphaFromRoughness(float roughness);
 
-// The kernel parameters of a glint layer (its constants; textures are applied per shading point)
-// converging to the material's specular target.
-GlintParameters glintParameters(const GlintLayer& layer, const MicrofacetTarget& target = MicrofacetTarget());
+// A glint layer with the material's specular target as the renderers store it (the rasteriser's
+// uniform block, the path tracer's shading): kernel::glintMaterialParameters makes the kernel's
+// parameters of it and the layer's texture samples at a shading point. A disabled layer packs
+// with enabled = 0.
+kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTarget& target = MicrofacetTarget());
 
 // Throws Error naming the first field out of range: the kernel's ranges through
 // glint::validateGlintParameters (one place for them), uv_scale > 0, both ends of

@@ -189,16 +189,12 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
     return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
   }
 
-  // The glint layer's parameters, textures applied as in the shader.
-  GlintParameters params = glintParameters(layer, m.specular);
-  params.footprintPolicy = footprintPolicy_;
-  params.alpha = glm::clamp(layer.alpha * texture(layer.roughnessTexture, uv, footprint).r, 0.01f, 2.0f);
-  if (layer.logDensityTexture >= 0) {
-    params.logDensity = glm::mix(layer.logDensityRange.x, layer.logDensityRange.y,
-                                 texture(layer.logDensityTexture, uv, footprint).r);
-  }
-  params.relativeArea =
-      std::clamp(layer.relativeArea * texture(layer.relativeAreaTexture, uv, footprint).r, 1e-4f, 1.0f);
+  // The glint layer's parameters from its textures' samples (1 where it has none), by the kernel's
+  // mapping, the shader's.
+  const kernel::GlintMaterial material = scene::glintMaterial(layer, m.specular);
+  GlintParameters params = kernel::glintMaterialParameters(
+      material, texture(layer.roughnessTexture, uv, footprint).r, texture(layer.logDensityTexture, uv, footprint).r,
+      texture(layer.relativeAreaTexture, uv, footprint).r, footprintPolicy_);
   const glm::vec3 leanRoughness = kernel::glintLeanCombinedRoughness(params.alpha, params.rho, leanCovariance);
   params.alpha = glm::vec2(leanRoughness);
   params.rho = leanRoughness.z;
@@ -209,9 +205,9 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives. Coloured cells
   // (params.colouredCells, the layer's random colours) are the BSDF's own tint.
   SurfaceFootprint glintFootprint;
-  glintFootprint.uv = uv * layer.uvScale;
-  glintFootprint.duvdx = footprint.duvdx * layer.uvScale;
-  glintFootprint.duvdy = footprint.duvdy * layer.uvScale;
+  glintFootprint.uv = kernel::glintMaterialUv(material, uv);
+  glintFootprint.duvdx = kernel::glintMaterialUv(material, footprint.duvdx);
+  glintFootprint.duvdy = kernel::glintMaterialUv(material, footprint.duvdy);
   const GlintBsdf specular(dictionary_, params, glintFootprint, fresnel, Spectrum(1.0f), sampler_);
   return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
 }

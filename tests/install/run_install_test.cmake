@@ -31,8 +31,9 @@ run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix}
 foreach(file IN ITEMS include/glint/bsdf.h include/glint/dictionary.h include/glint/version.h
                       include/glint/kernel/glint_brdf.h include/glint/kernel/prelude.h
                       lib/cmake/glint/glintConfig.cmake lib/cmake/glint/glintConfigVersion.cmake
-                      share/glint/shaders/forward.frag share/glint/shaders/glint_dictionary.glsl
-                      share/glint/shaders/glint_brdf.h bin/glint)
+                      include/glint/kernel/glint_kernel.h share/glint/shaders/forward.frag
+                      share/glint/shaders/glint_dictionary_gl.glsl share/glint/shaders/glint_kernel.h
+                      share/glint/shaders/prelude.h bin/glint)
   if(NOT EXISTS ${prefix}/${file})
     message(FATAL_ERROR "cmake --install wrote no ${file}")
   endif()

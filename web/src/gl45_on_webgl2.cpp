@@ -6,7 +6,8 @@
 //   - three-component float textures (RGB32F) cannot have mipmaps generated (they are not
 //     colour-renderable): they are stored as RGBA32F, alpha 1;
 //   - WebGL binds a buffer to index data or to other data for life, and a buffer's first use says
-//     which: its contents are kept here until then.
+//     which: its contents are kept here until then (a uniform buffer's first use is
+//     glBindBufferRange, which this file's version of it handles).
 #define GLINT_GL45_ON_WEBGL2_IMPLEMENTATION
 #include <glad/gl.h>
 
@@ -180,6 +181,21 @@ void glNamedBufferStorage(GLuint buffer, GLsizeiptr size, const void* data, GLbi
   pendingBuffers[buffer].assign(bytes, bytes + size);
 }
 
+// Into the contents kept for the buffer's first use, or, once it has been used, through the uniform
+// buffer target (the only one the renderer updates a buffer for), bound back as it was.
+void glNamedBufferSubData(GLuint buffer, GLintptr offset, GLsizeiptr size, const void* data) {
+  auto pending = pendingBuffers.find(buffer);
+  if (pending != pendingBuffers.end()) {
+    std::memcpy(pending->second.data() + offset, data, static_cast<std::size_t>(size));
+    return;
+  }
+  GLint previous = 0;
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &previous);
+  glBindBuffer(GL_UNIFORM_BUFFER, buffer);
+  glBufferSubData(GL_UNIFORM_BUFFER, offset, size, data);
+  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(previous));
+}
+
 void glCreateVertexArrays(GLsizei n, GLuint* arrays) {
   glGenVertexArrays(n, arrays);
   for (GLsizei i = 0; i < n; ++i) vertexArrays[arrays[i]] = {};
@@ -310,6 +326,11 @@ void glTextureStorage3D(GLuint texture, GLsizei levels, GLenum internalFormat, G
   glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
   glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, internalFormat, width, height, depth);
   glBindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(previous));
+}
+
+void glintWebBindBufferRange(GLenum target, GLuint index, GLuint buffer, GLintptr offset, GLsizeiptr size) {
+  bindBuffer(target, buffer);
+  glBindBufferRange(target, index, buffer, offset, size);
 }
 
 void glintWebGetIntegerv(GLenum name, GLint* value) {

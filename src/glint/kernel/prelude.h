@@ -22,12 +22,17 @@
 //     glintMipOffset(R, m) + k for texel k of mip m: (p_m[k], p_m[k+1], q_m[k], q_m[k+1]). Only the
 //     anti-aliased P-SDF (GLINT_FILTERED 1) reads it; a host without the mip chain may return
 //     (glintDictionaryTexelPair(...), 0, 0).
+// A shader that includes a header whose functions read the dictionary (dictionary_lookup.h, and so
+// glint_antialiasing.h, glint_brdf.h, zirr_kaplanyan.h) defines both, even if it calls none of
+// those functions: some GLSL linkers (Mesa's) resolve the calls of every function.
 //
 // GlintDictionaryView is the host's description of its dictionary: in shaders its shape and
 // roughness (which the host fills, from its own uniforms or constant buffer), in C++ pointers to
 // host memory, for which this file defines the hook itself. The host decides where the texels
-// live: glint's renderer reads two buffer textures (shaders/glint_dictionary_gl.glsl), a Vulkan or
-// Direct3D renderer may read storage or typed buffers (tests/kernel/*.comp, *.hlsl).
+// live: glint's renderer reads two buffer textures (shaders/glint_dictionary_gl.glsl); the tests'
+// Vulkan and HLSL hosts read texel and typed buffers (tests/kernel/dictionary_vulkan.glsl,
+// dictionary.hlsl). A GLSL ES host declares high precision for floats and ints (the hashing needs
+// 32-bit integers).
 //
 // Rules for kernel code, so that the same text is valid in every language:
 //   - every input is a function argument: no uniforms, no derivatives, no globals;

@@ -10,6 +10,7 @@
 #include <GLES2/gl2ext.h>
 
 #define GL_TEXTURE_BUFFER 0x8C2A
+#define GL_DYNAMIC_STORAGE_BIT 0x0100  // glNamedBufferStorage's flag for glNamedBufferSubData
 #define GL_MAX_TEXTURE_BUFFER_SIZE 0x8C2B
 // Named so that the shadow maps' code compiles; WebGL2 has no cube-map arrays and the page draws
 // no shadows (web/src/glint_web.cpp).
@@ -30,6 +31,7 @@ void glTextureBuffer(GLuint texture, GLenum internalFormat, GLuint buffer);
 void glGetTextureImage(GLuint texture, GLint level, GLenum format, GLenum type, GLsizei size, void* pixels);
 void glCreateBuffers(GLsizei n, GLuint* buffers);
 void glNamedBufferStorage(GLuint buffer, GLsizeiptr size, const void* data, GLbitfield flags);
+void glNamedBufferSubData(GLuint buffer, GLintptr offset, GLsizeiptr size, const void* data);
 void glCreateVertexArrays(GLsizei n, GLuint* arrays);
 void glVertexArrayVertexBuffer(GLuint array, GLuint binding, GLuint buffer, GLintptr offset, GLsizei stride);
 void glVertexArrayElementBuffer(GLuint array, GLuint buffer);
@@ -58,6 +60,8 @@ void glTextureStorage3D(GLuint texture, GLsizei levels, GLenum internalFormat, G
                         GLsizei depth);
 // ES 3.0's glGetIntegerv, which also answers GL_MAX_TEXTURE_BUFFER_SIZE (the texel buffers' limit).
 void glintWebGetIntegerv(GLenum name, GLint* value);
+// ES 3.0's glBindBufferRange, after uploading the buffer's contents if it has not been bound yet.
+void glintWebBindBufferRange(GLenum target, GLuint index, GLuint buffer, GLintptr offset, GLsizeiptr size);
 
 #ifdef __cplusplus
 }
@@ -65,4 +69,5 @@ void glintWebGetIntegerv(GLenum name, GLint* value);
 
 #ifndef GLINT_GL45_ON_WEBGL2_IMPLEMENTATION
 #define glGetIntegerv glintWebGetIntegerv
+#define glBindBufferRange glintWebBindBufferRange
 #endif
