@@ -3,13 +3,17 @@
 // the Vulkan device (lavapipe) must agree with the CPU on the OpenGL test's cases, by its measure
 // (kernel_cases.h; tests/test_gl_kernel.cpp). The dictionary reaches the kernel through the
 // host's hook (tests/kernel/dictionary_vulkan.glsl, dictionary.hlsl): the GPU's binary16 pair
-// buffer and mip chain as uniform texel buffers, its shape in a uniform buffer.
+// buffer and mip chain as uniform texel buffers, its shape in a uniform buffer; the multiple-
+// scattering albedo tables through the tables' hook (GLINT_ALBEDO_TABLE_HOOK), from a uniform texel
+// buffer holding the kernel's C++ tables.
 #include <cstdint>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "glint/kernel/albedo_tables.h"
 #include "kernel_cases.h"
 #include "test_support.h"
 #include "vulkan_compute.h"
@@ -42,6 +46,9 @@ std::vector<KernelValues> evaluateOnVulkan(const VulkanCompute& vulkan, const st
   const std::vector<KernelInput> inputs = kernelInputs(cases);
   const std::vector<KernelValues> outputs(cases.size());
   const std::vector<std::uint16_t> pairs = dictionary.halfTexelPairs();
+  std::vector<float> albedoTables(std::begin(kernel::GLINT_ALBEDO_TABLE), std::end(kernel::GLINT_ALBEDO_TABLE));
+  albedoTables.insert(albedoTables.end(), std::begin(kernel::GLINT_AVERAGE_ALBEDO_TABLE),
+                      std::end(kernel::GLINT_AVERAGE_ALBEDO_TABLE));
   using Kind = VulkanBuffer::Kind;
   std::vector<VulkanBuffer> buffers{
       vulkanBuffer<KernelInput>(0, Kind::storage, inputs),
@@ -49,6 +56,7 @@ std::vector<KernelValues> evaluateOnVulkan(const VulkanCompute& vulkan, const st
       vulkanBuffer<std::uint16_t>(2, Kind::uniformTexel, pairs, VK_FORMAT_R16G16_SFLOAT),
       vulkanBuffer<std::uint16_t>(3, Kind::uniformTexel, dictionary.filteredHalfTexels(), VK_FORMAT_R16G16B16A16_SFLOAT),
       vulkanBuffer<DictionaryShape>(4, Kind::uniform, std::span(&shape, 1)),
+      vulkanBuffer<float>(5, Kind::uniformTexel, albedoTables, VK_FORMAT_R32_SFLOAT),
   };
   constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x, numthreads
   vulkan.dispatch(readSpirv(std::string(GLINT_TEST_SPIRV_DIR) + "/" + module), buffers,
