@@ -10,6 +10,7 @@
 #include "glint/dictionary_exr.h"
 #include "glint/error.h"
 #include "glint/file_io.h"
+#include "glint/half.h"
 #include "test_support.h"
 
 namespace glint {
@@ -136,6 +137,25 @@ TEST(Dictionary, TexelConventionAndInterpolation) {
   EXPECT_NEAR(d.marginal(7, 3, 63.5f * spacing), 0.5f * d.texel(7, 3, 63), 1e-5f);
   EXPECT_FLOAT_EQ(d.marginal(7, 3, -5.0f * spacing), d.marginal(7, 3, 5.0f * spacing));
   EXPECT_EQ(d.marginal(7, 3, d.parameters().slopeDomain()), 0.0f);
+}
+
+// The GPU's pair buffer: texel k of a distribution is (p[k], p[k+1]), the last one (p[R - 1], 0),
+// the texels of the right level and distribution, as texel() reads them.
+TEST(Dictionary, TexelPairsHoldEachTexelAndItsNeighbour) {
+  const Dictionary& d = defaultDictionary();
+  const DictionaryParameters& p = d.parameters();
+  const std::vector<std::uint16_t> pairs = d.halfTexelPairs();
+  ASSERT_EQ(pairs.size(), 2u * static_cast<std::size_t>(p.numLevels * p.numDistributions * p.texelsPerDistribution));
+  for (int level : {0, 7, p.numLevels - 1}) {
+    for (int distribution : {0, 3, p.numDistributions - 1}) {
+      for (int k = 0; k < p.texelsPerDistribution; ++k) {
+        const std::size_t texel = static_cast<std::size_t>((level * p.numDistributions + distribution) * p.texelsPerDistribution + k);
+        const float next = k + 1 < p.texelsPerDistribution ? d.texel(level, distribution, k + 1) : 0.0f;
+        ASSERT_EQ(halfToFloat(pairs[2 * texel]), d.texel(level, distribution, k)) << level << " " << distribution << " " << k;
+        ASSERT_EQ(halfToFloat(pairs[2 * texel + 1]), next) << level << " " << distribution << " " << k;
+      }
+    }
+  }
 }
 
 TEST(Dictionary, GenerationIsIdenticalOnOneAndTwoThreads) {

@@ -32,17 +32,10 @@ void createBufferTexture(std::span<const std::uint16_t> halves, int components, 
 
 DictionaryTexture::DictionaryTexture(const Dictionary& dictionary)
     : parameters_(dictionary.parameters()), numMips_(dictionary.numMips()), mipRowLength_(dictionary.mipRowLength()) {
-  // Texel k of a distribution holds the pair (p[k], p[k+1]), with p[R] = 0 (the marginal falls to
-  // 0 at 4 sigma_d), so that glintMarginal's linear interpolation costs one fetch instead of two:
-  // on llvmpipe the fetches were about 40% of the glint shader's time (docs/benchmarks.md).
-  const std::span<const std::uint16_t> halves = dictionary.halfTexels();
-  const std::size_t texels = static_cast<std::size_t>(parameters_.texelsPerDistribution);
-  std::vector<std::uint16_t> pairs(2 * halves.size());
-  for (std::size_t i = 0; i < halves.size(); ++i) {
-    const bool lastOfDistribution = (i + 1) % texels == 0;
-    pairs[2 * i] = halves[i];
-    pairs[2 * i + 1] = lastOfDistribution ? std::uint16_t{0} : halves[i + 1];  // binary16 +0
-  }
+  // Texel k of a distribution holds the pair (p[k], p[k+1]) (Dictionary::halfTexelPairs), so that
+  // glintMarginal's linear interpolation costs one fetch instead of two: on llvmpipe the fetches
+  // were about 40% of the glint shader's time (docs/benchmarks.md).
+  const std::vector<std::uint16_t> pairs = dictionary.halfTexelPairs();
   // A buffer texture, not a texture array: llvmpipe's texelFetch on an array computes a mip level,
   // row and layer stride per pixel, about 100 instructions around each fetch; on a buffer it is a
   // bounds check and a gather (docs/benchmarks.md, "What made it fast, and why"). The mip chain

@@ -230,6 +230,17 @@ kernel::GlintDictionaryView Dictionary::view() const {
           parameters_.alpha, filteredValues_.data(), numMips_, mipRowLength_};
 }
 
+std::vector<std::uint16_t> Dictionary::halfTexelPairs() const {
+  const std::size_t texels = static_cast<std::size_t>(parameters_.texelsPerDistribution);
+  std::vector<std::uint16_t> pairs(2 * halves_.size());
+  for (std::size_t i = 0; i < halves_.size(); ++i) {
+    const bool lastOfDistribution = (i + 1) % texels == 0;
+    pairs[2 * i] = halves_[i];
+    pairs[2 * i + 1] = lastOfDistribution ? std::uint16_t{0} : halves_[i + 1];  // binary16 +0
+  }
+  return pairs;
+}
+
 float Dictionary::texel(int level, int distribution, int texel) const {
   return kernel::glintDictionaryTexel(view(), level, distribution, texel);
 }

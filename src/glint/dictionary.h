@@ -52,6 +52,10 @@ class Dictionary {
   float marginal(int level, int distribution, float slope) const;
 
   std::span<const std::uint16_t> halfTexels() const { return halves_; }  // for GPU upload
+  // The texels as the GPU's dictionary buffer holds them (glintDictionaryTexelPair in the shaders):
+  // texel k of a distribution is the pair (p[k], p[k+1]), with p[R] = 0 (the marginal falls to 0 at
+  // 4 sigma_d), so that an interpolation costs one fetch instead of two; two binary16 values a texel.
+  std::vector<std::uint16_t> halfTexelPairs() const;
   std::span<const float> texels() const { return values_; }
 
   // The mip chain that anti-aliasing filters the marginals with (docs/dictionary.md, "Mip chain"),

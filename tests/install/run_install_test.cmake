@@ -1,13 +1,13 @@
 # The install test (ctest label install; tests/CMakeLists.txt): glint as a renderer's developer
 # meets it. Installs the build into a fresh prefix, checks the installed command, configures the
 # examples (examples/CMakeLists.txt: every example folder) from that prefix alone, builds them, runs
-# the path tracer and checks its images (check_example_image.cpp), and runs the OpenGL example and
-# compares its image with `glint render`'s.
+# the path tracer and checks its images (check_example_image.cpp), and runs the OpenGL and Vulkan
+# examples and compares their images with `glint render`'s.
 #   cmake -DSOURCE_DIR=... -DBUILD_DIR=... -DWORK=... -DVERSION=... -DCXX_COMPILER=... -DBUILD_TYPE=...
-#         -DCHECKER=... [-DEXAMPLE_FLAGS=...] -P run_install_test.cmake
+#         -DCHECKER=... -DRENDER_COMPARER=... [-DEXAMPLE_FLAGS=...] -P run_install_test.cmake
 # An example added later (examples/opengl, examples/vulkan) is configured and built here with no
 # edit; to run and check it too, add its run below the path tracer's.
-foreach(variable IN ITEMS SOURCE_DIR BUILD_DIR WORK VERSION CXX_COMPILER BUILD_TYPE CHECKER)
+foreach(variable IN ITEMS SOURCE_DIR BUILD_DIR WORK VERSION CXX_COMPILER BUILD_TYPE CHECKER RENDER_COMPARER)
   if(NOT DEFINED ${variable})
     message(FATAL_ERROR "run_install_test.cmake needs -D${variable}=...")
   endif()
@@ -88,9 +88,26 @@ set(opengl_example ${WORK}/build/opengl/glint_opengl)
 if(EXISTS ${opengl_example})
   run("OpenGL example" ${opengl_example} ${WORK}/opengl.exr --dictionary ${WORK}/dictionary.gdict --size 256)
   run("glint render sphere" ${prefix}/bin/glint render sphere --dict ${WORK}/dictionary.gdict --aa none
-      --shadows off --msaa 1 --size 256x256 -o ${WORK}/render.exr)
-  run("compare the OpenGL example with glint render" ${CHECKER} --against-render ${WORK}/opengl.exr ${WORK}/render.exr)
+      --shadows off --msaa 1 --size 256x256 -o ${WORK}/render-opengl.exr)
+  run("compare the OpenGL example with glint render" ${CHECKER} --against-render ${WORK}/opengl.exr ${WORK}/render-opengl.exr)
   message(STATUS "${run_output}")
 else()
   message(STATUS "OpenGL example: not built (no libepoxy, libOpenGL or libEGL), not compared")
+endif()
+
+# examples/vulkan: deferred shading of `glint render sphere`'s sphere in a Vulkan compute shader
+# (HLSL, the installed kernel), compared with the installed glint's rasteriser rendering the same
+# setup: the one point light, the environment off, no shadow maps, the 2020 model (the example's
+# G-buffer has no slope derivatives), linear EXR, the same dictionary file. compare_with_render.cpp
+# says what is compared and why within those tolerances. The examples' configure skips the example
+# without the Vulkan loader or glslangValidator, and then so does this.
+set(vulkan_example ${WORK}/build/vulkan/glint_vulkan_deferred)
+if(EXISTS ${vulkan_example})
+  run("Vulkan deferred shading" ${vulkan_example} ${WORK}/vulkan.exr --dictionary ${WORK}/dictionary.gdict --size 256)
+  run("glint render sphere" ${prefix}/bin/glint render sphere --size 256x256 --aa none --shadows off
+      --env-intensity 0 --dict ${WORK}/dictionary.gdict -o ${WORK}/render-vulkan.exr)
+  run("compare with glint render" ${RENDER_COMPARER} ${WORK}/vulkan.exr ${WORK}/render-vulkan.exr)
+  message(STATUS "${run_output}")
+else()
+  message(STATUS "examples/vulkan was skipped (no Vulkan loader or glslangValidator when the examples were configured): its image is not checked")
 endif()

@@ -8,7 +8,9 @@
 //   t3 / binding 3: Buffer<float4>, the mip chain, texel (level * N + distribution) * mipRowLength
 //                   + index (docs/dictionary.md, "Mip chain");
 //   b4 / binding 4: cbuffer GlintDictionaryShape: int4 (L, N, R, numMips), float alpha_d,
-//                   int mipRowLength, uint caseCount (the number of cases kernel_eval.hlsl reads).
+//                   int mipRowLength, uint caseCount (the number of cases kernel_eval.hlsl reads);
+//   t5 / binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
+//                   Buffer<float>, GLINT_ALBEDO_TABLE's 4096 values, then GLINT_AVERAGE_ALBEDO_TABLE's 128.
 #ifndef DICTIONARY_HLSL
 #define DICTIONARY_HLSL
 
@@ -44,5 +46,17 @@ float2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distrib
 float4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index) {
   return dictionaryMips[uint((level * view.numDistributions + distribution) * view.mipRowLength + index)];
 }
+
+#if defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
+[[vk::binding(5, 0)]] Buffer<float> albedoTables : register(t5);
+
+float glintAlbedoTableValue(int index) {
+  return albedoTables[uint(index)];
+}
+
+float glintAverageAlbedoTableValue(int index) {
+  return albedoTables[uint(4096 + index)];
+}
+#endif
 
 #endif

@@ -7,7 +7,10 @@
 //   binding 3: uniform texel buffer, four channels a texel: the mip chain, texel
 //              (level * N + distribution) * mipRowLength + index (docs/dictionary.md, "Mip chain");
 //   binding 4: uniform buffer GlintDictionaryShape (std140): ivec4 (L, N, R, numMips), float alpha_d,
-//              int mipRowLength, uint caseCount (the number of cases kernel_eval_vulkan.comp reads).
+//              int mipRowLength, uint caseCount (the number of cases kernel_eval_vulkan.comp reads);
+//   binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
+//              uniform texel buffer, one channel (R32_SFLOAT): GLINT_ALBEDO_TABLE's 4096 values, then
+//              GLINT_AVERAGE_ALBEDO_TABLE's 128.
 // The same bindings as tests/kernel/dictionary.hlsl.
 #ifndef DICTIONARY_VULKAN_GLSL
 #define DICTIONARY_VULKAN_GLSL
@@ -41,5 +44,17 @@ vec2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distribut
 vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index) {
   return texelFetch(dictionaryMips, (level * view.numDistributions + distribution) * view.mipRowLength + index);
 }
+
+#if defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
+layout(set = 0, binding = 5) uniform samplerBuffer albedoTables;
+
+float glintAlbedoTableValue(int index) {
+  return texelFetch(albedoTables, index).x;
+}
+
+float glintAverageAlbedoTableValue(int index) {
+  return texelFetch(albedoTables, 4096 + index).x;
+}
+#endif
 
 #endif

@@ -62,7 +62,23 @@ GLINT_FN vec3 glintMultipleScatteringFresnel(vec3 averageFresnel, float averageA
 GLINT_KERNEL_END
 
 #if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING
+// The tables' values. A shading-language host may define GLINT_ALBEDO_TABLE_HOOK 1 before including
+// the kernel and then define, like the dictionary hook (prelude.h), the two functions declared
+// below, reading the tables from a buffer it binds (the values of GLINT_ALBEDO_TABLE and
+// GLINT_AVERAGE_ALBEDO_TABLE, which C++ code gets from this header). For compilers that handle a
+// large, dynamically indexed constant array badly: glslang's SPIR-V copies the whole array into a
+// local variable at each read, and Mesa's lavapipe turns each read of the copy into a branch per
+// element, which took its compile of the kernel's test shader from 6 s to over 15 minutes.
+#if !defined(__cplusplus) && defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
+float glintAlbedoTableValue(int index);         // GLINT_ALBEDO_TABLE[index]
+float glintAverageAlbedoTableValue(int index);  // GLINT_AVERAGE_ALBEDO_TABLE[index]
+#define GLINT_ALBEDO_AT(index) glintAlbedoTableValue(index)
+#define GLINT_AVERAGE_ALBEDO_AT(index) glintAverageAlbedoTableValue(index)
+#else
 #include "albedo_tables.h"
+#define GLINT_ALBEDO_AT(index) GLINT_ALBEDO_TABLE[index]
+#define GLINT_AVERAGE_ALBEDO_AT(index) GLINT_AVERAGE_ALBEDO_TABLE[index]
+#endif
 
 GLINT_KERNEL_BEGIN
 
@@ -75,8 +91,8 @@ GLINT_FN float glintDirectionalAlbedo(int ndf, int masking, float alpha, float m
   float fy = y - float(i);
   float fx = x - float(j);
   int base = (glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i) * GLINT_ALBEDO_MU_NODES + j;
-  float low = glintMix(GLINT_ALBEDO_TABLE[base], GLINT_ALBEDO_TABLE[base + 1], fx);
-  float high = glintMix(GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES], GLINT_ALBEDO_TABLE[base + GLINT_ALBEDO_MU_NODES + 1], fx);
+  float low = glintMix(GLINT_ALBEDO_AT(base), GLINT_ALBEDO_AT(base + 1), fx);
+  float high = glintMix(GLINT_ALBEDO_AT(base + GLINT_ALBEDO_MU_NODES), GLINT_ALBEDO_AT(base + GLINT_ALBEDO_MU_NODES + 1), fx);
   return glintMix(low, high, fy);
 }
 
@@ -85,7 +101,7 @@ GLINT_FN float glintAverageAlbedo(int ndf, int masking, float alpha) {
   float y = glintAlbedoAlphaCoordinate(alpha);
   int i = min(int(y), GLINT_ALBEDO_ALPHA_NODES - 2);
   int base = glintAlbedoTableIndex(ndf, masking) * GLINT_ALBEDO_ALPHA_NODES + i;
-  return glintMix(GLINT_AVERAGE_ALBEDO_TABLE[base], GLINT_AVERAGE_ALBEDO_TABLE[base + 1], y - float(i));
+  return glintMix(GLINT_AVERAGE_ALBEDO_AT(base), GLINT_AVERAGE_ALBEDO_AT(base + 1), y - float(i));
 }
 
 // f_ms(wo, wi) with F = 1, without the cosine; 0 below either horizon.
