@@ -2,7 +2,8 @@
 // "Test"). For the sphere and the car paint, exported by `glint export` with EXT_materials_glint,
 // each twice: as the scene is (the paper's Beckmann target with V-cavity masking), and with glTF's
 // target (GGX, Smith, the multiple-scattering lobe: the extension's defaults, under which the core
-// material is the layer's smooth average):
+// material is the layer's smooth average); and the extension's two samples (an anisotropic,
+// correlated, coloured layer with its three textures; a plane to the horizon):
 //   - `glint render FILE --aa none --shadows off --msaa 1 --env-intensity 0 --size 256x256`, with
 //     the glint BRDF and with the smooth lobe (--brdf cook-torrance), linear EXR: the 2020 model
 //     under the file's own lights, the view of its default camera;
@@ -23,13 +24,22 @@ import { fileURLToPath } from 'node:url';
 const packageRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const SKIP = 77;
 const SIZE = 256;
-// [file name, scene, glint export's options, whether the core material is the layer's smooth lobe]
+// The files: `glint export SCENE OPTIONS`, or the extension's samples as they are;
+// coreIsSmoothLobe: the core material (GGX, Smith, roughnessFactor) is the layer's smooth lobe.
+const GLTF_TARGET = ['--ndf', 'ggx', '--masking', 'smith', '--multiple-scattering', 'true'];
+const SAMPLES = path.resolve(packageRoot, '..', '..', 'extensions', 'EXT_materials_glint', 'samples');
 const FILES = [
-  ['sphere', 'sphere', [], false],
-  ['carpaint', 'carpaint', [], false],
-  ['sphere-gltf-target', 'sphere', ['--ndf', 'ggx', '--masking', 'smith', '--multiple-scattering', 'true'], true],
-  ['carpaint-gltf-target', 'carpaint', ['--ndf', 'ggx', '--masking', 'smith', '--multiple-scattering', 'true'], true],
+  { name: 'sphere', scene: 'sphere', options: [], coreIsSmoothLobe: false },
+  { name: 'carpaint', scene: 'carpaint', options: [], coreIsSmoothLobe: false },
+  { name: 'sphere-gltf-target', scene: 'sphere', options: GLTF_TARGET, coreIsSmoothLobe: true },
+  { name: 'carpaint-gltf-target', scene: 'carpaint', options: GLTF_TARGET, coreIsSmoothLobe: true },
+  // anisotropic, correlated, coloured, its three glint textures
+  { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
+  // a plane to the horizon: footprints stretched up to the anisotropy cap
+  { name: 'GlintGrazingPlane', sample: 'GlintGrazingPlane.gltf', coreIsSmoothLobe: false },
 ];
+const fileUrl = (file) => (file.sample ? `/samples/${file.sample}` : `/work/${file.name}.glb`);
+const filePath = (file) => (file.sample ? path.join(SAMPLES, file.sample) : path.join(work, `${file.name}.glb`));
 const TOLERANCE = 0.10;
 
 function option(name, fallback) {
@@ -83,9 +93,9 @@ function runGlint(args) {
   execFileSync(glint, args, { stdio: ['ignore', 'ignore', 'pipe'] });
 }
 
-function glintRender(name, brdf) {
-  const output = path.join(work, `${name}-glint-${brdf}.exr`);
-  runGlint(['render', path.join(work, `${name}.glb`), '--brdf', brdf, '--aa', 'none', '--shadows', 'off', '--msaa', '1',
+function glintRender(file, brdf) {
+  const output = path.join(work, `${file.name}-glint-${brdf}.exr`);
+  runGlint(['render', filePath(file), '--brdf', brdf, '--aa', 'none', '--shadows', 'off', '--msaa', '1',
             '--env-intensity', '0', '--size', `${SIZE}x${SIZE}`, '-o', output]);
   return readExr(output);
 }
@@ -104,8 +114,10 @@ const check = (ok, message) => {
 };
 
 build(glint);
-for (const [name, scene, options] of FILES) runGlint(['export', scene, ...options, '-o', path.join(work, `${name}.glb`)]);
-const server = await serve(0, { '/work': work });
+for (const file of FILES) {
+  if (file.scene) runGlint(['export', file.scene, ...file.options, '-o', filePath(file)]);
+}
+const server = await serve(0, { '/work': work, '/samples': SAMPLES });
 const browser = await puppeteer.launch({
   executablePath: chromium,
   headless: true,
@@ -121,12 +133,13 @@ try {
   await page.goto(`http://127.0.0.1:${server.address().port}/test/render.html`, { waitUntil: 'load' });
   await page.waitForFunction(() => window.ready === true, { timeout: 60000 });
   const results = {};
-  for (const [scene, , , coreIsSmoothLobe] of FILES) {
-    const reference = glintStatistics(glintRender(scene, 'glint'), glintRender(scene, 'cook-torrance'));
+  for (const file of FILES) {
+    const scene = file.name;
+    const reference = glintStatistics(glintRender(file, 'glint'), glintRender(file, 'cook-torrance'));
     const three = {};
     for (const mode of ['glints', 'smooth', 'core']) {
       const result = await page.evaluate((url, size, mode) => window.renderView({ url, size, mode }),
-                                         `/work/${scene}.glb`, SIZE, mode);
+                                         fileUrl(file), SIZE, mode);
       const bytes = Buffer.from(result.pixels, 'base64');
       three[mode] = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
       if (keep) writeFileSync(path.join(work, `${scene}-three-${mode}.rgba32f`), bytes);  // rows bottom up
@@ -144,7 +157,7 @@ try {
     check(reference.glintPixels >= 20, `${scene}: glint's own render shows only ${reference.glintPixels} glint pixels`);
     check(Math.abs(fractionRatio - 1) <= TOLERANCE, `${scene}: three's glint fraction is ${fractionRatio.toFixed(3)} times glint's`);
     check(Math.abs(excessRatio - 1) <= TOLERANCE, `${scene}: three's mean excess is ${excessRatio.toFixed(3)} times glint's`);
-    if (coreIsSmoothLobe) {
+    if (file.coreIsSmoothLobe) {
       check(withoutPlugin.glintFraction < 0.1 * reference.glintFraction,
             `${scene}: without the plugin three shows glints (${(100 * withoutPlugin.glintFraction).toFixed(3)}% of its pixels)`);
     }
