@@ -23,8 +23,21 @@ attribute vec4 tangent;
 varying vec4 vGlintTangent;
 `;
 
+// After <begin_vertex>, where three has its skinning and batching matrices: the tangent through
+// the transforms three applies to its own tangent (defaultnormal_vertex, skinnormal_vertex), but
+// morph targets'.
 const VERTEX_MAIN = /* glsl */ `
-  vGlintTangent = vec4( ( modelViewMatrix * vec4( tangent.xyz, 0.0 ) ).xyz, tangent.w );
+  vec3 glintObjectTangent = tangent.xyz;
+#ifdef USE_SKINNING
+  glintObjectTangent = ( skinMatrix * vec4( glintObjectTangent, 0.0 ) ).xyz;
+#endif
+#ifdef USE_BATCHING
+  glintObjectTangent = mat3( batchingMatrix ) * glintObjectTangent;
+#endif
+#ifdef USE_INSTANCING
+  glintObjectTangent = mat3( instanceMatrix ) * glintObjectTangent;
+#endif
+  vGlintTangent = vec4( ( modelViewMatrix * vec4( glintObjectTangent, 0.0 ) ).xyz, tangent.w );
 `;
 
 // The kernel's compile-time choices for one material (one program each, as in glint's rasteriser):
@@ -118,7 +131,7 @@ void glintBeginFragment() {
 void glintShadingFrame(vec3 n) {
   vec3 tangent = vGlintTangent.xyz;
   float handedness = vGlintTangent.w < 0.0 ? -1.0 : 1.0;
-  bool fromUv = dot(tangent, tangent) < 1e-20;
+  bool fromUv = !(dot(tangent, tangent) > 1e-20);
   if (fromUv) {
     tangent = glintUvDpdu;
   }

@@ -13,6 +13,8 @@
 // mean excess within 10% of glint's; without the plugin, with glTF's target, next to no glints
 // (under a tenth of glint's fraction). With the paper's target the core material (GGX, Smith) is
 // not the layer's smooth lobe, which differs from it at grazing angles: printed, not checked.
+// Then three.js's program variants (normal maps, clearcoat, sheen, instancing, skinning, each light
+// type, meshes without tangents): each compiles and shows glints.
 //   node test/run.mjs --glint PATH [--backend llvmpipe|swiftshader] [--keep FOLDER]
 // Exits 77 with one line when chromium or the npm packages are missing (ctest's SKIP_RETURN_CODE).
 import { execFileSync } from 'node:child_process';
@@ -162,6 +164,13 @@ try {
             `${scene}: without the plugin three shows glints (${(100 * withoutPlugin.glintFraction).toFixed(3)}% of its pixels)`);
     }
   }
+  // three.js's program variants (test/render.js, renderVariants): each compiles and glints.
+  const variants = await page.evaluate(() => window.renderVariants({ size: 128 }));
+  for (const [name, v] of Object.entries(variants)) {
+    console.log(`variant ${name}: ${v.glintPixels} of ${v.objectPixels} pixels glint, mean ratio ${v.meanRatio.toFixed(3)}`);
+    check(v.objectPixels > 1000 && v.glintPixels >= 5, `variant ${name}: no glints`);
+  }
+  results.variants = variants;
   if (keep) writeFileSync(path.join(work, 'statistics.json'), JSON.stringify(results, null, 2));
 } finally {
   await browser.close();
