@@ -1,5 +1,6 @@
-// A picture of the example page (README.md's): headless chromium (WebGL2 on Mesa llvmpipe through ANGLE) at SIZE x
-// SIZE pixels, the car paint once loaded and drawn for a second.
+// A picture of the example page (README.md's): headless chromium (WebGL2 on Mesa llvmpipe through
+// ANGLE) at SIZE x SIZE pixels, the car paint once loaded and drawn for a second; then prints the
+// page's frame-time line with the glints and with the smooth lobe (the "glints" box unticked).
 //   node tools/screenshot.mjs OUT.png [SIZE]      (after npm run build)
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
@@ -29,6 +30,17 @@ try {
   if (error || errors.length) throw new Error(error || errors.join('; '));
   await page.screenshot({ path: path.resolve(output) });
   console.log(`glint-three: wrote ${output}`);
+  // A fresh measurement (the page's line covers the last second) with glints, then without.
+  const measure = async () => {
+    const before = await page.evaluate(() => document.querySelector('#frame-time').textContent);
+    await page.waitForFunction((b) => document.querySelector('#frame-time').textContent !== b, { timeout: 120000 }, before);
+    const first = await page.evaluate(() => document.querySelector('#frame-time').textContent);
+    await page.waitForFunction((b) => document.querySelector('#frame-time').textContent !== b, { timeout: 120000 }, first);
+    return page.evaluate(() => document.querySelector('#frame-time').textContent);
+  };
+  console.log(`glints, ${size}x${size}: ${await measure()}`);
+  await page.click('#glints');
+  console.log(`smooth lobe, ${size}x${size}: ${await measure()}`);
 } finally {
   await browser.close();
   server.close();
