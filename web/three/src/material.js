@@ -1,0 +1,161 @@
+// MeshGlintMaterial: three.js's MeshPhysicalMaterial whose specular lobe, for point, spot and
+// directional lights, is glint's procedural glint layer (Chermain et al. 2020), the layer's
+// parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
+// glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
+import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
+import { addGlintLayerToShader } from './shader.js';
+
+// A glint layer's parameters, named as the kernel's GlintMaterial (kernel/glint_material.h) is:
+// this object is the value of the shader's `uniform GlintMaterial glintMaterial`. Defaults are
+// the extension's (alpha's is the core roughness squared: MeshGlintMaterial sets it).
+export class GlintLayer {
+  constructor() {
+    this.alpha = new Vector2(0.25, 0.25);  // the target's roughness along the tangent and the bitangent
+    this.rho = 0;                          // slope correlation
+    this.logDensity = 27;                  // ln(microfacets per unit glint-uv area)
+    this.relativeArea = 1;                 // the share of cells with microfacets
+    this.densityRandomisation = 2;
+    this.maxAnisotropy = 8;
+    this.patternSeed = 0;                  // an unsigned 32-bit integer
+    this.logDensityRange = new Vector2(15, 35);  // what logDensityTexture's 0 and 1 map to
+    this.uvScale = 1;                      // glint uv = TEXCOORD_0 * uvScale
+    this.ndf = 'ggx';                      // or 'beckmann'
+    this.masking = 'smith';                // or 'v-cavity'
+    this.colouredCells = false;            // EXT_materials_glint's randomColors
+    this.multipleScattering = true;
+    this.roughnessTexture = null;          // three Textures, their R channel read as data
+    this.logDensityTexture = null;
+    this.relativeAreaTexture = null;
+  }
+
+  // The uniform struct's fields that are not parameters: flags as the kernel's uints. ndf,
+  // masking, colouredCells and multipleScattering are compiled in (the program's variant).
+  get hasLogDensityTexture() {
+    return this.logDensityTexture ? 1 : 0;
+  }
+
+  get enabled() {
+    return 1;
+  }
+
+  copy(source) {
+    for (const key of Object.keys(source)) {
+      const value = source[key];
+      this[key] = value && value.isVector2 ? value.clone() : value;
+    }
+    return this;
+  }
+
+  clone() {
+    return new GlintLayer().copy(this);
+  }
+}
+
+// The kernel's struct has uints where the layer has booleans or names; the shader overrides those
+// from its compile-time variant, but every field of a struct uniform needs a value.
+function structValue(layer) {
+  return {
+    get alpha() { return layer.alpha; },
+    get rho() { return layer.rho; },
+    get logDensity() { return layer.logDensity; },
+    get relativeArea() { return layer.relativeArea; },
+    get densityRandomisation() { return layer.densityRandomisation; },
+    get maxAnisotropy() { return layer.maxAnisotropy; },
+    get patternSeed() { return layer.patternSeed >>> 0; },
+    get logDensityRange() { return layer.logDensityRange; },
+    get uvScale() { return layer.uvScale; },
+    get hasLogDensityTexture() { return layer.hasLogDensityTexture; },
+    ndf: 0,
+    masking: 0,
+    colouredCells: 0,
+    multipleScattering: 0,
+    get enabled() { return layer.enabled; },
+    padding0: 0,
+    padding1: 0,
+    padding2: 0,
+  };
+}
+
+// A glint texture's stand-in where the layer has none: R = 1 (the factor of an absent texture).
+const WHITE = new DataTexture(new Uint8Array([255, 255, 255, 255]), 1, 1, RGBAFormat, UnsignedByteType);
+WHITE.needsUpdate = true;
+
+export class MeshGlintMaterial extends MeshPhysicalMaterial {
+  // parameters: MeshPhysicalMaterial's, and
+  //   glint: a GlintLayer (or an object of its fields),
+  //   glintDictionary: the dictionary (loadGlintDictionary, src/dictionary.js), needed to draw,
+  //   glintSmooth: true draws the layer's smooth target (the lobe the glints converge to) instead
+  //     of the glints.
+  constructor(parameters = {}) {
+    super();
+    this.isMeshGlintMaterial = true;  // its type stays 'MeshPhysicalMaterial': three picks the program by type
+    this.glint = new GlintLayer();
+    this.glintDictionary = null;
+    this.glintSmooth = false;
+    this.defines.USE_UV = '';  // vUv, the glint uv's source, in every program
+    const { glint, ...rest } = parameters;
+    this.setValues(rest);
+    if (glint) this.glint = glint instanceof GlintLayer ? glint : new GlintLayer().copy(glint);
+    else this.glint.alpha.setScalar(Math.max(this.roughness * this.roughness, 0.01));
+    const material = this;
+    this.glintUniforms = {
+      glintMaterial: { get value() { return material.glintStruct; } },
+      glintDictionaryTexels: { get value() { return material.glintDictionary ? material.glintDictionary.texture : null; } },
+      glintDictionaryShape: {
+        get value() {
+          const d = material.glintDictionary;
+          return d ? [d.numLevels, d.numDistributions, d.texelsPerDistribution] : [1, 1, 2];
+        },
+      },
+      glintDictionaryAlpha: { get value() { return material.glintDictionary ? material.glintDictionary.alpha : 0.5; } },
+      glintRoughnessMap: { get value() { return material.glint.roughnessTexture || WHITE; } },
+      glintLogDensityMap: { get value() { return material.glint.logDensityTexture || WHITE; } },
+      glintRelativeAreaMap: { get value() { return material.glint.relativeAreaTexture || WHITE; } },
+    };
+  }
+
+  get glintStruct() {
+    if (!this._glintStruct || this._glintStructLayer !== this.glint) {
+      this._glintStruct = structValue(this.glint);
+      this._glintStructLayer = this.glint;
+    }
+    return this._glintStruct;
+  }
+
+  get glintVariant() {
+    return {
+      ndf: this.glint.ndf,
+      masking: this.glint.masking,
+      colouredCells: Boolean(this.glint.colouredCells),
+      multipleScattering: Boolean(this.glint.multipleScattering),
+      smooth: Boolean(this.glintSmooth),
+    };
+  }
+
+  onBeforeCompile(shader) {
+    if (!this.glintDictionary) {
+      throw new Error(`glint-three: material '${this.name}' has no glint dictionary (set material.glintDictionary)`);
+    }
+    Object.assign(shader.uniforms, this.glintUniforms);
+    addGlintLayerToShader(shader, this.glintVariant);
+  }
+
+  customProgramCacheKey() {
+    const v = this.glintVariant;
+    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.smooth}`;
+  }
+
+  // From another MeshGlintMaterial, or from a MeshPhysicalMaterial or MeshStandardMaterial (the
+  // core material a glTF loader made), whose layer then stays this one's.
+  copy(source) {
+    if (source.isMeshPhysicalMaterial) super.copy(source);
+    else MeshStandardMaterial.prototype.copy.call(this, source);
+    this.defines = { ...this.defines, STANDARD: '', PHYSICAL: '', USE_UV: '' };
+    if (source.isMeshGlintMaterial) {
+      this.glint = source.glint.clone();
+      this.glintDictionary = source.glintDictionary;
+      this.glintSmooth = source.glintSmooth;
+    }
+    return this;
+  }
+}

@@ -1,0 +1,147 @@
+// EXT_materials_glint for three.js's GLTFLoader (extensions/EXT_materials_glint/README.md): a
+// GLTFLoaderPlugin that gives each material carrying the extension a glint layer.
+//
+//   const dictionary = await loadGlintDictionary('dictionary.gdict');
+//   loader.register((parser) => new GLTFMaterialsGlintExtension(parser, { dictionary }));
+//
+// The loader makes the core material as it would without the extension (MeshPhysicalMaterial, with
+// whatever KHR_materials_* it reads: getMaterialType asks for the physical one), and the plugin's
+// loadMaterial hook turns it into a MeshGlintMaterial with the layer's parameters and textures.
+// loadMaterial rather than getMaterialType + extendMaterialParams because GLTFLoader asks its own
+// extensions for the material type first: a material with KHR_materials_clearcoat would get a
+// plain MeshPhysicalMaterial.
+import { MeshPhysicalMaterial } from 'three';
+import { GlintLayer, MeshGlintMaterial } from './material.js';
+
+export const EXTENSION_NAME = 'EXT_materials_glint';
+
+// The extension's properties: [name in the file, layer field, kind, lower bound, upper bound,
+// bounds inclusive]; the ranges are the schema's (material.EXT_materials_glint.schema.json).
+const NUMBERS = [
+  ['rho', 'rho', -0.99, 0.99],
+  ['logDensity', 'logDensity', 0, 100],
+  ['relativeArea', 'relativeArea', 0, 1, 'exclusive minimum'],
+  ['densityRandomization', 'densityRandomisation', 0, 10],
+  ['maxAnisotropy', 'maxAnisotropy', 1, 64],
+  ['uvScale', 'uvScale', 0, 3.4028234663852886e38, 'exclusive minimum'],
+];
+const PAIRS = [
+  ['alpha', 'alpha', 0.005, 2],
+  ['logDensityRange', 'logDensityRange', 0, 100],
+];
+const BOOLEANS = [
+  ['randomColors', 'colouredCells'],
+  ['multipleScattering', 'multipleScattering'],
+];
+const NAMES = [
+  ['ndf', 'ndf', ['ggx', 'beckmann']],
+  ['masking', 'masking', ['smith', 'v-cavity']],
+];
+const TEXTURES = [
+  ['roughnessTexture', 'roughnessTexture'],
+  ['logDensityTexture', 'logDensityTexture'],
+  ['relativeAreaTexture', 'relativeAreaTexture'],
+];
+const KNOWN = new Set(['patternSeed', 'extensions', 'extras', ...[NUMBERS, PAIRS, BOOLEANS, NAMES, TEXTURES].flat().map((p) => p[0])]);
+
+// The layer of one material's extension object, without its textures. A value outside the
+// extension's range is refused, not clamped (the README's rule), with an Error naming the
+// material and the property.
+export function glintLayerFromExtension(extension, coreRoughness, where) {
+  const fail = (problem) => {
+    throw new Error(`${where}: ${EXTENSION_NAME}.${problem}`);
+  };
+  if (typeof extension !== 'object' || extension === null || Array.isArray(extension)) {
+    throw new Error(`${where}: ${EXTENSION_NAME} must be an object`);
+  }
+  for (const key of Object.keys(extension)) {
+    if (!KNOWN.has(key)) fail(`${key} is not a property of the extension`);
+  }
+  const layer = new GlintLayer();
+  const inRange = (value, low, high, exclusiveLow) =>
+    typeof value === 'number' && Number.isFinite(value) && (exclusiveLow ? value > low : value >= low) && value <= high;
+  for (const [name, field, low, high, exclusive] of NUMBERS) {
+    if (extension[name] === undefined) continue;
+    const value = extension[name];
+    if (!inRange(value, low, high, exclusive)) fail(`${name} must be a number in ${exclusive ? '(' : '['}${low}, ${high}], got ${JSON.stringify(value)}`);
+    layer[field] = value;
+  }
+  for (const [name, field, low, high] of PAIRS) {
+    if (extension[name] === undefined) continue;
+    const value = extension[name];
+    if (!Array.isArray(value) || value.length !== 2 || !value.every((v) => inRange(v, low, high, false))) {
+      fail(`${name} must be two numbers in [${low}, ${high}], got ${JSON.stringify(value)}`);
+    }
+    layer[field].set(value[0], value[1]);
+  }
+  if (extension.alpha === undefined) layer.alpha.setScalar(Math.max(coreRoughness * coreRoughness, 0.01));
+  for (const [name, field] of BOOLEANS) {
+    if (extension[name] === undefined) continue;
+    const value = extension[name];
+    // true and false; 0 and 1 as tools that keep custom properties write them back (the README).
+    if (![true, false, 0, 1].includes(value)) fail(`${name} must be true or false, got ${JSON.stringify(value)}`);
+    layer[field] = Boolean(value);
+  }
+  for (const [name, field, allowed] of NAMES) {
+    if (extension[name] === undefined) continue;
+    if (!allowed.includes(extension[name])) fail(`${name} must be ${allowed.map((a) => `"${a}"`).join(' or ')}, got ${JSON.stringify(extension[name])}`);
+    layer[field] = extension[name];
+  }
+  if (extension.patternSeed !== undefined) {
+    const seed = extension.patternSeed;
+    if (!Number.isInteger(seed) || seed < 0 || seed > 4294967295) fail(`patternSeed must be an integer in [0, 4294967295], got ${JSON.stringify(seed)}`);
+    layer.patternSeed = seed;
+  }
+  return layer;
+}
+
+export class GLTFMaterialsGlintExtension {
+  // options.dictionary: the dictionary (loadGlintDictionary) or a promise of it; every glint
+  // material draws with it. options.smooth: draw each layer's smooth target instead of its glints.
+  constructor(parser, options = {}) {
+    this.parser = parser;
+    this.name = EXTENSION_NAME;
+    this.dictionary = options.dictionary;
+    this.smooth = Boolean(options.smooth);
+    if (!this.dictionary) throw new Error(`${EXTENSION_NAME}: the plugin needs a dictionary (options.dictionary)`);
+  }
+
+  extensionOf(materialIndex) {
+    const definition = this.parser.json.materials[materialIndex];
+    return definition.extensions && definition.extensions[EXTENSION_NAME] !== undefined ? definition.extensions[EXTENSION_NAME] : null;
+  }
+
+  getMaterialType(materialIndex) {
+    return this.extensionOf(materialIndex) !== null ? MeshPhysicalMaterial : null;
+  }
+
+  loadMaterial(materialIndex) {
+    const extension = this.extensionOf(materialIndex);
+    if (extension === null) return null;
+    const parser = this.parser;
+    const definition = parser.json.materials[materialIndex];
+    const where = `material ${materialIndex}${definition.name ? ` '${definition.name}'` : ''}`;
+    const metallicRoughness = definition.pbrMetallicRoughness || {};
+    const coreRoughness = metallicRoughness.roughnessFactor !== undefined ? metallicRoughness.roughnessFactor : 1;
+    let layer;
+    try {
+      layer = glintLayerFromExtension(extension, coreRoughness, where);
+    } catch (error) {
+      return Promise.reject(error);
+    }
+    // The glint textures are data: their R channel as stored (no colour space), sampled at
+    // TEXCOORD_0 without KHR_texture_transform (the extension's rules).
+    const textures = {};
+    const pending = TEXTURES.filter(([name]) => extension[name] !== undefined).map(([name, field]) =>
+      parser.assignTexture(textures, field, extension[name]));
+    return Promise.all([parser.loadMaterial(materialIndex), Promise.resolve(this.dictionary), ...pending]).then(([core, dictionary]) => {
+      for (const [, field] of TEXTURES) layer[field] = textures[field] || null;
+      const material = new MeshGlintMaterial().copy(core);
+      material.glint = layer;
+      material.glintDictionary = dictionary;
+      material.glintSmooth = this.smooth;
+      parser.associations.set(material, parser.associations.get(core));
+      return material;
+    });
+  }
+}

@@ -1,0 +1,83 @@
+// Bad input to the package, in node (ctest -R ThreeWeb): a damaged dictionary file and out-of-range
+// extension values must each be refused with one line that names the file or the material and the
+// problem. The dictionary is one `glint dict` writes, then damaged byte by byte.
+//   node test/bad-input.mjs --glint PATH
+// Exits 77 with one line when the npm packages are missing (ctest's SKIP_RETURN_CODE).
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const packageRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+if (!existsSync(path.join(packageRoot, 'node_modules', 'three'))) {
+  console.log('three.js test skipped: three is not installed in web/three (scripts/deps runs npm ci there)');
+  process.exit(77);
+}
+const { build, findGlint } = await import('../tools/build.mjs');
+const at = process.argv.indexOf('--glint');
+const glint = findGlint(at > 0 ? process.argv[at + 1] : undefined);
+build(glint);  // the plugin's module imports the material's, which imports the generated kernel
+const { parseGlintDictionary } = await import('../src/dictionary.js');
+const { glintLayerFromExtension } = await import('../src/plugin.js');
+
+let failures = 0;
+function expectRefused(what, action, expected) {
+  let message = null;
+  try {
+    action();
+  } catch (error) {
+    message = error.message;
+  }
+  const ok = message !== null && message.includes(expected) && !message.includes('\n');
+  if (!ok) ++failures;
+  console.log(`${ok ? 'ok' : 'FAILED'}: ${what}: ${message === null ? 'accepted' : message}`);
+}
+
+const folder = mkdtempSync(path.join(tmpdir(), 'glint-three-bad-'));
+try {
+  const file = path.join(folder, 'd.gdict');
+  execFileSync(glint, ['dict', '-o', file, '--levels', '4', '--distributions', '8', '--texels', '16'], { stdio: 'ignore' });
+  const good = readFileSync(file);
+  const dictionary = parseGlintDictionary(good, 'd.gdict');
+  const shapeOk = dictionary.numLevels === 4 && dictionary.numDistributions === 8 && dictionary.texelsPerDistribution === 16;
+  if (!shapeOk) ++failures;
+  console.log(`${shapeOk ? 'ok' : 'FAILED'}: a good file reads as 4 levels, 8 distributions, 16 texels`);
+  // The texel pairs: texel k and k + 1 of a marginal, 0 past its last texel.
+  const pairs = dictionary.texture.image.data;
+  const half = (i) => good.readUint16LE(64 + 2 * i);
+  const pairsOk = pairs[0] === half(0) && pairs[1] === half(1) && pairs[2 * 15] === half(15) && pairs[2 * 15 + 1] === 0 &&
+                  pairs[2 * 16] === half(16);
+  if (!pairsOk) ++failures;
+  console.log(`${pairsOk ? 'ok' : 'FAILED'}: texel pairs (k, k + 1), 0 past a marginal's last texel`);
+
+  const damaged = (change) => {
+    const bytes = Buffer.from(good);
+    change(bytes);
+    return bytes;
+  };
+  expectRefused('a truncated file', () => parseGlintDictionary(good.subarray(0, 40), 'd.gdict'), 'd.gdict: too short');
+  expectRefused('another file', () => parseGlintDictionary(damaged((b) => b.write('NOTADICT', 0)), 'd.gdict'), 'd.gdict: not a glint dictionary');
+  expectRefused('a damaged header', () => parseGlintDictionary(damaged((b) => { b[20] ^= 1; }), 'd.gdict'), 'd.gdict: corrupt header (checksum mismatch)');
+  expectRefused('a damaged payload', () => parseGlintDictionary(damaged((b) => { b[100] ^= 1; }), 'd.gdict'), 'd.gdict: corrupt payload (checksum mismatch)');
+  expectRefused('a payload cut short', () => parseGlintDictionary(good.subarray(0, good.length - 2), 'd.gdict'), 'd.gdict: corrupt payload (size)');
+
+  const where = "material 0 'car paint'";
+  const layer = (extension) => () => glintLayerFromExtension(extension, 0.5, where);
+  expectRefused('logDensity 120', layer({ logDensity: 120 }), `${where}: EXT_materials_glint.logDensity must be a number in [0, 100], got 120`);
+  expectRefused('relativeArea 0', layer({ relativeArea: 0 }), 'EXT_materials_glint.relativeArea must be a number in (0, 1]');
+  expectRefused('one alpha', layer({ alpha: [0.3] }), 'EXT_materials_glint.alpha must be two numbers');
+  expectRefused('randomColors "yes"', layer({ randomColors: 'yes' }), 'EXT_materials_glint.randomColors must be true or false');
+  expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
+  expectRefused('a misspelt property', layer({ logDenisty: 14 }), 'EXT_materials_glint.logDenisty is not a property');
+  expectRefused('patternSeed -1', layer({ patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
+  const defaults = glintLayerFromExtension({ randomColors: 1 }, 0.5, where);
+  const defaultsOk = defaults.alpha.x === 0.25 && defaults.alpha.y === 0.25 && defaults.colouredCells === true &&
+                     defaults.logDensity === 27 && defaults.ndf === 'ggx' && defaults.masking === 'smith';
+  if (!defaultsOk) ++failures;
+  console.log(`${defaultsOk ? 'ok' : 'FAILED'}: defaults (alpha = roughness^2, logDensity 27, GGX, Smith) and randomColors 1 as true`);
+} finally {
+  rmSync(folder, { recursive: true, force: true });
+}
+console.log(failures ? `three.js bad-input test: ${failures} check(s) failed` : 'three.js bad-input test: passed');
+process.exit(failures ? 1 : 0);

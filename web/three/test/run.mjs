@@ -1,0 +1,182 @@
+// The three.js glint layer against glint's own renderer (ctest -R web.three; web/three/README.md,
+// "Test"). For the sphere and the car paint, exported by `glint export` with EXT_materials_glint,
+// each twice: as the scene is (the paper's Beckmann target with V-cavity masking), and with glTF's
+// target (GGX, Smith, the multiple-scattering lobe: the extension's defaults, under which the core
+// material is the layer's smooth average); and the extension's two samples (an anisotropic,
+// correlated, coloured layer with its three textures; a plane to the horizon):
+//   - `glint render FILE --aa none --shadows off --msaa 1 --env-intensity 0 --size 256x256`, with
+//     the glint BRDF and with the smooth lobe (--brdf cook-torrance), linear EXR: the 2020 model
+//     under the file's own lights, the view of its default camera;
+//   - three.js in headless chromium, the same file and view through GLTFLoader: with the plugin,
+//     with the plugin drawing each layer's smooth target, and without the plugin;
+// and the glint statistics of each pair (test/statistics.mjs). Checked: three's glint fraction and
+// mean excess within 10% of glint's; without the plugin, with glTF's target, next to no glints
+// (under a tenth of glint's fraction). With the paper's target the core material (GGX, Smith) is
+// not the layer's smooth lobe, which differs from it at grazing angles: printed, not checked.
+// Then three.js's program variants (normal maps, clearcoat, sheen, instancing, skinning, each light
+// type, meshes without tangents): each compiles and shows glints.
+//   node test/run.mjs --glint PATH [--backend llvmpipe|swiftshader] [--keep FOLDER]
+// Exits 77 with one line when chromium or the npm packages are missing (ctest's SKIP_RETURN_CODE).
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const packageRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
+const SKIP = 77;
+const SIZE = 256;
+// The files: `glint export SCENE OPTIONS`, or the extension's samples as they are;
+// coreIsSmoothLobe: the core material (GGX, Smith, roughnessFactor) is the layer's smooth lobe.
+const GLTF_TARGET = ['--ndf', 'ggx', '--masking', 'smith', '--multiple-scattering', 'true'];
+const SAMPLES = path.resolve(packageRoot, '..', '..', 'extensions', 'EXT_materials_glint', 'samples');
+const FILES = [
+  { name: 'sphere', scene: 'sphere', options: [], coreIsSmoothLobe: false },
+  { name: 'carpaint', scene: 'carpaint', options: [], coreIsSmoothLobe: false },
+  { name: 'sphere-gltf-target', scene: 'sphere', options: GLTF_TARGET, coreIsSmoothLobe: true },
+  { name: 'carpaint-gltf-target', scene: 'carpaint', options: GLTF_TARGET, coreIsSmoothLobe: true },
+  // anisotropic, correlated, coloured, its three glint textures
+  { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
+  // a plane to the horizon: footprints stretched up to the anisotropy cap
+  { name: 'GlintGrazingPlane', sample: 'GlintGrazingPlane.gltf', coreIsSmoothLobe: false },
+];
+const fileUrl = (file) => (file.sample ? `/samples/${file.sample}` : `/work/${file.name}.glb`);
+const filePath = (file) => (file.sample ? path.join(SAMPLES, file.sample) : path.join(work, `${file.name}.glb`));
+const TOLERANCE = 0.10;
+
+function option(name, fallback) {
+  const at = process.argv.indexOf(name);
+  return at > 0 && at + 1 < process.argv.length ? process.argv[at + 1] : fallback;
+}
+
+const chromium = process.env.GLINT_CHROMIUM || '/usr/bin/chromium';
+const missing = !existsSync(chromium)
+  ? `${chromium} is not installed (scripts/deps installs chromium)`
+  : !existsSync(path.join(packageRoot, 'node_modules', 'three')) || !existsSync(path.join(packageRoot, 'node_modules', 'puppeteer-core'))
+    ? 'three and puppeteer-core are not installed in web/three (scripts/deps runs npm ci there)'
+    : '';
+if (missing) {
+  console.log(`three.js test skipped: ${missing}`);
+  process.exit(SKIP);
+}
+
+const { build, findGlint } = await import('../tools/build.mjs');
+const { serve } = await import('../tools/serve.mjs');
+const { glintStatistics } = await import('./statistics.mjs');
+const { FloatType } = await import('three');
+const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
+const puppeteer = (await import('puppeteer-core')).default;
+
+const glint = findGlint(option('--glint'));
+const backend = option('--backend', 'llvmpipe');
+const BACKEND_FLAGS = {
+  swiftshader: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  llvmpipe: ['--use-gl=angle', '--use-angle=gl-egl', '--ignore-gpu-blocklist'],
+};
+if (!BACKEND_FLAGS[backend]) {
+  console.error(`three.js test: --backend must be llvmpipe or swiftshader, got '${backend}'`);
+  process.exit(2);
+}
+const keep = option('--keep');
+const work = keep ? path.resolve(keep) : mkdtempSync(path.join(tmpdir(), 'glint-three-'));
+mkdirSync(work, { recursive: true });
+
+// glint's side: the renders, read back as linear RGBA float32, rows as the EXR stores them.
+function readExr(file) {
+  const loader = new EXRLoader();
+  loader.setDataType(FloatType);
+  const bytes = readFileSync(file);
+  const image = loader.parse(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length));
+  if (image.width !== SIZE || image.height !== SIZE) throw new Error(`${file}: ${image.width}x${image.height}, not ${SIZE}x${SIZE}`);
+  return image.data;
+}
+
+function runGlint(args) {
+  execFileSync(glint, args, { stdio: ['ignore', 'ignore', 'pipe'] });
+}
+
+function glintRender(file, brdf) {
+  const output = path.join(work, `${file.name}-glint-${brdf}.exr`);
+  runGlint(['render', filePath(file), '--brdf', brdf, '--aa', 'none', '--shadows', 'off', '--msaa', '1',
+            '--env-intensity', '0', '--size', `${SIZE}x${SIZE}`, '-o', output]);
+  return readExr(output);
+}
+
+function describe(s) {
+  return `${s.glintPixels} of ${s.objectPixels} pixels glint (${(100 * s.glintFraction).toFixed(3)}%), mean excess ` +
+         `${s.meanExcess.toFixed(4)}, mean ratio ${s.meanRatio.toFixed(4)}`;
+}
+
+let failures = 0;
+const check = (ok, message) => {
+  if (!ok) {
+    ++failures;
+    console.log(`FAILED: ${message}`);
+  }
+};
+
+build(glint);
+for (const file of FILES) {
+  if (file.scene) runGlint(['export', file.scene, ...file.options, '-o', filePath(file)]);
+}
+const server = await serve(0, { '/work': work, '/samples': SAMPLES });
+const browser = await puppeteer.launch({
+  executablePath: chromium,
+  headless: true,
+  args: ['--headless=new', '--no-sandbox', ...BACKEND_FLAGS[backend]],
+});
+const pageErrors = [];
+try {
+  const page = await browser.newPage();
+  page.on('console', (message) => {
+    if (message.type() === 'error') pageErrors.push(message.text());
+  });
+  page.on('pageerror', (error) => pageErrors.push(String(error && error.message)));
+  await page.goto(`http://127.0.0.1:${server.address().port}/test/render.html`, { waitUntil: 'load' });
+  await page.waitForFunction(() => window.ready === true, { timeout: 60000 });
+  const results = {};
+  for (const file of FILES) {
+    const scene = file.name;
+    const reference = glintStatistics(glintRender(file, 'glint'), glintRender(file, 'cook-torrance'));
+    const three = {};
+    for (const mode of ['glints', 'smooth', 'core']) {
+      const result = await page.evaluate((url, size, mode) => window.renderView({ url, size, mode }),
+                                         fileUrl(file), SIZE, mode);
+      const bytes = Buffer.from(result.pixels, 'base64');
+      three[mode] = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
+      if (keep) writeFileSync(path.join(work, `${scene}-three-${mode}.rgba32f`), bytes);  // rows bottom up
+      console.log(`three.js, ${scene}, ${mode}: ${result.ms.toFixed(0)} ms, materials ${result.materials.join(', ')}`);
+    }
+    const withPlugin = glintStatistics(three.glints, three.smooth);
+    const withoutPlugin = glintStatistics(three.core, three.smooth);
+    results[scene] = { glint: reference, three: withPlugin, threeWithoutPlugin: withoutPlugin };
+    console.log(`${scene}, glint render:           ${describe(reference)}`);
+    console.log(`${scene}, three.js with plugin:    ${describe(withPlugin)}`);
+    console.log(`${scene}, three.js without plugin: ${describe(withoutPlugin)}`);
+    const fractionRatio = withPlugin.glintFraction / reference.glintFraction;
+    const excessRatio = withPlugin.meanExcess / reference.meanExcess;
+    console.log(`${scene}: three / glint: glint fraction ${fractionRatio.toFixed(3)}, mean excess ${excessRatio.toFixed(3)}`);
+    check(reference.glintPixels >= 20, `${scene}: glint's own render shows only ${reference.glintPixels} glint pixels`);
+    check(Math.abs(fractionRatio - 1) <= TOLERANCE, `${scene}: three's glint fraction is ${fractionRatio.toFixed(3)} times glint's`);
+    check(Math.abs(excessRatio - 1) <= TOLERANCE, `${scene}: three's mean excess is ${excessRatio.toFixed(3)} times glint's`);
+    if (file.coreIsSmoothLobe) {
+      check(withoutPlugin.glintFraction < 0.1 * reference.glintFraction,
+            `${scene}: without the plugin three shows glints (${(100 * withoutPlugin.glintFraction).toFixed(3)}% of its pixels)`);
+    }
+  }
+  // three.js's program variants (test/render.js, renderVariants): each compiles and glints.
+  const variants = await page.evaluate(() => window.renderVariants({ size: 128 }));
+  for (const [name, v] of Object.entries(variants)) {
+    console.log(`variant ${name}: ${v.glintPixels} of ${v.objectPixels} pixels glint, mean ratio ${v.meanRatio.toFixed(3)}`);
+    check(v.objectPixels > 1000 && v.glintPixels >= 5, `variant ${name}: no glints`);
+  }
+  results.variants = variants;
+  if (keep) writeFileSync(path.join(work, 'statistics.json'), JSON.stringify(results, null, 2));
+} finally {
+  await browser.close();
+  server.close();
+  if (!keep) rmSync(work, { recursive: true, force: true });
+}
+check(pageErrors.length === 0, `the page logged errors: ${pageErrors.join(' | ').slice(0, 2000)}`);
+console.log(failures ? `three.js test: ${failures} check(s) failed` : 'three.js test: passed');
+process.exit(failures ? 1 : 0);
