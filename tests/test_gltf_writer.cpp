@@ -1,5 +1,6 @@
 // The glTF writer (scene/gltf_writer.h): every built-in scene and a scene that uses every texture
-// slot, extension and light type read back by the loader as the same scene; errors leave no file.
+// slot, extension and light type read back by the loader as the same scene, every glint field
+// through EXT_materials_glint; errors leave no file.
 // Rendering an exported file against its built-in scene: tests/test_render_cli.cpp.
 #include <cmath>
 #include <filesystem>
@@ -93,6 +94,9 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     expectSameUv(a.normalUv, b.normalUv);
     expectSameUv(a.occlusionUv, b.occlusionUv);
     expectSameUv(a.emissiveUv, b.emissiveUv);
+    EXPECT_EQ(a.specular.ndf, b.specular.ndf);
+    EXPECT_EQ(a.specular.masking, b.specular.masking);
+    EXPECT_EQ(a.specular.multipleScattering, b.specular.multipleScattering);
     const GlintLayer& g = a.glint;
     const GlintLayer& h = b.glint;
     ASSERT_EQ(g.enabled, h.enabled);
@@ -146,6 +150,7 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     EXPECT_LE(glm::length(rightA - rightB), kUnitVectorTolerance);
   }
   EXPECT_TRUE(loaded.unreadFeatures.empty());
+  EXPECT_TRUE(loaded.notes.empty());
 }
 
 TEST(GltfWriter, EveryBuiltinSceneReadsBackAsItself) {
@@ -173,13 +178,14 @@ TEST(GltfWriter, EveryTextureSlotExtensionAndLightReadsBack) {
   expectSameScene(original, loadGltf(test::writeSeparateGltf(original, folder, "separate")));
   // What the extensions and extras look like in the file.
   const json document = json::parse(std::ifstream(folder / "textured.gltf"));
-  EXPECT_EQ(document["extensionsUsed"],
-            json({"KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual"}));
-  const json& glint = document["materials"][0]["extras"]["glint"];
+  EXPECT_EQ(document["extensionsUsed"], json({"KHR_texture_transform", "KHR_materials_emissive_strength",
+                                              "EXT_materials_glint", "KHR_lights_punctual"}));
+  const json& glint = document["materials"][0]["extensions"]["EXT_materials_glint"];
   EXPECT_EQ(glint["alpha"], json({0.3, 0.2}));
-  EXPECT_EQ(glint["log_density"], 18.5);
-  EXPECT_EQ(glint["pattern_seed"], 3000000000.0);
-  EXPECT_EQ(glint["roughness_texture"], 1);
+  EXPECT_EQ(glint["logDensity"], 18.5);
+  EXPECT_EQ(glint["patternSeed"], 3000000000.0);
+  EXPECT_EQ(glint["roughnessTexture"], json({{"index", 1}}));
+  EXPECT_FALSE(document["materials"][0].contains("extras"));
   // A material without a glint layer carries no glint extras, but the test scene's lobe is the
   // paper's, not glTF's: said in extras.glint_specular.
   EXPECT_EQ(document["materials"][1]["extras"],
@@ -191,6 +197,59 @@ TEST(GltfWriter, EveryTextureSlotExtensionAndLightReadsBack) {
   // An embedded image keeps its texture's name (an external one is known by its file name).
   const Scene loaded = loadGltf(folder / "textured.glb");
   for (std::size_t t = 0; t < original.textures.size(); ++t) EXPECT_EQ(loaded.textures[t].name, original.textures[t].name);
+}
+
+// Every field of a glint layer and its specular target, none at its default, goes through
+// EXT_materials_glint and comes back; glTF's target on a layer too. The extension is used, not
+// required: a viewer without it still opens the file and draws the core material.
+TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
+  Scene original = test::texturedTestScene();
+  GlintLayer& layer = original.materials[0].glint;
+  layer.alpha = glm::vec2(0.25f, 0.125f);
+  layer.rho = -0.5f;
+  layer.logDensity = 21.25f;
+  layer.relativeArea = 0.75f;
+  layer.densityRandomisation = 3.5f;
+  layer.maxAnisotropy = 12.0f;
+  layer.patternSeed = 4294967295u;
+  layer.uvScale = 2.5f;
+  layer.randomColours = true;
+  layer.logDensityRange = glm::vec2(12.0f, 33.0f);
+  layer.roughnessTexture = 1;  // the linear textures: metallic-roughness, normal, occlusion
+  layer.logDensityTexture = 2;
+  layer.relativeAreaTexture = 3;
+  original.materials[0].specular = {kernel::GLINT_NDF_BECKMANN, kernel::GLINT_MASKING_VCAVITY, false};
+  original.materials[1].glint.enabled = true;
+  original.materials[1].specular = kGltfSpecular;
+  const fs::path folder = test::temporaryFolder("gltf_writer_glint_fields");
+  for (const char* file : {"fields.glb", "fields.gltf"}) {
+    SCOPED_TRACE(file);
+    writeGltf(folder / file, original);
+    expectSameScene(original, loadGltf(folder / file));
+  }
+  const json document = json::parse(std::ifstream(folder / "fields.gltf"));
+  EXPECT_FALSE(document.contains("extensionsRequired"));
+  const json expected = {{"ndf", "beckmann"},
+                         {"masking", "v-cavity"},
+                         {"multipleScattering", false},
+                         {"alpha", {0.25, 0.125}},
+                         {"rho", -0.5},
+                         {"logDensity", 21.25},
+                         {"relativeArea", 0.75},
+                         {"densityRandomization", 3.5},
+                         {"maxAnisotropy", 12.0},
+                         {"patternSeed", 4294967295.0},
+                         {"uvScale", 2.5},
+                         {"randomColors", true},
+                         {"logDensityRange", {12.0, 33.0}},
+                         {"roughnessTexture", {{"index", 1}}},
+                         {"logDensityTexture", {{"index", 2}}},
+                         {"relativeAreaTexture", {{"index", 3}}}};
+  EXPECT_EQ(document["materials"][0]["extensions"]["EXT_materials_glint"], expected);
+  EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["ndf"], "ggx");
+  EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["masking"], "smith");
+  EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["multipleScattering"], true);
+  for (const json& material : document["materials"]) EXPECT_FALSE(material.contains("extras")) << material.dump();
 }
 
 // A file written from a loaded file is the loaded scene again.

@@ -4,9 +4,11 @@
 // bad options.
 #include <array>
 #include <fstream>
+#include <functional>
 #include <regex>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "glint/image_io.h"
 #include "scene/builtin_scenes.h"
@@ -271,7 +273,7 @@ TEST(ExportCli, ExportsALoadedFileAndAddsGlintLayers) {
   EXPECT_NE(json.find(R"("name":"floor")"), std::string::npos);
   // Both materials now carry a layer, each with the overridden density.
   std::size_t layers = 0;
-  for (std::size_t at = json.find(R"("log_density":20.0)"); at != std::string::npos; at = json.find(R"("log_density":20.0)", at + 1)) {
+  for (std::size_t at = json.find(R"("logDensity":20.0)"); at != std::string::npos; at = json.find(R"("logDensity":20.0)", at + 1)) {
     ++layers;
   }
   EXPECT_EQ(layers, 2u) << json.substr(0, 2000);
@@ -294,6 +296,79 @@ TEST(ExportCli, ErrorsGiveOneLineAndNoFile) {
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
   }
+}
+
+// How often `text` occurs in `within`.
+std::size_t occurrences(const std::string& within, const std::string& text) {
+  std::size_t count = 0;
+  for (std::size_t at = within.find(text); at != std::string::npos; at = within.find(text, at + 1)) ++count;
+  return count;
+}
+
+// The glint layer's two forms through the command: a bad value in EXT_materials_glint or in
+// extras.glint is one line naming the file, the material and the field, and no file is written;
+// 0 and 1 are booleans; a file with extras.glint alone gets one line suggesting a re-export, one
+// with both forms one warning line.
+TEST(ExportCli, GlintLayerFormsErrorsAndNotes) {
+  const auto folder = temporaryFolder("export_glint_forms");
+  writeSeparateGltf(texturedTestScene(), folder, "textured");
+  const std::filesystem::path path = folder / "textured.gltf";
+  const nlohmann::json original = nlohmann::json::parse(slurp(path));
+  auto withMaterial = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json document = original;
+    edit(document["materials"][0]);
+    std::ofstream(path) << document.dump();
+  };
+  auto exportFile = [&] { return runGlint(folder, "export textured.gltf -o out.gltf"); };
+  const std::string where = "glint: error: textured.gltf: material 0 'textured': ";
+  for (const nlohmann::json& bad : {nlohmann::json(2), nlohmann::json("yes"), nlohmann::json(0.5)}) {
+    SCOPED_TRACE(bad.dump());
+    const std::string got = bad.is_string() ? "the string " + bad.dump() : bad.dump();
+    withMaterial([&](nlohmann::json& m) { m["extensions"]["EXT_materials_glint"]["randomColors"] = bad; });
+    expectOneLineError(exportFile(), where + "EXT_materials_glint: randomColors must be true or false (or 0 or 1), got " + got);
+    EXPECT_FALSE(std::filesystem::exists(folder / "out.gltf"));
+    withMaterial([&](nlohmann::json& m) {
+      m["extensions"].erase("EXT_materials_glint");
+      m["extras"]["glint"] = {{"random_colours", bad}};
+    });
+    expectOneLineError(exportFile(), where + "extras.glint: random_colours must be true or false (or 0 or 1), got " + got);
+    EXPECT_FALSE(std::filesystem::exists(folder / "out.gltf"));
+  }
+
+  withMaterial([](nlohmann::json& m) {
+    m["extensions"]["EXT_materials_glint"]["randomColors"] = 1;
+    m["extensions"]["EXT_materials_glint"]["multipleScattering"] = 0;
+  });
+  RunResult result = exportFile();
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const nlohmann::json written = nlohmann::json::parse(slurp(folder / "out.gltf"));
+  EXPECT_EQ(written["materials"][0]["extensions"]["EXT_materials_glint"]["randomColors"], true);
+  EXPECT_EQ(written["materials"][0]["extensions"]["EXT_materials_glint"]["multipleScattering"], false);
+  EXPECT_EQ(occurrences(result.err, "extras.glint"), 0u) << result.err;
+
+  withMaterial([](nlohmann::json& m) {
+    m["extensions"].erase("EXT_materials_glint");
+    m["extras"]["glint"] = {{"log_density", 20}};
+  });
+  result = exportFile();
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(occurrences(result.err, "extras.glint"), 1u) << result.err;
+  EXPECT_NE(result.err.find("glint: textured.gltf: glint layers read from extras.glint, the older form (material 0 "
+                            "'textured'); glint export writes them as EXT_materials_glint\n"),
+            std::string::npos)
+      << result.err;
+  // What it wrote is the extension, with the extras' value.
+  EXPECT_EQ(nlohmann::json::parse(slurp(folder / "out.gltf"))["materials"][0]["extensions"]["EXT_materials_glint"]["logDensity"],
+            20.0);
+
+  withMaterial([](nlohmann::json& m) { m["extras"]["glint"] = {{"log_density", 20}}; });
+  result = exportFile();
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(occurrences(result.err, "extras.glint"), 1u) << result.err;
+  EXPECT_NE(result.err.find("glint: warning: textured.gltf: extras.glint is not read where a material has "
+                            "EXT_materials_glint, whose values win (material 0 'textured')\n"),
+            std::string::npos)
+      << result.err;
 }
 
 // The test scene laid out as separate files (scene/textured.gltf, textured.bin, image0.png for the

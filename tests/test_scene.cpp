@@ -1,7 +1,7 @@
 // The scene module: glTF loading (a file the repository writes, laid out as exporters lay files out;
 // hand-made files with a node hierarchy, lights and cameras; the third-party helmet and Suzanne
-// when ../shared has them), one-line errors for broken files, glint parameters from extras, applyGlint, the
-// tangent generator and the built-in scenes.
+// when ../shared has them), one-line errors for broken files, glint parameters from EXT_materials_glint and
+// extras.glint, applyGlint, the tangent generator and the built-in scenes.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -104,6 +104,14 @@ void editJson(const fs::path& path, const std::function<void(json&)>& edit) {
   json document = json::parse(std::ifstream(path));
   edit(document);
   std::ofstream(path) << document.dump(1);
+}
+
+// The test scene's material 0 carries its glint layer as EXT_materials_glint, as glint export
+// writes it: the tests of extras.glint take the extension out, since it would win.
+void removeGlintExtension(json& document) {
+  for (json& material : document["materials"]) {
+    if (material.contains("extensions")) material["extensions"].erase("EXT_materials_glint");
+  }
 }
 
 // ---- Loading whole files ----------------------------------------------------------------------
@@ -810,6 +818,7 @@ TEST(GltfErrors, MistypedPropertiesInABinaryGltf) {
 TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
   const fs::path path = copyTextured("gltf_glint_extras");
   editJson(path, [](json& d) {
+    removeGlintExtension(d);
     d["materials"][0]["extras"] = {{"glint", {{"alpha", {0.2, 0.3}}, {"log_density", 20}, {"relative_area", 0.5},
                                               {"density_randomisation", 1}, {"max_anisotropy", 16}, {"pattern_seed", 4000000000u},
                                               {"uv_scale", 3}, {"random_colours", true}, {"roughness_texture", 1},
@@ -837,16 +846,25 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
 
 TEST(GltfGlint, AlphaDefaultsToRoughnessSquared) {
   const fs::path path = copyTextured("gltf_glint_alpha");
-  editJson(path, [](json& d) {
-    d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
-    d["materials"][0]["extras"] = {{"glint", json::object()}, {"other_tool", "ignored"}};
-  });
-  // A copy: a reference into the temporary scene would dangle at the end of this statement.
-  const GlintLayer g = loadGltf(path).materials[0].glint;
-  EXPECT_TRUE(g.enabled);
-  EXPECT_NEAR(g.alpha.x, 0.36f, 1e-6f);
-  EXPECT_NEAR(g.alpha.y, 0.36f, 1e-6f);
-  EXPECT_EQ(g.logDensity, 27.0f);
+  // The same in both forms: an empty extension, and an empty extras.glint beside another tool's extras.
+  const std::function<void(json&)> forms[] = {
+      [](json& d) { d["materials"][0]["extensions"]["EXT_materials_glint"] = json::object(); },
+      [](json& d) {
+        removeGlintExtension(d);
+        d["materials"][0]["extras"] = {{"glint", json::object()}, {"other_tool", "ignored"}};
+      }};
+  for (const auto& form : forms) {
+    editJson(path, [&](json& d) {
+      d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 0.6;
+      form(d);
+    });
+    // A copy: a reference into the temporary scene would dangle at the end of this statement.
+    const GlintLayer g = loadGltf(path).materials[0].glint;
+    EXPECT_TRUE(g.enabled);
+    EXPECT_NEAR(g.alpha.x, 0.36f, 1e-6f);
+    EXPECT_NEAR(g.alpha.y, 0.36f, 1e-6f);
+    EXPECT_EQ(g.logDensity, 27.0f);
+  }
   EXPECT_EQ(alphaFromRoughness(0.05f), 0.01f);
 }
 
@@ -858,8 +876,8 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
   // The test scene was written by glint export, which names its layers' targets: left out here.
   editJson(path, [](json& d) {
     for (json& m : d["materials"]) {
-      if (!m.contains("extras") || !m["extras"].contains("glint")) continue;
-      for (const char* field : {"ndf", "masking", "multiple_scattering"}) m["extras"]["glint"].erase(field);
+      if (!m.contains("extensions") || !m["extensions"].contains("EXT_materials_glint")) continue;
+      for (const char* field : {"ndf", "masking", "multipleScattering"}) m["extensions"]["EXT_materials_glint"].erase(field);
     }
   });
   const Scene plain = loadGltf(path);
@@ -867,7 +885,7 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
   EXPECT_EQ(plain.materials[0].specular.masking, kernel::GLINT_MASKING_SMITH);
   EXPECT_TRUE(plain.materials[0].specular.multipleScattering);
   editJson(path, [](json& d) {
-    d["materials"][0]["extras"] = {{"glint", {{"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multiple_scattering", false}}}};
+    d["materials"][0]["extensions"]["EXT_materials_glint"] = {{"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multipleScattering", false}};
   });
   const Scene paper = loadGltf(path);
   EXPECT_EQ(paper.materials[0].specular.ndf, kernel::GLINT_NDF_BECKMANN);
@@ -881,10 +899,251 @@ TEST(GltfGlint, MaterialsGetGltfsSpecularUnlessExtrasSayOtherwise) {
       EXPECT_FALSE(m.specular.multipleScattering) << name;
     }
   }
+  // And so in extras.glint, the older form.
+  editJson(path, [](json& d) {
+    removeGlintExtension(d);
+    d["materials"][0]["extras"] = {{"glint", {{"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multiple_scattering", false}}}};
+  });
+  const MicrofacetTarget extras = loadGltf(path).materials[0].specular;
+  EXPECT_EQ(extras.ndf, kernel::GLINT_NDF_BECKMANN);
+  EXPECT_EQ(extras.masking, kernel::GLINT_MASKING_VCAVITY);
+  EXPECT_FALSE(extras.multipleScattering);
   editJson(path, [](json& d) { d["materials"][0]["extras"] = {{"glint", {{"ndf", "gxx"}}}}; });
   expectLoadError(path, "extras.glint: ndf must be \"beckmann\" or \"ggx\", got \"gxx\"");
-  editJson(path, [](json& d) { d["materials"][0]["extras"] = {{"glint", {{"multiple_scattering", 1}}}}; });
-  expectLoadError(path, "multiple_scattering must be true or false");
+  editJson(path, [](json& d) { d["materials"][0]["extras"] = {{"glint", {{"multiple_scattering", 2}}}}; });
+  expectLoadError(path, "extras.glint: multiple_scattering must be true or false (or 0 or 1), got 2");
+}
+
+// ---- EXT_materials_glint ------------------------------------------------------------------------
+
+constexpr const char* kGlintSchema = GLINT_SOURCE_DIR "/extensions/EXT_materials_glint/schema/material.EXT_materials_glint.schema.json";
+constexpr const char* kGlintSamples = GLINT_SOURCE_DIR "/extensions/EXT_materials_glint/samples";
+
+TEST(GltfGlint, ReadsTheGlintLayerFromTheExtension) {
+  const fs::path path = copyTextured("gltf_glint_extension");
+  editJson(path, [](json& d) {
+    d["materials"][0]["extensions"]["EXT_materials_glint"] = {
+        {"ndf", "beckmann"}, {"masking", "v-cavity"}, {"multipleScattering", false}, {"alpha", {0.2, 0.3}},
+        {"rho", -0.4}, {"logDensity", 20}, {"relativeArea", 0.5}, {"densityRandomization", 1}, {"maxAnisotropy", 16},
+        {"patternSeed", 4000000000u}, {"uvScale", 3}, {"randomColors", true}, {"logDensityRange", {10, 30}},
+        {"roughnessTexture", {{"index", 1}}}, {"logDensityTexture", {{"index", 1}, {"texCoord", 0}}},
+        {"relativeAreaTexture", {{"index", 2}, {"extras", {{"from", "another tool"}}}}},
+        {"extensions", json::object()}, {"extras", {{"note", "glTF properties may carry extras"}}}};
+  });
+  const Scene scene = loadGltf(path);
+  expectWellFormed(scene);
+  const Material& m = scene.materials[0];
+  const GlintLayer& g = m.glint;
+  EXPECT_TRUE(g.enabled);
+  EXPECT_EQ(m.specular.ndf, kernel::GLINT_NDF_BECKMANN);
+  EXPECT_EQ(m.specular.masking, kernel::GLINT_MASKING_VCAVITY);
+  EXPECT_FALSE(m.specular.multipleScattering);
+  EXPECT_EQ(g.alpha, glm::vec2(0.2f, 0.3f));
+  EXPECT_EQ(g.rho, -0.4f);
+  EXPECT_EQ(g.logDensity, 20.0f);
+  EXPECT_EQ(g.relativeArea, 0.5f);
+  EXPECT_EQ(g.densityRandomisation, 1.0f);
+  EXPECT_EQ(g.maxAnisotropy, 16.0f);
+  EXPECT_EQ(g.patternSeed, 4000000000u);
+  EXPECT_EQ(g.uvScale, 3.0f);
+  EXPECT_TRUE(g.randomColours);
+  EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
+  // glTF textures 1 (metallic-roughness) and 2 (normal), read as linear data: the very scene
+  // textures those slots use, not decoded again.
+  EXPECT_EQ(g.roughnessTexture, m.metallicRoughnessTexture);
+  EXPECT_EQ(g.logDensityTexture, m.metallicRoughnessTexture);
+  EXPECT_EQ(g.relativeAreaTexture, m.normalTexture);
+  EXPECT_EQ(scene.textures.size(), 5u);
+  EXPECT_TRUE(scene.unreadFeatures.empty());
+  EXPECT_TRUE(scene.notes.empty());
+}
+
+// Said once per file, however many materials have both.
+TEST(GltfGlint, TheExtensionWinsOverExtrasGlintSaidOnce) {
+  const fs::path path = copyTextured("gltf_glint_both");
+  editJson(path, [](json& d) {
+    // Material 0 keeps the extension glint export wrote (log density 18.5); its extras.glint, not
+    // read, may even be wrong.
+    d["materials"][0]["extras"] = {{"glint", {{"log_density", 5}, {"random_colours", "garbage"}}}};
+    d["materials"][1]["extensions"]["EXT_materials_glint"] = {{"logDensity", 12}};
+    d["materials"][1]["extras"] = {{"glint", {{"log_density", 30}}}};
+  });
+  const Scene scene = loadGltf(path);
+  EXPECT_EQ(scene.materials[0].glint.logDensity, 18.5f);
+  EXPECT_EQ(scene.materials[1].glint.logDensity, 12.0f);
+  EXPECT_EQ(scene.unreadFeatures,
+            std::vector<std::string>{"extras.glint is not read where a material has EXT_materials_glint, whose values "
+                                     "win (material 0 'textured' and 1 more)"});
+  EXPECT_TRUE(scene.notes.empty());
+}
+
+TEST(GltfGlint, ExtrasGlintLoadsWithOneLineSuggestingAReexport) {
+  const fs::path path = copyTextured("gltf_glint_extras_only");
+  editJson(path, [](json& d) {
+    removeGlintExtension(d);
+    d["materials"][0]["extras"] = {{"glint", {{"log_density", 20}}}};
+    d["materials"][1]["extras"] = {{"glint", json::object()}};
+  });
+  const Scene scene = loadGltf(path);
+  EXPECT_TRUE(scene.materials[0].glint.enabled);
+  EXPECT_EQ(scene.materials[0].glint.logDensity, 20.0f);
+  EXPECT_TRUE(scene.materials[1].glint.enabled);
+  EXPECT_EQ(scene.notes, std::vector<std::string>{"glint layers read from extras.glint, the older form (material 0 "
+                                                  "'textured' and 1 more); glint export writes them as EXT_materials_glint"});
+  EXPECT_TRUE(scene.unreadFeatures.empty());
+}
+
+// Blender 3.4 keeps extras as custom properties and writes booleans back as 0 and 1.
+TEST(GltfGlint, BooleansWrittenAsZeroOrOneAreReadAsBooleans) {
+  const fs::path path = copyTextured("gltf_glint_booleans");
+  for (const auto& values : {std::pair<json, json>{1, 0}, std::pair<json, json>{1.0, 0.0}, std::pair<json, json>{true, false}}) {
+    const json& on = values.first;  // not bindings: clang 14's lambdas cannot capture them
+    const json& off = values.second;
+    SCOPED_TRACE(on.dump() + " " + off.dump());
+    editJson(path, [&](json& d) {
+      d["materials"][0]["extensions"]["EXT_materials_glint"] = {{"randomColors", on}, {"multipleScattering", off}};
+      d["materials"][1]["extensions"]["EXT_materials_glint"] = {{"randomColors", off}, {"multipleScattering", on}};
+    });
+    const Scene extension = loadGltf(path);
+    EXPECT_TRUE(extension.materials[0].glint.randomColours);
+    EXPECT_FALSE(extension.materials[0].specular.multipleScattering);
+    EXPECT_FALSE(extension.materials[1].glint.randomColours);
+    EXPECT_TRUE(extension.materials[1].specular.multipleScattering);
+    editJson(path, [&](json& d) {
+      removeGlintExtension(d);
+      d["materials"][0]["extras"] = {{"glint", {{"random_colours", on}, {"multiple_scattering", off}}}};
+      d["materials"][1]["extras"] = {{"glint_specular", {{"multiple_scattering", on}}}};
+    });
+    const Scene extras = loadGltf(path);
+    EXPECT_TRUE(extras.materials[0].glint.randomColours);
+    EXPECT_FALSE(extras.materials[0].specular.multipleScattering);
+    EXPECT_FALSE(extras.materials[1].glint.enabled);
+    EXPECT_TRUE(extras.materials[1].specular.multipleScattering);
+  }
+}
+
+// The schema (extensions/EXT_materials_glint/schema) says what the loader does: its properties are
+// the fields the loader knows, each bound it gives a number is accepted and the nearest float
+// beyond it refused, naming the field, and its defaults are what the loader takes for an absent
+// field.
+TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
+  const json schema = json::parse(std::ifstream(kGlintSchema));
+  const json& properties = schema.at("properties");
+  const fs::path path = copyTextured("gltf_glint_schema");
+  auto withExtension = [&](const json& extension) {
+    editJson(path, [&](json& d) { d["materials"][0]["extensions"]["EXT_materials_glint"] = extension; });
+  };
+  // The loader's field names, from its message for an unknown one.
+  withExtension({{"nonsense", 1}});
+  const std::string unknown = errorOf([&] { loadGltf(path); });
+  const std::string listed = unknown.substr(unknown.find("(known: ") + 8);
+  std::vector<std::string> loaderFields;
+  for (std::size_t at = 0; at < listed.size();) {
+    const std::size_t end = std::min(listed.find(", ", at), listed.find(')', at));
+    loaderFields.push_back(listed.substr(at, end - at));
+    at = end + 2;
+  }
+  std::vector<std::string> schemaFields;
+  for (const auto& [name, property] : properties.items()) {
+    if (name != "extensions" && name != "extras") schemaFields.push_back(name);
+  }
+  std::sort(loaderFields.begin(), loaderFields.end());
+  EXPECT_EQ(schemaFields, loaderFields) << unknown;  // nlohmann::json keeps members sorted
+
+  // The float beyond a bound, as a JSON number (past the largest float: the first double that is
+  // no float, which the loader refuses as beyond a float's range).
+  auto beyond = [](double bound, double direction) {
+    const float next = std::nextafter(static_cast<float>(bound), static_cast<float>(direction));
+    return std::isinf(next) ? std::ldexp(direction, 128) : static_cast<double>(next);
+  };
+  int bounds = 0;
+  for (const auto& item : properties.items()) {
+    const std::string name = item.key();  // not a binding: clang 14's lambdas cannot capture one
+    const json& property = item.value();
+    SCOPED_TRACE(name);
+    const bool array = property.value("type", "") == "array";
+    const json& number = array ? property.at("items") : property;
+    const bool integer = number.value("type", "") == "integer";
+    auto value = [&](double v) { return array ? json::array({v, v}) : integer ? json(static_cast<std::int64_t>(v)) : json(v); };
+    auto accepted = [&](double v) {
+      withExtension({{name, value(v)}});
+      EXPECT_NO_THROW(loadGltf(path)) << v;
+    };
+    auto refused = [&](double v) {
+      withExtension({{name, value(v)}});
+      expectLoadError(path, "material 0 'textured': EXT_materials_glint: " + name);
+    };
+    if (number.contains("minimum")) {
+      const double minimum = number["minimum"].get<double>();
+      accepted(minimum);
+      refused(integer ? minimum - 1 : beyond(minimum, -HUGE_VAL));
+      ++bounds;
+    }
+    if (number.contains("maximum")) {
+      const double maximum = number["maximum"].get<double>();
+      accepted(maximum);
+      refused(integer ? maximum + 1 : beyond(maximum, HUGE_VAL));
+      ++bounds;
+    }
+    if (number.contains("exclusiveMinimum")) {
+      const double minimum = number["exclusiveMinimum"].get<double>();
+      refused(minimum);
+      accepted(beyond(minimum, HUGE_VAL));
+      ++bounds;
+    }
+  }
+  EXPECT_EQ(bounds, 18);  // both ends of each of the schema's nine bounded numbers
+
+  // The defaults: the layer of an empty extension is the layer of one that spells them out.
+  json defaults = json::object();
+  for (const auto& [name, property] : properties.items()) {
+    if (property.contains("default")) defaults[name] = property["default"];
+  }
+  EXPECT_EQ(defaults.size(), 12u);
+  withExtension(json::object());
+  const Material implicit = loadGltf(path).materials[0];
+  withExtension(defaults);
+  const Material explicit_ = loadGltf(path).materials[0];
+  EXPECT_EQ(implicit.specular.ndf, explicit_.specular.ndf);
+  EXPECT_EQ(implicit.specular.masking, explicit_.specular.masking);
+  EXPECT_EQ(implicit.specular.multipleScattering, explicit_.specular.multipleScattering);
+  const GlintLayer& a = implicit.glint;
+  const GlintLayer& b = explicit_.glint;
+  EXPECT_EQ(a.alpha, b.alpha);
+  EXPECT_EQ(a.rho, b.rho);
+  EXPECT_EQ(a.logDensity, b.logDensity);
+  EXPECT_EQ(a.relativeArea, b.relativeArea);
+  EXPECT_EQ(a.densityRandomisation, b.densityRandomisation);
+  EXPECT_EQ(a.maxAnisotropy, b.maxAnisotropy);
+  EXPECT_EQ(a.patternSeed, b.patternSeed);
+  EXPECT_EQ(a.uvScale, b.uvScale);
+  EXPECT_EQ(a.randomColours, b.randomColours);
+  EXPECT_EQ(a.logDensityRange, b.logDensityRange);
+}
+
+// The extension's sample assets load, each material that carries the extension with its layer, with
+// nothing to warn about.
+TEST(GltfGlint, TheExtensionsSamplesLoad) {
+  int samples = 0;
+  for (const auto& entry : fs::directory_iterator(kGlintSamples)) {
+    if (entry.path().extension() != ".gltf") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    ++samples;
+    const json document = json::parse(std::ifstream(entry.path()));
+    const Scene scene = loadGltf(entry.path());
+    expectWellFormed(scene);
+    int layers = 0;
+    for (std::size_t m = 0; m < document["materials"].size(); ++m) {
+      const bool extension = document["materials"][m].contains("extensions") &&
+                             document["materials"][m]["extensions"].contains("EXT_materials_glint");
+      EXPECT_EQ(scene.materials[m].glint.enabled, extension) << "material " << m;
+      layers += extension ? 1 : 0;
+    }
+    EXPECT_GT(layers, 0);
+    EXPECT_TRUE(scene.unreadFeatures.empty());
+    EXPECT_TRUE(scene.notes.empty());
+  }
+  EXPECT_GE(samples, 2);
 }
 
 // ---- Broken files -----------------------------------------------------------------------------
@@ -1053,14 +1312,19 @@ TEST(GltfErrors, NormalTextureWithoutUvs) {
 TEST(GltfErrors, BadGlintExtras) {
   const fs::path path = copyTextured("gltf_bad_glint");
   auto withGlint = [&](const json& glint) {
-    editJson(path, [&](json& d) { d["materials"][0]["extras"] = {{"glint", glint}}; });
+    editJson(path, [&](json& d) {
+      removeGlintExtension(d);
+      d["materials"][0]["extras"] = {{"glint", glint}};
+    });
   };
   withGlint({{"relative_area", 2}});
   expectLoadError(path, "material 0 'textured': extras.glint: relative_area must be in (0, 1], got 2");
   withGlint({{"alpha", "x"}});
   expectLoadError(path, "alpha must be a number or an array of two numbers");
   withGlint({{"alpha", {0.1, 3}}});
-  expectLoadError(path, "alpha_y must be in [0.005, 2], got 3");
+  expectLoadError(path, "extras.glint: alpha[1] must be in [0.005, 2], got 3");
+  withGlint({{"alpha", 3}});
+  expectLoadError(path, "extras.glint: alpha must be in [0.005, 2], got 3");
   withGlint({{"log_density", true}});
   expectLoadError(path, "log_density must be a number");
   withGlint({{"max_anisotropy", 0.5}});
@@ -1070,11 +1334,16 @@ TEST(GltfErrors, BadGlintExtras) {
   withGlint({{"roughness_texture", 7}});
   expectLoadError(path, "roughness_texture must be an integer in [0, 4]");
   withGlint({{"log_density_range", {10, 200}}});
-  expectLoadError(path, "log_density_range: log_density must be in [0, 100], got 200");
+  expectLoadError(path, "extras.glint: log_density_range[1] must be in [0, 100], got 200");
   withGlint({{"uv_scale", 0}});
   expectLoadError(path, "uv_scale must be positive");
-  withGlint({{"random_colours", 1}});
-  expectLoadError(path, "random_colours must be true or false");
+  // 0 and 1 are booleans (BooleansWrittenAsZeroOrOneAreReadAsBooleans); other numbers and strings are not.
+  withGlint({{"random_colours", 2}});
+  expectLoadError(path, "material 0 'textured': extras.glint: random_colours must be true or false (or 0 or 1), got 2");
+  withGlint({{"random_colours", "yes"}});
+  expectLoadError(path, "extras.glint: random_colours must be true or false (or 0 or 1), got the string \"yes\"");
+  withGlint({{"random_colours", 0.5}});
+  expectLoadError(path, "extras.glint: random_colours must be true or false (or 0 or 1), got 0.5");
   withGlint({{"rho", 1.0}});
   expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
   withGlint({{"rho", "0.5"}});
@@ -1091,6 +1360,43 @@ TEST(GltfErrors, BadGlintExtras) {
     d["materials"][0]["normalTexture"]["scale"] = 1e30;
   });
   expectLoadError(path, "normalTexture.scale 1e+30 is not within +-1e4");
+}
+
+// Every bad value of the extension: one line naming the file, the material and the field.
+TEST(GltfErrors, BadGlintExtension) {
+  const fs::path path = copyTextured("gltf_bad_glint_extension");
+  const std::pair<json, std::string> cases[] = {
+      {{{"relativeArea", 2}}, "relativeArea must be in (0, 1], got 2"},
+      {{{"randomColors", 2}}, "randomColors must be true or false (or 0 or 1), got 2"},
+      {{{"randomColors", "yes"}}, "randomColors must be true or false (or 0 or 1), got the string \"yes\""},
+      {{{"multipleScattering", 0.5}}, "multipleScattering must be true or false (or 0 or 1), got 0.5"},
+      {{{"alpha", {0.1, 3}}}, "alpha[1] must be in [0.005, 2], got 3"},
+      {{{"alpha", 0.3}}, "alpha must be an array of two numbers"},
+      {{{"alpha", {0.3, "x"}}}, "alpha[1] must be a number, got the string \"x\""},
+      {{{"rho", -1}}, "rho must be in [-0.99, 0.99], got -1"},
+      {{{"logDensity", "20"}}, "logDensity must be a number, got the string \"20\""},
+      {{{"logDensity", 1e300}}, "logDensity 1e+300 is beyond a float's range"},
+      {{{"densityRandomization", 11}}, "densityRandomization must be in [0, 10], got 11"},
+      {{{"maxAnisotropy", 0.5}}, "maxAnisotropy must be in [1, 64], got 0.5"},
+      {{{"patternSeed", -1}}, "patternSeed must be an integer in [0, 4294967295], got -1"},
+      {{{"patternSeed", 1.5}}, "patternSeed must be an integer in [0, 4294967295], got 1.5"},
+      {{{"uvScale", 0}}, "uvScale must be positive and finite, got 0"},
+      {{{"logDensityRange", {10, 200}}}, "logDensityRange[1] must be in [0, 100], got 200"},
+      {{{"ndf", "gxx"}}, "ndf must be \"beckmann\" or \"ggx\", got \"gxx\""},
+      {{{"masking", 1}}, "masking must be \"v-cavity\" or \"smith\""},
+      {{{"roughnessTexture", 1}}, "roughnessTexture must be a textureInfo object with an index, got 1"},
+      {{{"roughnessTexture", {{"index", 7}}}}, "roughnessTexture.index must be an integer in [0, 4], got 7"},
+      {{{"logDensityTexture", {{"index", 1}, {"texCoord", -1}}}}, "logDensityTexture.texCoord must be an integer"},
+      {{{"relativeAreaTexture", {{"index", 1}, {"scale", 2}}}}, "relativeAreaTexture: unknown textureInfo member"},
+      {{{"density_randomisation", 1}}, "unknown field 'density_randomisation' (known: ndf, masking, multipleScattering, alpha"},
+      {json::array({1}), "must be an object, got an array"},
+  };
+  for (const auto& badCase : cases) {
+    const json& extension = badCase.first;  // not a binding: clang 14's lambdas cannot capture one
+    SCOPED_TRACE(extension.dump());
+    editJson(path, [&](json& d) { d["materials"][0]["extensions"]["EXT_materials_glint"] = extension; });
+    expectLoadError(path, "material 0 'textured': EXT_materials_glint: " + badCase.second);
+  }
 }
 
 // ---- applyGlint -------------------------------------------------------------------------------

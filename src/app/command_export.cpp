@@ -1,5 +1,5 @@
 // `glint export`: a built-in or loaded scene as a glTF 2.0 file, its glint layers in each
-// material's extras.glint (docs/cli.md, docs/scenes.md "Writing glTF").
+// material's EXT_materials_glint (docs/cli.md, docs/scenes.md "Writing glTF").
 #include <cstdio>
 #include <memory>
 
@@ -38,7 +38,7 @@ void runExport(const ExportOptions& options) {
 void registerExportCommand(CLI::App& app) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* command =
-      app.add_subcommand("export", "Write a scene as glTF 2.0 (.glb or .gltf), its glint parameters in extras.glint");
+      app.add_subcommand("export", "Write a scene as glTF 2.0 (.glb or .gltf), its glint parameters in EXT_materials_glint");
   options->scene.addSceneAndMaterialsTo(*command);
   command->add_option("-o,--output", options->output, "Output file: .glb (binary) or .gltf (JSON, data embedded)")
       ->required();

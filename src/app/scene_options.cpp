@@ -138,6 +138,7 @@ scene::Scene SceneOptions::loadScene() const {
   for (const std::string& unread : s.unreadFeatures) {
     std::fprintf(stderr, "glint: warning: %s: %s\n", scene.c_str(), unread.c_str());
   }
+  for (const std::string& note : s.notes) std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), note.c_str());
   for (const scene::Material& m : s.materials) {
     if (m.alphaMode == scene::Material::AlphaMode::Blend) {
       std::fprintf(stderr, "glint: warning: material '%s' has alphaMode BLEND; glint does not blend and draws it opaque\n",

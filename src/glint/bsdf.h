@@ -105,7 +105,7 @@ struct MicrofacetTarget {
   bool multipleScattering = false;  // the compensation lobe of kernel/multiple_scattering.h
 };
 MicrofacetTarget microfacetTarget(const GlintParameters& parameters);
-// The accepted names, as extras.glint and glint eval spell them: "beckmann" | "ggx",
+// The accepted names, as EXT_materials_glint, extras.glint and glint eval spell them: "beckmann" | "ggx",
 // "v-cavity" | "smith". Throws Error naming the field and the value otherwise.
 int ndfFromName(const std::string& field, const std::string& name);
 int maskingFromName(const std::string& field, const std::string& name);

@@ -117,18 +117,6 @@ constexpr std::array kFieldTypes = {
     FieldType{"buffers[].byteLength", JsonType::Index},
 };
 
-// How a value is described after "got": the value itself where it is short.
-std::string described(const nlohmann::json& value) {
-  if (value.is_number() || value.is_boolean() || value.is_null()) return value.dump();
-  if (value.is_string()) {
-    constexpr std::size_t kLongest = 40;
-    return value.get_ref<const std::string&>().size() <= kLongest ? "the string " + value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
-                                                               : "a string";
-  }
-  if (value.is_array()) return "an array";
-  return "an object";
-}
-
 // tinygltf 2.7 reads an integer property only when the JSON number is written as an integer (3.0
 // counts as absent), and into an int (4294967297 becomes 1): both are refused here.
 constexpr std::int64_t kLargestIndex = std::numeric_limits<std::int32_t>::max();
@@ -142,24 +130,24 @@ bool isIndex(const nlohmann::json& value) {
 void expectType(const nlohmann::json& value, JsonType type, const std::string& location) {
   switch (type) {
     case JsonType::Boolean:
-      if (!value.is_boolean()) throw Error(location + " must be true or false, got " + described(value));
+      if (!value.is_boolean()) throw Error(location + " must be true or false, got " + describeJsonValue(value));
       return;
     case JsonType::Number:
-      if (!value.is_number()) throw Error(location + " must be a number, got " + described(value));
+      if (!value.is_number()) throw Error(location + " must be a number, got " + describeJsonValue(value));
       return;
     case JsonType::Index:
       if (!isIndex(value)) {
-        throw Error(location + " must be an integer in [0, " + std::to_string(kLargestIndex) + "], got " + described(value));
+        throw Error(location + " must be an integer in [0, " + std::to_string(kLargestIndex) + "], got " + describeJsonValue(value));
       }
       return;
     case JsonType::String:
-      if (!value.is_string()) throw Error(location + " must be a string, got " + described(value));
+      if (!value.is_string()) throw Error(location + " must be a string, got " + describeJsonValue(value));
       return;
   }
 }
 
 void expectObject(const nlohmann::json& value, const std::string& location) {
-  if (!value.is_object()) throw Error(location + " must be an object, got " + described(value));
+  if (!value.is_object()) throw Error(location + " must be an object, got " + describeJsonValue(value));
 }
 
 // A member name as the message shows it: control characters (a newline, a terminal escape) as '?',
@@ -199,7 +187,7 @@ void checkPath(const nlohmann::json& object, std::string_view path, JsonType typ
     visit(*found, at);
     return;
   }
-  if (!found->is_array()) throw Error(at + " must be an array, got " + described(*found));
+  if (!found->is_array()) throw Error(at + " must be an array, got " + describeJsonValue(*found));
   for (std::size_t i = 0; i < found->size(); ++i) visit((*found)[i], at + "[" + std::to_string(i) + "]");
 }
 
@@ -237,6 +225,17 @@ std::uint32_t littleEndian32(const unsigned char* bytes) {
 }
 
 }  // namespace
+
+std::string describeJsonValue(const nlohmann::json& value) {
+  if (value.is_number() || value.is_boolean() || value.is_null()) return value.dump();
+  if (value.is_string()) {
+    constexpr std::size_t kLongest = 40;
+    return value.get_ref<const std::string&>().size() <= kLongest ? "the string " + value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+                                                               : "a string";
+  }
+  if (value.is_array()) return "an array";
+  return "an object";
+}
 
 std::optional<nlohmann::json> readGltfJson(std::span<const std::byte> bytes) {
   const auto* data = reinterpret_cast<const char*>(bytes.data());
@@ -282,7 +281,7 @@ bool wholeNumberIndicesToIntegers(nlohmann::json& document) {
 }
 
 void checkGltfFieldTypes(const nlohmann::json& document) {
-  if (!document.is_object()) throw Error("the JSON document must be an object, got " + described(document));
+  if (!document.is_object()) throw Error("the JSON document must be an object, got " + describeJsonValue(document));
   if (nestingDepth(document) > kDeepest) {
     throw Error("the JSON nests arrays and objects more than " + std::to_string(kDeepest) + " levels deep");
   }

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,10 @@ namespace glint::scene {
 // The JSON of a .gltf file's bytes or of a .glb's JSON chunk; nullopt when it is truncated or its
 // JSON does not parse (tinygltf then reports the problem in its own words).
 std::optional<nlohmann::json> readGltfJson(std::span<const std::byte> bytes);
+
+// How a message shows a value after "got": the value itself where it is short (2, true, the string
+// "yes"), else its kind (a string, an array, an object).
+std::string describeJsonValue(const nlohmann::json& value);
 
 // Throws glint::Error "PATH must be TYPE, got VALUE" (e.g. "materials[2].doubleSided must be true
 // or false, got the string \"yes\"") for the first property glint reads whose JSON type is not the

@@ -27,6 +27,7 @@
 #include "glint/file_io.h"
 #include "scene/geometry.h"
 #include "scene/gltf_field_types.h"
+#include "scene/gltf_glint.h"
 #include "scene/gltf_precheck.h"
 
 namespace glint::scene {
@@ -325,47 +326,16 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
   });
 }
 
-// ---- Glint extras -----------------------------------------------------------------------------
-
 // Texture coordinates glint accepts, in magnitude.
 constexpr float kLargestUv = 1e6f;
 
-const std::array<const char*, 16> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
-                                                  "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
-                                                  "roughness_texture", "log_density_texture", "log_density_range",
-                                                  "relative_area_texture", "ndf", "masking", "multiple_scattering"};
-
-float numberField(const nlohmann::json& value, const std::string& field) {
-  if (!value.is_number()) throw error(field, " must be a number");
-  const float number = value.get<float>();
-  if (!std::isfinite(number)) throw error(field, " ", value.get<double>(), " is beyond a float's range");
-  return number;
-}
-
-glm::vec2 pairField(const nlohmann::json& value, const std::string& field) {
-  if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
-    throw error(field, " must be an array of two numbers");
-  }
-  return {value[0].get<float>(), value[1].get<float>()};
-}
-
-// An integer in [low, high]; a number with a fractional part, or out of range, is an error.
-std::uint64_t wholeField(const nlohmann::json& value, const std::string& field, std::uint64_t low, std::uint64_t high) {
-  bool ok = false;
-  std::uint64_t result = 0;
-  if (value.is_number_unsigned()) {
-    result = value.get<std::uint64_t>();
-    ok = true;
-  } else if (value.is_number_integer()) {
-    ok = value.get<std::int64_t>() >= 0;
-    result = ok ? static_cast<std::uint64_t>(value.get<std::int64_t>()) : 0;
-  } else if (value.is_number_float()) {
-    const double number = value.get<double>();
-    ok = number >= 0.0 && number == std::floor(number) && number <= static_cast<double>(high);
-    result = ok ? static_cast<std::uint64_t>(number) : 0;
-  }
-  if (!ok || result < low || result > high) throw error(field, " must be an integer in [", low, ", ", high, "]");
-  return result;
+// A material's member of a JSON object kept by tinygltf as text (extras, extensions): null when
+// the text is empty, does not parse, is not an object or lacks the member.
+nlohmann::json memberOf(const std::string& objectText, const char* member) {
+  if (objectText.empty()) return nullptr;
+  const nlohmann::json object = nlohmann::json::parse(objectText, nullptr, false);
+  if (!object.is_object() || !object.contains(member)) return nullptr;
+  return object[member];
 }
 
 // ---- The reader -------------------------------------------------------------------------------
@@ -402,16 +372,11 @@ class GltfReader {
   }
 
  private:
-  // What the file uses and glint does not render, so that the commands warn instead of showing a
-  // different picture silently (docs/scenes.md, "Not read"): one line per kind, naming the first
-  // place and counting the others.
+  // What the file uses and glint does not render (found here and while the materials were read), so
+  // that the commands warn instead of showing a different picture silently (docs/scenes.md, "Not
+  // read"): one line per kind, naming the first place and counting the others. Then the one line
+  // on glint layers read from extras.glint.
   void noteUnreadFeatures() {
-    std::vector<std::pair<std::string, std::vector<std::string>>> kinds;  // in the order first met
-    auto note = [&](const std::string& what, const std::string& where) {
-      auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& kind) { return kind.first == what; });
-      if (it == kinds.end()) it = kinds.insert(kinds.end(), {what, {}});
-      it->second.push_back(where);
-    };
     for (const std::string& extension : model_.extensionsUsed) {
       if (!glintReadsExtension(extension)) note("extension " + extension + " is not read", "");
     }
@@ -453,15 +418,27 @@ class GltfReader {
     if (!model_.animations.empty()) {
       note("animations are not played, the nodes' own transforms are drawn", std::to_string(model_.animations.size()) + " animations");
     }
-    for (const auto& [what, places] : kinds) {
-      std::string line = what;
-      if (!places.front().empty()) {
-        line += " (" + places.front();
-        if (places.size() > 1) line += " and " + std::to_string(places.size() - 1) + " more";
-        line += ")";
-      }
-      scene_.unreadFeatures.push_back(oneLine(line));
+    for (const auto& [what, places] : unread_) scene_.unreadFeatures.push_back(oneLine(what + placesText(places)));
+    // One line for the whole file, however many materials use the older form.
+    if (!extrasGlintMaterials_.empty()) {
+      scene_.notes.push_back(oneLine("glint layers read from extras.glint, the older form" + placesText(extrasGlintMaterials_) +
+                                     "; glint export writes them as EXT_materials_glint"));
     }
+  }
+
+  // Something the file uses that glint does not render, at `where` ("" for the whole file).
+  void note(const std::string& what, const std::string& where) {
+    auto it = std::find_if(unread_.begin(), unread_.end(), [&](const auto& kind) { return kind.first == what; });
+    if (it == unread_.end()) it = unread_.insert(unread_.end(), {what, {}});
+    it->second.push_back(where);
+  }
+
+  // " (the first place and N more)", or "" when the places are the whole file.
+  static std::string placesText(const std::vector<std::string>& places) {
+    if (places.empty() || places.front().empty()) return "";
+    std::string text = " (" + places.front();
+    if (places.size() > 1) text += " and " + std::to_string(places.size() - 1) + " more";
+    return text + ")";
   }
 
   std::vector<int> rootNodes() const {
@@ -1001,99 +978,46 @@ class GltfReader {
       throw error("alphaCutoff must be a finite number >= 0, got ", source.alphaCutoff);
     }
     m.alphaCutoff = static_cast<float>(source.alphaCutoff);
-    // Extras are free-form: only an object with a "glint" member concerns glint. They are read from
-    // the original JSON: tinygltf's own Value drops empty objects and truncates integers to 32 bits.
-    if (!source.extras_json_string.empty()) {
-      const nlohmann::json extras = nlohmann::json::parse(source.extras_json_string, nullptr, false);
-      if (extras.is_object() && extras.contains("glint")) {
-        m.glint = withContext("extras.glint: ", [&] { return glintLayer(extras["glint"], m); });
-        m.specular = withContext("extras.glint: ", [&] { return specularTarget(extras["glint"], m.specular); });
-      } else if (extras.is_object() && extras.contains("glint_specular")) {
-        m.specular = withContext("extras.glint_specular: ", [&] {
-          const nlohmann::json& target = extras["glint_specular"];
-          if (!target.is_object()) throw error("must be an object");
-          for (const auto& item : target.items()) {
-            if (item.key() != "ndf" && item.key() != "masking" && item.key() != "multiple_scattering") {
-              throw error("unknown field '", item.key(), "' (known: ndf, masking, multiple_scattering)");
-            }
-          }
-          return specularTarget(target, m.specular);
-        });
-      }
-    }
+    readGlint(source, m, index);
     return m;
   }
 
-  // docs/scenes.md, "Glint parameters in glTF extras".
-  GlintLayer glintLayer(const nlohmann::json& glint, const Material& material) {
-    if (!glint.is_object()) throw error("must be an object");
-    for (const auto& item : glint.items()) {
-      const std::string& key = item.key();
-      if (std::find(kGlintFields.begin(), kGlintFields.end(), key) == kGlintFields.end()) {
-        std::string known;
-        for (const char* field : kGlintFields) known += (known.empty() ? "" : ", ") + std::string(field);
-        throw error("unknown field '", key, "' (known: ", known, ")");
+  // The material's glint layer and specular target: from EXT_materials_glint, else from
+  // extras.glint, the older form, or extras.glint_specular (docs/scenes.md, "Glint parameters in
+  // glTF"). Both are read from the file's original JSON: tinygltf's own Value drops empty objects
+  // ("glint": {} still enables a layer) and keeps only 32-bit integers. Extras are free-form: only
+  // their "glint" and "glint_specular" members concern glint.
+  void readGlint(const tinygltf::Material& source, Material& m, int index) {
+    const std::string label = "material " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+    const GlintTextureSource textures{
+        model_.textures.size(), [&](int gltfIndex) { return texture(gltfIndex, false); },
+        [&](const std::string& what, const std::string& field) {
+          note(what, label + " " + kGlintExtensionName + "." + field);
+        }};
+    const nlohmann::json extension = memberOf(source.extensions_json_string, kGlintExtensionName);
+    const nlohmann::json glint = memberOf(source.extras_json_string, "glint");
+    const nlohmann::json specular = memberOf(source.extras_json_string, "glint_specular");
+    GltfGlint read{m.glint, m.specular};
+    if (!extension.is_null()) {
+      read = withContext(std::string(kGlintExtensionName) + ": ", [&] {
+        return readGlintLayer(extension, GlintSpelling::Extension, m.roughness, m.specular, textures);
+      });
+      if (!glint.is_null() || !specular.is_null()) {
+        note(std::string(glint.is_null() ? "extras.glint_specular" : "extras.glint") +
+                 " is not read where a material has EXT_materials_glint, whose values win",
+             label);
       }
+    } else if (!glint.is_null()) {
+      read = withContext("extras.glint: ", [&] {
+        return readGlintLayer(glint, GlintSpelling::Extras, m.roughness, m.specular, textures);
+      });
+      extrasGlintMaterials_.push_back(label);
+    } else if (!specular.is_null()) {
+      read.specular = withContext("extras.glint_specular: ", [&] { return readGlintSpecularTarget(specular, m.specular); });
     }
-    GlintLayer layer;
-    layer.enabled = true;
-    layer.alpha = glm::vec2(alphaFromRoughness(material.roughness));
-    if (glint.contains("alpha")) {
-      const nlohmann::json& alpha = glint["alpha"];
-      if (alpha.is_number()) {
-        layer.alpha = glm::vec2(numberField(alpha, "alpha"));
-      } else if (alpha.is_array()) {
-        layer.alpha = pairField(alpha, "alpha");
-      } else {
-        throw error("alpha must be a number or an array of two numbers");
-      }
-    }
-    const std::pair<const char*, float*> numbers[] = {{"rho", &layer.rho},
-                                                      {"log_density", &layer.logDensity},
-                                                      {"relative_area", &layer.relativeArea},
-                                                      {"density_randomisation", &layer.densityRandomisation},
-                                                      {"max_anisotropy", &layer.maxAnisotropy},
-                                                      {"uv_scale", &layer.uvScale}};
-    for (const auto& [field, target] : numbers) {
-      if (glint.contains(field)) *target = numberField(glint[field], field);
-    }
-    if (glint.contains("pattern_seed")) {
-      layer.patternSeed = static_cast<std::uint32_t>(wholeField(glint["pattern_seed"], "pattern_seed", 0, 0xffffffffu));
-    }
-    if (glint.contains("random_colours")) {
-      if (!glint["random_colours"].is_boolean()) throw error("random_colours must be true or false");
-      layer.randomColours = glint["random_colours"].get<bool>();
-    }
-    if (glint.contains("log_density_range")) layer.logDensityRange = pairField(glint["log_density_range"], "log_density_range");
-    const std::pair<const char*, int*> textures[] = {{"roughness_texture", &layer.roughnessTexture},
-                                                     {"log_density_texture", &layer.logDensityTexture},
-                                                     {"relative_area_texture", &layer.relativeAreaTexture}};
-    for (const auto& [field, target] : textures) {
-      if (!glint.contains(field)) continue;
-      if (model_.textures.empty()) throw error(field, ": the file has no textures");
-      const int index = static_cast<int>(wholeField(glint[field], field, 0, model_.textures.size() - 1));
-      *target = withContext(std::string(field) + ": ", [&] { return texture(index, false); });
-    }
-    validateGlintLayer(layer, scene_.textures.size());
-    return layer;
-  }
-
-  // The material's specular target as extras.glint may set it: ndf, masking, multiple_scattering
-  // (docs/scenes.md), each defaulting to glTF's.
-  static MicrofacetTarget specularTarget(const nlohmann::json& glint, MicrofacetTarget target) {
-    if (glint.contains("ndf")) {
-      if (!glint["ndf"].is_string()) throw error("ndf must be \"beckmann\" or \"ggx\"");
-      target.ndf = ndfFromName("ndf", glint["ndf"].get<std::string>());
-    }
-    if (glint.contains("masking")) {
-      if (!glint["masking"].is_string()) throw error("masking must be \"v-cavity\" or \"smith\"");
-      target.masking = maskingFromName("masking", glint["masking"].get<std::string>());
-    }
-    if (glint.contains("multiple_scattering")) {
-      if (!glint["multiple_scattering"].is_boolean()) throw error("multiple_scattering must be true or false");
-      target.multipleScattering = glint["multiple_scattering"].get<bool>();
-    }
-    return target;
+    if (read.layer.enabled) validateGlintLayer(read.layer, scene_.textures.size());
+    m.glint = read.layer;
+    m.specular = read.specular;
   }
 
   struct FileCamera {
@@ -1106,6 +1030,9 @@ class GltfReader {
   Scene scene_;
   std::vector<FileCamera> fileCameras_;
   std::map<std::pair<int, bool>, int> textureOf_;  // (image, sRGB) -> scene texture
+  // What the file uses and glint does not render: each kind in the order first met, with its places.
+  std::vector<std::pair<std::string, std::vector<std::string>>> unread_;
+  std::vector<std::string> extrasGlintMaterials_;  // the materials whose layer came from extras.glint
   int defaultMaterial_ = -1;
 };
 

@@ -16,6 +16,7 @@
 #include "glint/image.h"
 #include "glint/image_io.h"
 #include "scene/geometry.h"
+#include "scene/gltf_glint.h"
 
 namespace glint::scene {
 
@@ -37,40 +38,45 @@ tinygltf::Value pair(glm::vec2 value) {
   return tinygltf::Value(tinygltf::Value::Array{number(value.x), number(value.y)});
 }
 
-// The glint layer exactly as the loader reads it (docs/scenes.md, "Glint parameters in glTF
-// extras"): every field, so that the file does not depend on the loader's defaults.
-// A material's specular target as extras.glint and extras.glint_specular spell it.
-void writeSpecularTarget(tinygltf::Value::Object& fields, const MicrofacetTarget& specular) {
-  fields["ndf"] = tinygltf::Value(std::string(ndfName(specular.ndf)));
-  fields["masking"] = tinygltf::Value(std::string(maskingName(specular.masking)));
-  fields["multiple_scattering"] = tinygltf::Value(specular.multipleScattering);
+// A material's specular target as the glint fields spell it (in EXT_materials_glint, or in
+// extras.glint_specular for a material without a layer).
+void writeSpecularTarget(tinygltf::Value::Object& fields, const MicrofacetTarget& specular, GlintSpelling spelling) {
+  fields[glintFieldName(GlintField::Ndf, spelling)] = tinygltf::Value(std::string(ndfName(specular.ndf)));
+  fields[glintFieldName(GlintField::Masking, spelling)] = tinygltf::Value(std::string(maskingName(specular.masking)));
+  fields[glintFieldName(GlintField::MultipleScattering, spelling)] = tinygltf::Value(specular.multipleScattering);
 }
 
-tinygltf::Value glintExtras(const GlintLayer& layer, const MicrofacetTarget& specular) {
+// The glint layer as EXT_materials_glint, exactly as the loader reads it back
+// (extensions/EXT_materials_glint/README.md): every field, so that the file does not depend on a
+// reader's defaults; textures as textureInfo objects.
+tinygltf::Value glintExtension(const GlintLayer& layer, const MicrofacetTarget& specular) {
+  constexpr GlintSpelling kSpelling = GlintSpelling::Extension;
+  auto name = [](GlintField field) { return glintFieldName(field, kSpelling); };
   tinygltf::Value::Object glint;
-  writeSpecularTarget(glint, specular);
-  glint["alpha"] = pair(layer.alpha);
-  glint["rho"] = number(layer.rho);
-  glint["log_density"] = number(layer.logDensity);
-  glint["relative_area"] = number(layer.relativeArea);
-  glint["density_randomisation"] = number(layer.densityRandomisation);
-  glint["max_anisotropy"] = number(layer.maxAnisotropy);
+  writeSpecularTarget(glint, specular, kSpelling);
+  glint[name(GlintField::Alpha)] = pair(layer.alpha);
+  glint[name(GlintField::Rho)] = number(layer.rho);
+  glint[name(GlintField::LogDensity)] = number(layer.logDensity);
+  glint[name(GlintField::RelativeArea)] = number(layer.relativeArea);
+  glint[name(GlintField::DensityRandomization)] = number(layer.densityRandomisation);
+  glint[name(GlintField::MaxAnisotropy)] = number(layer.maxAnisotropy);
   // tinygltf's integers are 32-bit ints: a seed beyond them is written as a whole double.
-  glint["pattern_seed"] = layer.patternSeed <= static_cast<std::uint32_t>(std::numeric_limits<int>::max())
-                              ? tinygltf::Value(static_cast<int>(layer.patternSeed))
-                              : tinygltf::Value(static_cast<double>(layer.patternSeed));
-  glint["uv_scale"] = number(layer.uvScale);
-  glint["random_colours"] = tinygltf::Value(layer.randomColours);
-  glint["log_density_range"] = pair(layer.logDensityRange);
-  const std::pair<const char*, int> textures[] = {{"roughness_texture", layer.roughnessTexture},
-                                                  {"log_density_texture", layer.logDensityTexture},
-                                                  {"relative_area_texture", layer.relativeAreaTexture}};
+  glint[name(GlintField::PatternSeed)] = layer.patternSeed <= static_cast<std::uint32_t>(std::numeric_limits<int>::max())
+                                            ? tinygltf::Value(static_cast<int>(layer.patternSeed))
+                                            : tinygltf::Value(static_cast<double>(layer.patternSeed));
+  glint[name(GlintField::UvScale)] = number(layer.uvScale);
+  glint[name(GlintField::RandomColors)] = tinygltf::Value(layer.randomColours);
+  glint[name(GlintField::LogDensityRange)] = pair(layer.logDensityRange);
+  const std::pair<GlintField, int> textures[] = {{GlintField::RoughnessTexture, layer.roughnessTexture},
+                                                 {GlintField::LogDensityTexture, layer.logDensityTexture},
+                                                 {GlintField::RelativeAreaTexture, layer.relativeAreaTexture}};
   for (const auto& [field, index] : textures) {
-    if (index >= 0) glint[field] = tinygltf::Value(index);
+    if (index < 0) continue;
+    tinygltf::Value::Object textureInfo;
+    textureInfo["index"] = tinygltf::Value(index);
+    glint[name(field)] = tinygltf::Value(std::move(textureInfo));
   }
-  tinygltf::Value::Object extras;
-  extras["glint"] = tinygltf::Value(std::move(glint));
-  return tinygltf::Value(std::move(extras));
+  return tinygltf::Value(std::move(glint));
 }
 
 std::vector<double> decimals(std::initializer_list<float> values) {
@@ -116,6 +122,9 @@ class GltfWriter {
     model_.defaultScene = 0;
     if (usesTextureTransforms_) model_.extensionsUsed.push_back("KHR_texture_transform");
     if (usesEmissiveStrength_) model_.extensionsUsed.push_back("KHR_materials_emissive_strength");
+    // Used, not required: a viewer without it draws the core material, the layer's smooth average
+    // (extensions/EXT_materials_glint/README.md, "Fallback").
+    if (usesGlint_) model_.extensionsUsed.push_back(kGlintExtensionName);
     // KHR_lights_punctual is added to extensionsUsed by tinygltf when there are lights.
     return std::move(model_);
   }
@@ -250,13 +259,14 @@ class GltfWriter {
       for (int t : {m.glint.roughnessTexture, m.glint.logDensityTexture, m.glint.relativeAreaTexture}) {
         textureIndex(t, "glint texture", m);
       }
-      out.extras = glintExtras(m.glint, m.specular);
+      out.extensions[kGlintExtensionName] = glintExtension(m.glint, m.specular);
+      usesGlint_ = true;
     } else if (m.specular.ndf != kGltfSpecular.ndf || m.specular.masking != kGltfSpecular.masking ||
                m.specular.multipleScattering != kGltfSpecular.multipleScattering) {
       // A material without a glint layer whose lobe is not glTF's (a built-in scene's): said in
       // extras.glint_specular, so that the file renders as the scene did.
       tinygltf::Value::Object target;
-      writeSpecularTarget(target, m.specular);
+      writeSpecularTarget(target, m.specular, GlintSpelling::Extras);
       tinygltf::Value::Object extras;
       extras["glint_specular"] = tinygltf::Value(std::move(target));
       out.extras = tinygltf::Value(std::move(extras));
@@ -389,6 +399,7 @@ class GltfWriter {
   tinygltf::Model model_;
   bool usesTextureTransforms_ = false;
   bool usesEmissiveStrength_ = false;
+  bool usesGlint_ = false;
 };
 
 }  // namespace

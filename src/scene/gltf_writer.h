@@ -18,9 +18,9 @@ enum class GltfEncoding { Binary, Json };
 
 // The scene as a glTF 2.0 document: one mesh and node per Mesh (in world space, identity
 // transforms) with POSITION, NORMAL, TANGENT, TEXCOORD_0 and, when any vertex is not white, COLOR_0;
-// the metal-roughness materials with their glint layer in extras.glint (docs/scenes.md, "Glint
-// parameters in glTF extras"), KHR_texture_transform and KHR_materials_emissive_strength where
-// used; every texture as an embedded PNG; the lights as KHR_lights_punctual; every named camera.
+// the metal-roughness materials with their glint layer as EXT_materials_glint (in extensionsUsed,
+// not extensionsRequired; docs/scenes.md, "Glint parameters in glTF"), KHR_texture_transform and
+// KHR_materials_emissive_strength where used; every texture as an embedded PNG; the lights as KHR_lights_punctual; every named camera.
 // Throws Error for what glTF or the loader cannot take (a mesh index out of range, a texture of
 // the wrong size, a colour outside [0, 1]).
 std::vector<std::byte> encodeGltf(const Scene& scene, GltfEncoding encoding);

@@ -41,7 +41,7 @@ struct Texture {
   bool srgb = false;  // colour textures (base colour, emissive) are sRGB; data textures linear
 };
 
-// The glint layer of a material (docs/scenes.md, "Glint parameters in glTF extras"). When
+// The glint layer of a material (docs/scenes.md, "Glint parameters in glTF"). When
 // enabled, the material's specular lobe is the glint BRDF; with `--brdf cook-torrance` it is
 // Cook-Torrance with the same roughness.
 struct GlintLayer {
@@ -189,6 +189,10 @@ struct Scene {
   // What the scene's file uses that glint does not render (vertex colours, a second uv set, an
   // extension it does not read, ...), one line each, for the commands to warn about.
   std::vector<std::string> unreadFeatures;
+  // What the file holds in an older form that glint still reads, with what writes the current one
+  // (extras.glint: `glint export` writes EXT_materials_glint), one line each, for the commands to
+  // say.
+  std::vector<std::string> notes;
 
   // Bounds of all vertices.
   glm::vec3 boundsMin() const;
@@ -238,8 +242,8 @@ VisibleGlintDensity visibleGlintDensity(const Scene& scene, int material);
 // Puts a glint layer on every material named in `materialNames` that has none ("*" names them
 // all): the material's roughness as alpha (alphaFromRoughness), the log density of
 // visibleGlintDensity, GlintLayer's defaults for the rest. A material that already has a layer
-// (extras.glint) keeps it: its own parameters win. Throws Error, listing the scene's material
-// names, for a name that no material has. Several materials with the same name all get the
+// (EXT_materials_glint or extras.glint) keeps it: its own parameters win. Throws Error, listing
+// the scene's material names, for a name that no material has. Several materials with the same name all get the
 // layer. Returns the indices of the materials that got a new layer, in order.
 std::vector<std::size_t> applyGlint(Scene& scene, const std::vector<std::string>& materialNames);
 

@@ -1,0 +1,293 @@
+#include "scene/gltf_glint.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <span>
+#include <utility>
+
+#include "glint/error.h"
+#include "scene/gltf_field_types.h"
+
+namespace glint::scene {
+
+namespace {
+
+using nlohmann::json;
+
+struct FieldNames {
+  GlintField field;
+  const char* extension;
+  const char* extras;
+};
+
+constexpr std::array<FieldNames, kGlintFieldCount> kFieldNames = {{
+    {GlintField::Ndf, "ndf", "ndf"},
+    {GlintField::Masking, "masking", "masking"},
+    {GlintField::MultipleScattering, "multipleScattering", "multiple_scattering"},
+    {GlintField::Alpha, "alpha", "alpha"},
+    {GlintField::Rho, "rho", "rho"},
+    {GlintField::LogDensity, "logDensity", "log_density"},
+    {GlintField::RelativeArea, "relativeArea", "relative_area"},
+    {GlintField::DensityRandomization, "densityRandomization", "density_randomisation"},
+    {GlintField::MaxAnisotropy, "maxAnisotropy", "max_anisotropy"},
+    {GlintField::PatternSeed, "patternSeed", "pattern_seed"},
+    {GlintField::UvScale, "uvScale", "uv_scale"},
+    {GlintField::RandomColors, "randomColors", "random_colours"},
+    {GlintField::LogDensityRange, "logDensityRange", "log_density_range"},
+    {GlintField::RoughnessTexture, "roughnessTexture", "roughness_texture"},
+    {GlintField::LogDensityTexture, "logDensityTexture", "log_density_texture"},
+    {GlintField::RelativeAreaTexture, "relativeAreaTexture", "relative_area_texture"},
+}};
+
+// Every glTF object may carry these two (glTF 2.0's glTFProperty): the extension's object and its
+// textureInfo objects accept them, and glint ignores what they hold.
+constexpr std::array<const char*, 2> kPropertyMembers = {"extensions", "extras"};
+
+// A field and its name as the file spells it.
+class Reader {
+ public:
+  Reader(const json& fields, GlintSpelling spelling) : fields_(fields), spelling_(spelling) {}
+
+  const char* name(GlintField field) const { return glintFieldName(field, spelling_); }
+  bool has(GlintField field) const { return fields_.contains(name(field)); }
+  const json& at(GlintField field) const { return fields_.at(name(field)); }
+
+  // An unknown member is an error, so that a misspelt name is not silently ignored.
+  void refuseUnknown(std::span<const GlintField> known, bool propertyMembers) const {
+    for (const auto& item : fields_.items()) {
+      const std::string& key = item.key();
+      const bool isKnown =
+          std::any_of(known.begin(), known.end(), [&](GlintField f) { return key == name(f); }) ||
+          (propertyMembers && std::find(kPropertyMembers.begin(), kPropertyMembers.end(), key) != kPropertyMembers.end());
+      if (!isKnown) {
+        std::string list;
+        for (GlintField f : known) list += (list.empty() ? "" : ", ") + std::string(name(f));
+        throw Error("unknown field '" + shown(key) + "' (known: " + list + ")");
+      }
+    }
+  }
+
+ private:
+  // A member name as a message shows it: control characters as '?', so that the message stays one
+  // harmless line.
+  static std::string shown(std::string key) {
+    for (char& c : key) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    }
+    return key;
+  }
+
+  const json& fields_;
+  GlintSpelling spelling_;
+};
+
+float numberField(const json& value, const std::string& field) {
+  if (!value.is_number()) throw Error(field + " must be a number, got " + describeJsonValue(value));
+  // Compared in double: a double beyond the largest float has no float to convert to.
+  const double number = value.get<double>();
+  if (!(std::abs(number) <= std::numeric_limits<float>::max())) {
+    throw Error(field + " " + describeJsonValue(value) + " is beyond a float's range");
+  }
+  return static_cast<float>(number);
+}
+
+// true or false; also 0 or 1, which tools that keep booleans as numbers write back (Blender 3.4
+// re-exports custom properties so).
+bool booleanField(const json& value, const std::string& field) {
+  if (value.is_boolean()) return value.get<bool>();
+  if (value.is_number() && (value.get<double>() == 0.0 || value.get<double>() == 1.0)) return value.get<double>() == 1.0;
+  throw Error(field + " must be true or false (or 0 or 1), got " + describeJsonValue(value));
+}
+
+// An integer in [low, high]; a number with a fractional part, or out of range, is an error.
+std::uint64_t wholeField(const json& value, const std::string& field, std::uint64_t low, std::uint64_t high) {
+  bool ok = false;
+  std::uint64_t result = 0;
+  if (value.is_number_unsigned()) {
+    result = value.get<std::uint64_t>();
+    ok = true;
+  } else if (value.is_number_integer()) {
+    ok = value.get<std::int64_t>() >= 0;
+    result = ok ? static_cast<std::uint64_t>(value.get<std::int64_t>()) : 0;
+  } else if (value.is_number_float()) {
+    const double number = value.get<double>();
+    ok = number >= 0.0 && number == std::floor(number) && number <= static_cast<double>(high);
+    result = ok ? static_cast<std::uint64_t>(number) : 0;
+  }
+  if (!ok || result < low || result > high) {
+    throw Error(field + " must be an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "], got " +
+                describeJsonValue(value));
+  }
+  return result;
+}
+
+glm::vec2 pairField(const json& value, const std::string& field) {
+  if (!value.is_array() || value.size() != 2) throw Error(field + " must be an array of two numbers");
+  return {numberField(value[0], field + "[0]"), numberField(value[1], field + "[1]")};
+}
+
+// Checks the value `set` gives a field against the kernel's range for it: validateGlintLayer on a
+// layer that is valid but for that value, its message from " must" on given the file's name for
+// the field ("relativeArea must be in (0, 1], got 2").
+void checkRange(const std::string& field, const std::function<void(GlintLayer&)>& set) {
+  GlintLayer probe;
+  probe.enabled = true;
+  set(probe);
+  try {
+    validateGlintLayer(probe, 0);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    const std::size_t must = message.find(" must ");
+    throw Error(field + (must == std::string::npos ? ": " + message : message.substr(must)));
+  }
+}
+
+// A texture reference: a glTF textureInfo object in the extension ({"index": 2}, with texCoord,
+// extensions and extras allowed), a texture index in extras.glint. Returns the scene texture.
+int textureField(const json& value, GlintSpelling spelling, const std::string& field, const GlintTextureSource& textures) {
+  const json* index = &value;
+  std::string indexName = field;
+  if (spelling == GlintSpelling::Extension) {
+    if (!value.is_object() || !value.contains("index")) {
+      throw Error(field + " must be a textureInfo object with an index, got " + describeJsonValue(value));
+    }
+    for (const auto& item : value.items()) {
+      const std::string& key = item.key();
+      if (key != "index" && key != "texCoord" && std::find(kPropertyMembers.begin(), kPropertyMembers.end(), key) == kPropertyMembers.end()) {
+        throw Error(field + ": unknown textureInfo member (known: index, texCoord, extensions, extras)");
+      }
+    }
+    index = &value["index"];
+    indexName = field + ".index";
+    if (value.contains("texCoord")) {
+      const std::uint64_t texCoord = wholeField(value["texCoord"], field + ".texCoord", 0, 0x7fffffff);
+      if (texCoord != 0) textures.noteUnread("textures on a texCoord other than 0 are mapped with TEXCOORD_0", field);
+    }
+    if (value.contains("extensions")) {
+      const json& extensions = value["extensions"];
+      if (!extensions.is_object()) throw Error(field + ".extensions must be an object, got " + describeJsonValue(extensions));
+      if (extensions.contains("KHR_texture_transform")) {
+        textures.noteUnread("KHR_texture_transform is not applied to glint textures, which are mapped with TEXCOORD_0", field);
+      }
+    }
+  }
+  if (textures.textureCount == 0) throw Error(field + ": the file has no textures");
+  const auto gltfIndex = static_cast<int>(wholeField(*index, indexName, 0, textures.textureCount - 1));
+  try {
+    return textures.sceneTexture(gltfIndex);
+  } catch (const Error& e) {
+    throw Error(field + ": " + e.what());
+  }
+}
+
+constexpr std::array kTargetFields = {GlintField::Ndf, GlintField::Masking, GlintField::MultipleScattering};
+
+MicrofacetTarget readTarget(const Reader& reader, MicrofacetTarget target) {
+  if (reader.has(GlintField::Ndf)) {
+    const json& ndf = reader.at(GlintField::Ndf);
+    if (!ndf.is_string()) throw Error(std::string(reader.name(GlintField::Ndf)) + " must be \"beckmann\" or \"ggx\"");
+    target.ndf = ndfFromName(reader.name(GlintField::Ndf), ndf.get<std::string>());
+  }
+  if (reader.has(GlintField::Masking)) {
+    const json& masking = reader.at(GlintField::Masking);
+    if (!masking.is_string()) throw Error(std::string(reader.name(GlintField::Masking)) + " must be \"v-cavity\" or \"smith\"");
+    target.masking = maskingFromName(reader.name(GlintField::Masking), masking.get<std::string>());
+  }
+  if (reader.has(GlintField::MultipleScattering)) {
+    target.multipleScattering =
+        booleanField(reader.at(GlintField::MultipleScattering), reader.name(GlintField::MultipleScattering));
+  }
+  return target;
+}
+
+}  // namespace
+
+const char* glintFieldName(GlintField field, GlintSpelling spelling) {
+  for (const FieldNames& names : kFieldNames) {
+    if (names.field == field) return spelling == GlintSpelling::Extension ? names.extension : names.extras;
+  }
+  return "";  // every field is in the table
+}
+
+GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float roughness, MicrofacetTarget specular,
+                         const GlintTextureSource& textures) {
+  if (!fields.is_object()) throw Error("must be an object, got " + describeJsonValue(fields));
+  const Reader reader(fields, spelling);
+  std::array<GlintField, kGlintFieldCount> every{};
+  for (std::size_t i = 0; i < kGlintFieldCount; ++i) every[i] = kFieldNames[i].field;
+  // glTF properties may carry extensions and extras; extras.glint is itself inside extras.
+  reader.refuseUnknown(every, spelling == GlintSpelling::Extension);
+
+  GltfGlint result;
+  result.specular = readTarget(reader, specular);
+  GlintLayer& layer = result.layer;
+  layer.enabled = true;
+  layer.alpha = glm::vec2(alphaFromRoughness(roughness));
+  if (reader.has(GlintField::Alpha)) {
+    const json& alpha = reader.at(GlintField::Alpha);
+    const std::string name = reader.name(GlintField::Alpha);
+    // extras.glint takes one number for an isotropic layer; the extension always two.
+    if (spelling == GlintSpelling::Extras && alpha.is_number()) {
+      layer.alpha = glm::vec2(numberField(alpha, name));
+      checkRange(name, [&](GlintLayer& probe) { probe.alpha = layer.alpha; });
+    } else if (alpha.is_array()) {
+      layer.alpha = pairField(alpha, name);
+      for (int k = 0; k < 2; ++k) {
+        checkRange(name + "[" + std::to_string(k) + "]", [&](GlintLayer& probe) { probe.alpha = glm::vec2(layer.alpha[k]); });
+      }
+    } else {
+      throw Error(name + (spelling == GlintSpelling::Extras ? " must be a number or an array of two numbers"
+                                                           : " must be an array of two numbers"));
+    }
+  }
+  const std::pair<GlintField, float GlintLayer::*> numbers[] = {
+      {GlintField::Rho, &GlintLayer::rho},
+      {GlintField::LogDensity, &GlintLayer::logDensity},
+      {GlintField::RelativeArea, &GlintLayer::relativeArea},
+      {GlintField::DensityRandomization, &GlintLayer::densityRandomisation},
+      {GlintField::MaxAnisotropy, &GlintLayer::maxAnisotropy},
+      {GlintField::UvScale, &GlintLayer::uvScale}};
+  for (const auto& number : numbers) {
+    const GlintField field = number.first;
+    float GlintLayer::*const member = number.second;  // a named variable: lambdas cannot capture bindings in clang 14
+    if (!reader.has(field)) continue;
+    const float value = numberField(reader.at(field), reader.name(field));
+    checkRange(reader.name(field), [&](GlintLayer& probe) { probe.*member = value; });
+    layer.*member = value;
+  }
+  if (reader.has(GlintField::PatternSeed)) {
+    layer.patternSeed =
+        static_cast<std::uint32_t>(wholeField(reader.at(GlintField::PatternSeed), reader.name(GlintField::PatternSeed), 0, 0xffffffffu));
+  }
+  if (reader.has(GlintField::RandomColors)) {
+    layer.randomColours = booleanField(reader.at(GlintField::RandomColors), reader.name(GlintField::RandomColors));
+  }
+  if (reader.has(GlintField::LogDensityRange)) {
+    const std::string name = reader.name(GlintField::LogDensityRange);
+    layer.logDensityRange = pairField(reader.at(GlintField::LogDensityRange), name);
+    for (int k = 0; k < 2; ++k) {
+      checkRange(name + "[" + std::to_string(k) + "]", [&](GlintLayer& probe) { probe.logDensityRange[k] = layer.logDensityRange[k]; });
+    }
+  }
+  const std::pair<GlintField, int GlintLayer::*> textureFields[] = {
+      {GlintField::RoughnessTexture, &GlintLayer::roughnessTexture},
+      {GlintField::LogDensityTexture, &GlintLayer::logDensityTexture},
+      {GlintField::RelativeAreaTexture, &GlintLayer::relativeAreaTexture}};
+  for (const auto& [field, member] : textureFields) {
+    if (reader.has(field)) layer.*member = textureField(reader.at(field), spelling, reader.name(field), textures);
+  }
+  return result;
+}
+
+MicrofacetTarget readGlintSpecularTarget(const json& fields, MicrofacetTarget specular) {
+  if (!fields.is_object()) throw Error("must be an object, got " + describeJsonValue(fields));
+  const Reader reader(fields, GlintSpelling::Extras);
+  reader.refuseUnknown(kTargetFields, false);
+  return readTarget(reader, specular);
+}
+
+}  // namespace glint::scene
