@@ -59,6 +59,22 @@ def _pixels(image):
     return values
 
 
+def _keep_layer_out_of_extras():
+    """With export_extras, the glTF exporter writes a material's ID properties, the layer's among
+    them, as its extras, and in 3.4 deep-copies them before the material hook runs: an image in the
+    layer (a texture field) then fails the export ("cannot pickle 'Image' object"). The exporter
+    skips the names in its BLACK_LIST (io_scene_gltf2/blender/com/gltf2_blender_extras.py in 3.4):
+    the layer's name is put there. Where that module is not found (another glTF add-on version),
+    gather_material_hook takes the layer out of the extras instead."""
+    try:
+        from io_scene_gltf2.blender.com import gltf2_blender_extras
+    except ImportError:
+        return
+    skipped = getattr(gltf2_blender_extras, "BLACK_LIST", None)
+    if isinstance(skipped, list) and layer.LAYER_PROPERTY not in skipped:
+        skipped.append(layer.LAYER_PROPERTY)
+
+
 class glTF2ExportUserExtension:
     """Writes EXT_materials_glint on every material whose glint layer is enabled."""
 
@@ -73,12 +89,14 @@ class glTF2ExportUserExtension:
         self.BinaryData = gltf2_io_binary_data.BinaryData
         self.ImageData = gltf2_io_image_data.ImageData
         self.textures = {}  # Blender image name -> glTF texture, one for each image in the file
+        _keep_layer_out_of_extras()
 
     def gather_material_hook(self, gltf2_material, blender_material, export_settings):
         glint = getattr(blender_material, layer.LAYER_PROPERTY, None)
         if glint is None:
             return
-        # The exporter's extras (export_extras) hold the layer's ID properties too: the extension says it.
+        # Where _keep_layer_out_of_extras could not, the layer's ID properties are in the extras
+        # (export_extras): the extension says them.
         if isinstance(gltf2_material.extras, dict) and layer.LAYER_PROPERTY in gltf2_material.extras:
             del gltf2_material.extras[layer.LAYER_PROPERTY]
             if not gltf2_material.extras:
