@@ -10,7 +10,6 @@ class MATERIAL_PT_glint(bpy.types.Panel):
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
     bl_context = "material"
-    bl_options = {"DEFAULT_CLOSED"}
 
     @classmethod
     def poll(cls, context):
@@ -35,7 +34,11 @@ class MATERIAL_PT_glint(bpy.types.Panel):
             if field.name == "log_density_range":
                 row.active = glint.log_density_texture is not None
             if field.kind == "texture":
-                row.label(text=field.label)
-                body.template_ID(glint, field.name, new="image.new", open="image.open")
+                # An image selector beside its label, aligned with the property rows above.
+                split = row.split(factor=0.4)
+                label = split.row()
+                label.alignment = "RIGHT"
+                label.label(text=field.label)
+                split.template_ID(glint, field.name, new="image.new", open="image.open")
             else:
                 row.prop(glint, field.name)
