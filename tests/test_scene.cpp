@@ -1054,7 +1054,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
   // no float, which the loader refuses as beyond a float's range).
   auto beyond = [](double bound, double direction) {
     const float next = std::nextafter(static_cast<float>(bound), static_cast<float>(direction));
-    return std::isinf(next) ? std::ldexp(direction, 128) : static_cast<double>(next);
+    return std::isinf(next) ? std::copysign(std::ldexp(1.0, 128), direction) : static_cast<double>(next);
   };
   int bounds = 0;
   for (const auto& item : properties.items()) {
@@ -1070,6 +1070,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
       EXPECT_NO_THROW(loadGltf(path)) << v;
     };
     auto refused = [&](double v) {
+      ASSERT_TRUE(std::isfinite(v));
       withExtension({{name, value(v)}});
       expectLoadError(path, "material 0 'textured': EXT_materials_glint: " + name);
     };
@@ -1390,6 +1391,7 @@ TEST(GltfErrors, BadGlintExtension) {
       {{{"relativeAreaTexture", {{"index", 1}, {"scale", 2}}}}, "relativeAreaTexture: unknown textureInfo member"},
       {{{"density_randomisation", 1}}, "unknown field 'density_randomisation' (known: ndf, masking, multipleScattering, alpha"},
       {json::array({1}), "must be an object, got an array"},
+      {nullptr, "must be an object, got null"},
   };
   for (const auto& badCase : cases) {
     const json& extension = badCase.first;  // not a binding: clang 14's lambdas cannot capture one

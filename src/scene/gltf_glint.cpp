@@ -47,7 +47,7 @@ constexpr std::array<FieldNames, kGlintFieldCount> kFieldNames = {{
 // textureInfo objects accept them, and glint ignores what they hold.
 constexpr std::array<const char*, 2> kPropertyMembers = {"extensions", "extras"};
 
-// A field and its name as the file spells it.
+// The fields of one glint object, named as its form spells them.
 class Reader {
  public:
   Reader(const json& fields, GlintSpelling spelling) : fields_(fields), spelling_(spelling) {}

@@ -329,12 +329,12 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
 // Texture coordinates glint accepts, in magnitude.
 constexpr float kLargestUv = 1e6f;
 
-// A material's member of a JSON object kept by tinygltf as text (extras, extensions): null when
-// the text is empty, does not parse, is not an object or lacks the member.
-nlohmann::json memberOf(const std::string& objectText, const char* member) {
-  if (objectText.empty()) return nullptr;
+// A member of a JSON object that tinygltf keeps as text (a material's extras or extensions):
+// nullopt when the text is empty, does not parse, is not an object or lacks the member.
+std::optional<nlohmann::json> memberOf(const std::string& objectText, const char* member) {
+  if (objectText.empty()) return std::nullopt;
   const nlohmann::json object = nlohmann::json::parse(objectText, nullptr, false);
-  if (!object.is_object() || !object.contains(member)) return nullptr;
+  if (!object.is_object() || !object.contains(member)) return std::nullopt;
   return object[member];
 }
 
@@ -994,26 +994,26 @@ class GltfReader {
         [&](const std::string& what, const std::string& field) {
           note(what, label + " " + kGlintExtensionName + "." + field);
         }};
-    const nlohmann::json extension = memberOf(source.extensions_json_string, kGlintExtensionName);
-    const nlohmann::json glint = memberOf(source.extras_json_string, "glint");
-    const nlohmann::json specular = memberOf(source.extras_json_string, "glint_specular");
+    const std::optional<nlohmann::json> extension = memberOf(source.extensions_json_string, kGlintExtensionName);
+    const std::optional<nlohmann::json> glint = memberOf(source.extras_json_string, "glint");
+    const std::optional<nlohmann::json> specular = memberOf(source.extras_json_string, "glint_specular");
     GltfGlint read{m.glint, m.specular};
-    if (!extension.is_null()) {
+    if (extension) {
       read = withContext(std::string(kGlintExtensionName) + ": ", [&] {
-        return readGlintLayer(extension, GlintSpelling::Extension, m.roughness, m.specular, textures);
+        return readGlintLayer(*extension, GlintSpelling::Extension, m.roughness, m.specular, textures);
       });
-      if (!glint.is_null() || !specular.is_null()) {
-        note(std::string(glint.is_null() ? "extras.glint_specular" : "extras.glint") +
+      if (glint || specular) {
+        note(std::string(glint ? "extras.glint" : "extras.glint_specular") +
                  " is not read where a material has EXT_materials_glint, whose values win",
              label);
       }
-    } else if (!glint.is_null()) {
+    } else if (glint) {
       read = withContext("extras.glint: ", [&] {
-        return readGlintLayer(glint, GlintSpelling::Extras, m.roughness, m.specular, textures);
+        return readGlintLayer(*glint, GlintSpelling::Extras, m.roughness, m.specular, textures);
       });
       extrasGlintMaterials_.push_back(label);
-    } else if (!specular.is_null()) {
-      read.specular = withContext("extras.glint_specular: ", [&] { return readGlintSpecularTarget(specular, m.specular); });
+    } else if (specular) {
+      read.specular = withContext("extras.glint_specular: ", [&] { return readGlintSpecularTarget(*specular, m.specular); });
     }
     if (read.layer.enabled) validateGlintLayer(read.layer, scene_.textures.size());
     m.glint = read.layer;
