@@ -140,10 +140,12 @@ class glTF2ImportUserExtension:
             return
         where = "%s: material '%s'" % (os.path.basename(gltf.filename), gltf_material.name or blender_material.name)
         try:
-            values = layer.checked_values(extension)
+            values, notes = layer.checked_values(extension)
         except layer.LayerError as error:
             _warn("%s: %s; imported without its glint layer" % (where, error))
             return
+        for note in notes:
+            _warn("%s: %s" % (where, note))
         glint = getattr(blender_material, layer.LAYER_PROPERTY)
         for name, value in values.items():
             field = next((f for f in layer.FIELDS if f.name == name), None)

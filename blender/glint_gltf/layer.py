@@ -203,14 +203,15 @@ def _check_number(field, value, where):
 
 
 def checked_values(extension):
-    """The extension object's values as the Blender properties take them: {property name: value},
-    alpha_from_roughness included. Raises LayerError for what the extension does not allow
-    (a reader refuses rather than clamps, README "Properties"), and for a pattern seed Blender's
-    integer cannot hold. Booleans may be 0 and 1 (README: tools that keep data as custom properties
-    write them so)."""
+    """The extension object's values as the Blender properties take them, ({property name: value},
+    [notes]), alpha_from_roughness included. Raises LayerError for what the extension does not
+    allow (a reader refuses rather than clamps, README "Properties"). A pattern seed over Blender's
+    largest integer is kept modulo 2^31, with a note. Booleans may be 0 and 1 (README: tools that
+    keep data as custom properties write them so)."""
     if not isinstance(extension, dict):
         raise LayerError("%s is not an object" % EXTENSION_NAME)
     values = {"alpha_from_roughness": "alpha" not in extension}
+    notes = []
     for json_name, value in extension.items():
         if json_name in ("extensions", "extras"):
             continue
@@ -231,8 +232,10 @@ def checked_values(extension):
             if not field.minimum <= value <= field.maximum:
                 raise LayerError("%s = %d is outside %s" % (where, value, field.range_text()))
             if value > BLENDER_INT_MAX:
-                raise LayerError("%s = %d is above %d, the largest integer a Blender property holds"
-                                 % (where, value, BLENDER_INT_MAX))
+                notes.append("%s = %d is above %d, the largest integer a Blender property holds: "
+                             "kept as %d, another glint pattern" % (where, value, BLENDER_INT_MAX,
+                                                                    value % (BLENDER_INT_MAX + 1)))
+                value %= BLENDER_INT_MAX + 1
             values[field.name] = value
         elif field.kind == "boolean":
             if value is True or value is False or (_is_number(value) and value in (0, 1)):
@@ -249,4 +252,4 @@ def checked_values(extension):
                     and not isinstance(value.get("index"), bool) and value["index"] >= 0):
                 raise LayerError("%s is %r, not a textureInfo with an index" % (where, value))
             values[field.name] = value["index"]  # a glTF texture index; the importer makes it an image
-    return values
+    return values, notes

@@ -3,6 +3,8 @@
 #   roundtrip ZIP IN.glb OUT.glb          the add-on installed from ZIP and enabled; IN imported, OUT exported
 #   author ZIP OUT.glb OUT.blend          the add-on enabled; a glinty sphere authored from scratch, exported, saved
 #   export-without-addon IN.blend OUT.glb  the add-on not enabled; IN opened and exported
+#   import-layers ZIP IN.glb              the add-on enabled; IN imported; prints a JSON line: each
+#                                         material's layer (enabled, log_density, random_colors, pattern_seed)
 #   glint-pixels GLINT.exr SMOOTH.exr     prints a JSON line: object pixels and glint pixels of a render
 # The add-on is installed into the user scripts folder, which run_blender_test.py points at a
 # temporary folder (BLENDER_USER_SCRIPTS), as are Blender's preferences (BLENDER_USER_CONFIG).
@@ -102,6 +104,15 @@ def export_without_addon(blend, target):
     bpy.ops.export_scene.gltf(filepath=target, **EXPORT_OPTIONS)
 
 
+def import_layers(zip_path, source):
+    enable_addon(zip_path)
+    empty_scene()
+    bpy.ops.import_scene.gltf(filepath=source)
+    print(json.dumps({m.name: {"enabled": m.glint_layer.enabled, "log_density": m.glint_layer.log_density,
+                               "random_colors": m.glint_layer.random_colors,
+                               "pattern_seed": m.glint_layer.pattern_seed} for m in bpy.data.materials}))
+
+
 def luminance(pixels):
     return 0.2126 * pixels[..., 0] + 0.7152 * pixels[..., 1] + 0.0722 * pixels[..., 2]
 
@@ -133,7 +144,8 @@ def glint_pixels(glinty_path, smooth_path):
 def main():
     arguments = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     actions = {"roundtrip": (roundtrip, 3), "author": (author, 3),
-               "export-without-addon": (export_without_addon, 2), "glint-pixels": (glint_pixels, 2)}
+               "export-without-addon": (export_without_addon, 2), "import-layers": (import_layers, 2),
+               "glint-pixels": (glint_pixels, 2)}
     if not arguments or arguments[0] not in actions or len(arguments) != actions[arguments[0]][1] + 1:
         fail("usage: blender -b --factory-startup --python blender_session.py -- ACTION ARGS (see the file)")
     action, _ = actions[arguments[0]]

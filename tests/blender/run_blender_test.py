@@ -3,12 +3,16 @@
 
     run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR roundtrip SCENE
     run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR authored
+    run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR import-checks
 
 roundtrip SCENE: `glint export SCENE -o a.glb`; Blender, with the add-on installed from ZIP, imports
 a.glb and exports b.glb; `glint render` of b.glb matches that of a.glb within ROUNDTRIP_RELATIVE_MSE.
 authored: a glinty sphere authored from scratch in Blender with the add-on (blender_session.py
 author) is exported, and glint renders glints on it (pixels over twice the smooth render's); the
 same .blend exported by Blender without the add-on enabled has no glint layer and no glints.
+import-checks: the add-on's importer refuses a value outside the extension's range (one line naming
+the file, the material and the value; the material imported without its layer), takes booleans
+written as 0 and 1, and keeps a pattern seed over Blender's largest integer modulo 2^31, saying so.
 
 Each Blender session runs with its user scripts and preferences in DIR (BLENDER_USER_SCRIPTS,
 BLENDER_USER_CONFIG), so that the add-on installs there and nothing of the user's is read or
@@ -177,13 +181,49 @@ def authored(h):
           % fraction)
 
 
+def with_glint_fields(source, target, changes):
+    """Writes `source` (.glb) to `target` with `changes` made to every material's EXT_materials_glint."""
+    data = pathlib.Path(source).read_bytes()
+    length = int.from_bytes(data[12:16], "little")
+    document = json.loads(data[20:20 + length])
+    for material in document["materials"]:
+        material["extensions"]["EXT_materials_glint"].update(changes)
+    chunk = json.dumps(document).encode()
+    chunk += b" " * (-len(chunk) % 4)  # chunks are 4-byte aligned, JSON padded with spaces
+    rest = data[20 + length:]
+    header = b"glTF" + (2).to_bytes(4, "little") + (12 + 8 + len(chunk) + len(rest)).to_bytes(4, "little")
+    pathlib.Path(target).write_bytes(header + len(chunk).to_bytes(4, "little") + b"JSON" + chunk + rest)
+
+
+def import_checks(h):
+    original, refused, booleans = h.path("sphere.glb"), h.path("refused.glb"), h.path("booleans.glb")
+    run([h.glint, "export", "sphere", "-o", original])
+    with_glint_fields(original, refused, {"logDensity": 120})
+    with_glint_fields(original, booleans, {"randomColors": 1, "logDensity": 9.5, "patternSeed": 3000000000})
+    output = h.blender_session("import-layers", h.zip, refused)
+    layers = json.loads(next(l for l in output.splitlines() if l.startswith("{")))
+    warnings = [l for l in output.splitlines() if l.startswith("glint_gltf: ")]
+    check(layers["red glint"]["enabled"] is False, "a material whose logDensity is 120 is imported without its layer")
+    check(warnings == ["glint_gltf: refused.glb: material 'red glint': EXT_materials_glint.logDensity = 120 is "
+                       "outside [0, 100]; imported without its glint layer"],
+          "one line names the file, the material and the value: %s" % warnings)
+    output = h.blender_session("import-layers", h.zip, booleans)
+    layers = json.loads(next(l for l in output.splitlines() if l.startswith("{")))
+    warnings = [l for l in output.splitlines() if l.startswith("glint_gltf: ")]
+    check(layers["red glint"] == {"enabled": True, "log_density": 9.5, "random_colors": True,
+                                  "pattern_seed": 3000000000 - 2**31},
+          "randomColors 1 is read as true, patternSeed 3000000000 as 3000000000 - 2^31: %s" % layers["red glint"])
+    check(len(warnings) == 1 and "patternSeed = 3000000000 is above 2147483647" in warnings[0],
+          "one line says the seed is above Blender's largest integer: %s" % warnings)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--blender", required=True)
     parser.add_argument("--glint", required=True)
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--work", required=True)
-    parser.add_argument("case", choices=["roundtrip", "authored"])
+    parser.add_argument("case", choices=["roundtrip", "authored", "import-checks"])
     parser.add_argument("scene", nargs="?")
     args = parser.parse_args()
     if shutil.which(args.blender) is None:
@@ -195,8 +235,10 @@ def main():
             if not args.scene:
                 parser.error("roundtrip needs a SCENE")
             roundtrip(h, args.scene)
-        else:
+        elif args.case == "authored":
             authored(h)
+        else:
+            import_checks(h)
     except Failure as failure:
         print("run_blender_test.py: " + str(failure), file=sys.stderr)
         return 1
