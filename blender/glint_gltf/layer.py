@@ -1,0 +1,255 @@
+# The glint layer of a Blender material: its typed properties and their EXT_materials_glint spelling.
+# FIELDS is the one table of the extension's properties (extensions/EXT_materials_glint/README.md):
+# the Blender properties, the panel's order, the exporter's JSON and the importer's checks all come
+# from it.
+
+import math
+import struct
+
+import bpy
+
+EXTENSION_NAME = "EXT_materials_glint"
+# The property on bpy.types.Material that holds the layer. Not "glint": Blender's glTF exporter
+# writes a material's ID properties as its extras (export_extras), and extras.glint is the form
+# glint read before the extension.
+LAYER_PROPERTY = "glint_layer"
+
+# The largest 32-bit float: uvScale's upper bound in the extension.
+FLOAT32_MAX = 3.4028234663852886e38
+# The smallest positive 32-bit float (normal): Blender's stand-in for the extension's exclusive
+# minimum 0 of relativeArea and uvScale (a Blender property has inclusive bounds only).
+FLOAT32_MIN_POSITIVE = 1.1754943508222875e-38
+# Blender's integer properties are 32-bit signed; the extension's patternSeed goes to 2^32 - 1.
+BLENDER_INT_MAX = 2**31 - 1
+EXTENSION_SEED_MAX = 2**32 - 1
+
+
+class Field:
+    """One property of EXT_materials_glint and the Blender property that holds it."""
+
+    def __init__(self, name, json_name, kind, label, description, minimum=None, maximum=None,
+                 exclusive_minimum=False, default=None, soft_max=None, choices=None):
+        self.name = name                  # the Blender property, on Material.glint_layer
+        self.json_name = json_name        # the extension's property
+        self.kind = kind                  # number, pair, integer, boolean, choice, texture
+        self.label = label
+        self.description = description
+        self.minimum = minimum
+        self.maximum = maximum
+        self.exclusive_minimum = exclusive_minimum
+        self.default = default
+        self.soft_max = soft_max
+        self.choices = choices            # choice: [(json value, Blender identifier, label)]
+
+    def range_text(self):
+        low = "(" if self.exclusive_minimum else "["
+        return "%s%s, %s]" % (low, _number_text(self.minimum), _number_text(self.maximum))
+
+
+# The defaults are the extension's, so that a layer enabled in Blender and exported with nothing
+# changed reads back as glint reads an empty EXT_materials_glint object, but for alpha: see
+# alpha_from_roughness.
+FIELDS = [
+    Field("alpha", "alpha", "pair", "Alpha",
+          "Roughness of the lobe the glints converge to, along the tangent and the bitangent",
+          0.005, 2.0, default=(0.25, 0.25)),
+    Field("rho", "rho", "number", "Slope Correlation",
+          "Correlation of the target's slopes in the tangent frame: highlights stretch along a diagonal",
+          -0.99, 0.99, default=0.0),
+    Field("log_density", "logDensity", "number", "Log Density",
+          "Natural logarithm of the microfacets per unit area of glint uv: low values sparkle, high ones look smooth",
+          0.0, 100.0, default=27.0, soft_max=40.0),
+    Field("relative_area", "relativeArea", "number", "Relative Area",
+          "Fraction of the cells that hold microfacets (sparse glitter below 1)",
+          0.0, 1.0, exclusive_minimum=True, default=1.0),
+    Field("density_randomization", "densityRandomization", "number", "Density Randomization",
+          "How much the number of microfacets varies from cell to cell (0: the same in every cell)",
+          0.0, 10.0, default=2.0),
+    Field("max_anisotropy", "maxAnisotropy", "number", "Max Anisotropy",
+          "A pixel's footprint is widened until its axes' ratio is at most this",
+          1.0, 64.0, default=8.0),
+    Field("pattern_seed", "patternSeed", "integer", "Pattern Seed",
+          "Another realisation of the same statistics: another glint pattern "
+          "(Blender holds 0 to 2147483647 of the extension's 0 to 4294967295)",
+          0, EXTENSION_SEED_MAX, default=0),
+    Field("uv_scale", "uvScale", "number", "UV Scale",
+          "Glint uv = TEXCOORD_0 times this; raising it by k multiplies the facets per unit of surface by k squared",
+          0.0, FLOAT32_MAX, exclusive_minimum=True, default=1.0, soft_max=100.0),
+    Field("random_colors", "randomColors", "boolean", "Random Colors",
+          "Each cell's glints get a random hue (the flakes of a car paint)", default=False),
+    Field("ndf", "ndf", "choice", "NDF",
+          "The distribution the glints converge to",
+          default="ggx", choices=[("ggx", "GGX", "GGX"), ("beckmann", "BECKMANN", "Beckmann")]),
+    Field("masking", "masking", "choice", "Masking",
+          "Masking-shadowing of the lobe",
+          default="smith", choices=[("smith", "SMITH", "Smith"), ("v-cavity", "V_CAVITY", "V-Cavity")]),
+    Field("multiple_scattering", "multipleScattering", "boolean", "Multiple Scattering",
+          "A smooth lobe adds back the energy single scattering loses on rough surfaces", default=True),
+    Field("roughness_texture", "roughnessTexture", "texture", "Roughness Texture",
+          "Its red channel (linear) multiplies alpha"),
+    Field("log_density_texture", "logDensityTexture", "texture", "Log Density Texture",
+          "Its red channel (linear, 0 to 1) maps onto the log density range and replaces the log density"),
+    Field("log_density_range", "logDensityRange", "pair", "Log Density Range",
+          "The log densities the log density texture's 0 and 1 map to",
+          0.0, 100.0, default=(15.0, 35.0)),
+    Field("relative_area_texture", "relativeAreaTexture", "texture", "Relative Area Texture",
+          "Its red channel (linear) multiplies the relative area"),
+]
+
+FIELDS_BY_JSON_NAME = {field.json_name: field for field in FIELDS}
+
+
+def _number_text(value):
+    return "%.17g" % value if isinstance(value, float) else str(value)
+
+
+def _blender_property(field):
+    """The bpy.props property that holds `field`, its bounds the extension's."""
+    common = {"name": field.label, "description": field.description}
+    if field.kind in ("number", "pair"):
+        low = FLOAT32_MIN_POSITIVE if field.exclusive_minimum else field.minimum
+        bounds = {"min": low, "max": field.maximum, "soft_min": low,
+                  "soft_max": field.soft_max if field.soft_max is not None else field.maximum}
+        if field.kind == "pair":
+            return bpy.props.FloatVectorProperty(size=2, default=field.default, precision=3, **bounds, **common)
+        return bpy.props.FloatProperty(default=field.default, precision=3, **bounds, **common)
+    if field.kind == "integer":
+        return bpy.props.IntProperty(default=field.default, min=field.minimum,
+                                     max=min(field.maximum, BLENDER_INT_MAX), **common)
+    if field.kind == "boolean":
+        return bpy.props.BoolProperty(default=field.default, **common)
+    if field.kind == "choice":
+        items = [(identifier, label, "") for _, identifier, label in field.choices]
+        default = next(identifier for value, identifier, _ in field.choices if value == field.default)
+        return bpy.props.EnumProperty(items=items, default=default, **common)
+    if field.kind == "texture":
+        # Data, not colour: the importer marks the images Non-Color, as glint reads them.
+        return bpy.props.PointerProperty(type=bpy.types.Image, **common)
+    raise ValueError("unknown field kind " + field.kind)
+
+
+class GlintLayerProperties(bpy.types.PropertyGroup):
+    """Material.glint_layer: the material's EXT_materials_glint layer."""
+    __annotations__ = {
+        "enabled": bpy.props.BoolProperty(
+            name="Glint Layer",
+            description="Give the material's specular lobe a glint layer (exported as EXT_materials_glint)",
+            default=False),
+        # The extension's alpha defaults to the square of the material's roughnessFactor; this flag
+        # leaves alpha out of the file, so that it follows the Principled BSDF's roughness.
+        "alpha_from_roughness": bpy.props.BoolProperty(
+            name="Alpha from Roughness",
+            description="Leave alpha out of the file: the glints converge to the core material's lobe "
+                        "(alpha = roughness squared)",
+            default=True),
+        **{field.name: _blender_property(field) for field in FIELDS},
+    }
+
+
+# --- Export: the Blender properties as the extension's JSON object ---------------------------------
+
+def float32_text_value(value):
+    """The shortest decimal that reads back as the same 32-bit float (what Blender holds), so that
+    the file says 0.3 rather than 0.30000001192092896 and glint reads the float Blender had."""
+    single = struct.unpack("<f", struct.pack("<f", value))[0]
+    for digits in range(1, 10):
+        candidate = float("%.*g" % (digits, single))
+        if struct.unpack("<f", struct.pack("<f", candidate))[0] == single:
+            return candidate
+    return single
+
+
+def extension_object(layer, texture_info):
+    """The EXT_materials_glint object of `layer`: every property (as glint writes it), but alpha when
+    it follows the roughness. texture_info(image) gives a textureInfo for an image."""
+    result = {}
+    for field in FIELDS:
+        value = getattr(layer, field.name)
+        if field.name == "alpha" and layer.alpha_from_roughness:
+            continue
+        if field.kind == "number":
+            result[field.json_name] = float32_text_value(value)
+        elif field.kind == "pair":
+            result[field.json_name] = [float32_text_value(v) for v in value]
+        elif field.kind == "integer":
+            result[field.json_name] = int(value)
+        elif field.kind == "boolean":
+            result[field.json_name] = bool(value)
+        elif field.kind == "choice":
+            result[field.json_name] = next(v for v, identifier, _ in field.choices if identifier == value)
+        elif field.kind == "texture":
+            if value is not None:
+                result[field.json_name] = texture_info(value)
+    return result
+
+
+# --- Import: the extension's JSON object checked and set on the Blender properties -----------------
+
+class LayerError(Exception):
+    """A value of the extension that the add-on refuses, said as one line."""
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _check_number(field, value, where):
+    if not _is_number(value):
+        raise LayerError("%s is %r, not a number" % (where, value))
+    low_ok = value > field.minimum if field.exclusive_minimum else value >= field.minimum
+    if not (low_ok and value <= field.maximum):
+        raise LayerError("%s = %s is outside %s" % (where, _number_text(value), field.range_text()))
+    return float(value)
+
+
+def checked_values(extension):
+    """The extension object's values as the Blender properties take them, ({property name: value},
+    [notes]), alpha_from_roughness included. Raises LayerError for what the extension does not
+    allow (a reader refuses rather than clamps, README "Properties"). A pattern seed over Blender's
+    largest integer is kept modulo 2^31, with a note. Booleans may be 0 and 1 (README: tools that
+    keep data as custom properties write them so)."""
+    if not isinstance(extension, dict):
+        raise LayerError("%s is not an object" % EXTENSION_NAME)
+    values = {"alpha_from_roughness": "alpha" not in extension}
+    notes = []
+    for json_name, value in extension.items():
+        if json_name in ("extensions", "extras"):
+            continue
+        field = FIELDS_BY_JSON_NAME.get(json_name)
+        if field is None:
+            raise LayerError("%s has an unknown property '%s'" % (EXTENSION_NAME, json_name))
+        where = "%s.%s" % (EXTENSION_NAME, json_name)
+        if field.kind == "number":
+            values[field.name] = _check_number(field, value, where)
+        elif field.kind == "pair":
+            if not (isinstance(value, list) and len(value) == 2):
+                raise LayerError("%s is %r, not two numbers" % (where, value))
+            values[field.name] = tuple(_check_number(field, v, where + "[%d]" % i) for i, v in enumerate(value))
+        elif field.kind == "integer":
+            if not (_is_number(value) and float(value).is_integer()):
+                raise LayerError("%s is %r, not an integer" % (where, value))
+            value = int(value)
+            if not field.minimum <= value <= field.maximum:
+                raise LayerError("%s = %d is outside %s" % (where, value, field.range_text()))
+            if value > BLENDER_INT_MAX:
+                notes.append("%s = %d is above %d, the largest integer a Blender property holds: "
+                             "kept as %d, another glint pattern" % (where, value, BLENDER_INT_MAX,
+                                                                    value % (BLENDER_INT_MAX + 1)))
+                value %= BLENDER_INT_MAX + 1
+            values[field.name] = value
+        elif field.kind == "boolean":
+            if value is True or value is False or (_is_number(value) and value in (0, 1)):
+                values[field.name] = bool(value)
+            else:
+                raise LayerError("%s is %r, not true or false" % (where, value))
+        elif field.kind == "choice":
+            identifier = next((i for v, i, _ in field.choices if v == value), None)
+            if identifier is None:
+                raise LayerError("%s is %r, not one of %s" % (where, value, ", ".join(v for v, _, _ in field.choices)))
+            values[field.name] = identifier
+        elif field.kind == "texture":
+            if not (isinstance(value, dict) and isinstance(value.get("index"), int)
+                    and not isinstance(value.get("index"), bool) and value["index"] >= 0):
+                raise LayerError("%s is %r, not a textureInfo with an index" % (where, value))
+            values[field.name] = value["index"]  # a glTF texture index; the importer makes it an image
+    return values, notes
