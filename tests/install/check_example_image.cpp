@@ -16,10 +16,11 @@
 
 #include "glint/error.h"
 #include "glint/image_io.h"
+#include "image_checks.h"
 
 namespace {
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using namespace glint::install_test;
 
 struct Statistics {
   double sphereMean = 0.0;   // over a disc at the centre, well inside the sphere
@@ -61,16 +62,6 @@ Statistics measure(const glint::ImageRgbF& image, const std::string& name) {
   return s;
 }
 
-void require(bool condition, const std::string& what) {
-  std::printf("%s: %s\n", condition ? "ok" : "FAILED", what.c_str());
-  if (!condition) throw glint::Error("check failed: " + what);
-}
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
 
 // An example's image of glint's built-in sphere against `glint render sphere`'s. Both rasterise the
 // same mesh with the same camera and shade it with the same kernel, light, sky and material, so

@@ -22,21 +22,11 @@
 
 #include "glint/error.h"
 #include "glint/image_io.h"
+#include "image_checks.h"
 
 namespace {
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
-void require(bool condition, const std::string& what) {
-  std::printf("%s: %s\n", condition ? "ok" : "FAILED", what.c_str());
-  if (!condition) throw glint::Error("check failed: " + what);
-}
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
+using namespace glint::install_test;
 
 // Glint pixels: brighter than twice the median of their 5 x 5 neighbourhood (the smooth shading
 // around them) by at least `floor`: single bright pixels that the diffuse term and the smooth
