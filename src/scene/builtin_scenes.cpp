@@ -308,10 +308,10 @@ Material sparklySilver() {
 Material sandstoneFloor() {
   Material m;
   m.name = "sandstone floor";
-  m.baseColour = glm::vec4(0.3f, 0.27f, 0.22f, 1.0f);
+  m.baseColour = glm::vec4(0.22f, 0.2f, 0.16f, 1.0f);
   m.metallic = 0.0f;
-  m.roughness = roughnessFor(0.25f);
-  m.glint = glintLayer(0.25f, 11.0f, 6.0f);  // uv in metres
+  m.roughness = roughnessFor(0.15f);
+  m.glint = glintLayer(0.15f, 9.0f, 6.0f);  // uv in metres
   m.glint.relativeArea = 0.05f;
   return m;
 }
@@ -324,7 +324,7 @@ Material glitterCloth(const char* name, glm::vec3 colour) {
   m.baseColour = glm::vec4(colour, 1.0f);
   m.metallic = 0.0f;
   m.roughness = roughnessFor(0.4f);
-  m.glint = glintLayer(0.4f, 13.0f, 4.0f);  // uv in metres
+  m.glint = glintLayer(0.4f, 10.0f, 4.0f);  // uv in metres
   m.doubleSided = true;
   return m;
 }
@@ -803,9 +803,9 @@ Scene atriumScene() {
   scene.name = "atrium";
   const int floor = addMaterial(scene, sandstoneFloor());
   const int stone = addMaterial(scene, matte("limestone", glm::vec3(0.5f, 0.45f, 0.37f)));
-  const int cloths[3] = {addMaterial(scene, glitterCloth("red curtain", glm::vec3(0.42f, 0.03f, 0.03f))),
-                         addMaterial(scene, glitterCloth("green curtain", glm::vec3(0.04f, 0.24f, 0.06f))),
-                         addMaterial(scene, glitterCloth("blue curtain", glm::vec3(0.04f, 0.07f, 0.36f)))};
+  const int cloths[3] = {addMaterial(scene, glitterCloth("red curtain", glm::vec3(0.25f, 0.02f, 0.02f))),
+                         addMaterial(scene, glitterCloth("green curtain", glm::vec3(0.02f, 0.14f, 0.035f))),
+                         addMaterial(scene, glitterCloth("blue curtain", glm::vec3(0.025f, 0.04f, 0.22f)))};
 
   constexpr float kHalfNave = 5.0f;   // column centres at x = +-5
   constexpr float kBay = 4.0f;        // column spacing along z
@@ -894,8 +894,8 @@ Scene atriumScene() {
   // A high sun from the front left lights the right-hand arcade and half the floor; three warm lamps
   // hang low over the nave, their mirror images on the floor in the lower half of the default view.
   scene.lights.push_back(directionalLight({0.45f, -1.0f, 0.35f}, glm::vec3(1.6f, 1.5f, 1.35f)));
-  for (float z : {6.0f, -4.0f, -14.0f}) scene.lights.push_back(pointLight({0.0f, 2.8f, z}, glm::vec3(9.0f, 7.5f, 5.5f)));
-  scene.environment = sky(0.3f);
+  for (float z : {6.0f, -4.0f, -14.0f}) scene.lights.push_back(pointLight({0.0f, 2.8f, z}, glm::vec3(40.0f, 33.0f, 24.0f)));
+  scene.environment = sky(0.25f);
   scene.exposure = 0.6f;
 
   setCameras(scene, camera({0.0f, 1.6f, 14.5f}, {0.0f, 3.0f, -16.0f}, 55.0f));
@@ -915,7 +915,11 @@ Scene atriumScene() {
 Scene carScene() {
   Scene scene;
   scene.name = "car";
-  const int paint = addMaterial(scene, carPaint());
+  // The car paint with sparser flakes (log density 8 instead of 12): a few dozen to a pixel at the
+  // default view, so that they sparkle.
+  Material flakePaint = carPaint();
+  flakePaint.glint.logDensity = 8.0f;
+  const int paint = addMaterial(scene, flakePaint);
   const int floor = addMaterial(scene, plainGrey("concrete", 0.3f));
   Material glassMaterial = matte("glass", glm::vec3(0.015f, 0.02f, 0.025f));
   glassMaterial.roughness = 0.1f;
@@ -963,8 +967,8 @@ Scene carScene() {
   scene.meshes.push_back(makeQuad("floor", floor, glm::vec3(0.0f), {30, 0, 0}, {0, 0, 30}, glm::vec2(60.0f)));
 
   scene.lights.push_back(directionalLight({-0.4f, -1.0f, -0.55f}, glm::vec3(2.6f, 2.5f, 2.3f)));
-  scene.lights.push_back(pointLight({3.0f, 3.6f, 1.5f}, glm::vec3(30.0f)));
-  scene.environment = sky(0.6f);
+  scene.lights.push_back(pointLight({-1.0f, 0.7f, 3.2f}, glm::vec3(20.0f)));
+  scene.environment = sky(0.35f);
   setCameras(scene, camera({4.2f, 1.6f, 3.8f}, {0.0f, 0.65f, 0.0f}, 36.0f));
   scene.cameras["side"] = camera({0.0f, 1.1f, 7.0f}, {0.0f, 0.8f, 0.0f}, 40.0f);
   scene.cameras["bonnet"] = camera({2.9f, 1.5f, 1.6f}, {1.2f, 0.8f, 0.0f}, 40.0f);
