@@ -83,7 +83,7 @@ void QualityOptions::addTo(CLI::App& command) {
 
 void QualityOptions::applyTo(const CLI::App& command, std::string& antiAliasing, FootprintOptions& footprint,
                              RasterOptions& raster) const {
-  if (quality.empty()) return;
+  if (command.get_option("--quality")->count() == 0) return;
   const gl::QualityPreset* preset = nullptr;
   try {
     preset = &gl::qualityPreset(quality);

@@ -42,7 +42,7 @@ struct FootprintOptions {
 // --shadow-cascades at once. render, view, bench and aa-error take it; each of those options given
 // on the command line wins over the tier's value.
 struct QualityOptions {
-  std::string quality;  // empty: none given
+  std::string quality;  // the tier given, if any
 
   void addTo(CLI::App& command);
   // Sets what the tier sets and `command`'s line does not: the anti-aliasing mode's name, the
