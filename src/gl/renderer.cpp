@@ -133,9 +133,9 @@ const char* toString(AntiAliasing mode) {
 const std::vector<QualityPreset>& qualityPresets() {
   // The values and why: docs/benchmarks.md, "Cost tiers".
   static const std::vector<QualityPreset> presets = {
-      {"low", "cells=12,drop=0.5", AntiAliasing::None, 1},
+      {"low", "aniso=2,cells=12,drop=0.9", AntiAliasing::None, 1},
       {"medium", "cells=24", AntiAliasing::GgaaLean, 2},
-      {"high", "drop=0.05", AntiAliasing::GgaaLean, 4},
+      {"high", "drop=0.1", AntiAliasing::GgaaLean, 2},
       {"exact", "exact", AntiAliasing::GgaaLean, kShadowCascades},
   };
   return presets;
