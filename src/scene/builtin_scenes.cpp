@@ -909,9 +909,9 @@ Scene atriumScene() {
 // glint's own geometry of the same size. A rounded body with its cabin lofted from superellipse
 // sections, in metallic flake paint whose glints take random colours; tinted glass in the
 // windscreen, the side and rear windows; four wheels with tyres and dished rims; round headlamps and
-// chrome bumpers; on a concrete floor under a sun, the sky and a point light whose mirror image
-// lies on the bonnet and the flank as seen from the default camera. The body's tessellation is chosen
-// for the triangle count (about 705,000).
+// chrome bumpers; on a concrete floor under a sun whose mirror image lies on the bonnet, the sky,
+// and a point light low in front of the flank whose mirror image runs along the doors as seen from
+// the default camera. The body's tessellation is chosen for the triangle count (about 705,000).
 Scene carScene() {
   Scene scene;
   scene.name = "car";
