@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include "scene/builtin_scenes.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,6 +36,16 @@ const Dictionary* authorsDictionary() {
     return std::make_unique<Dictionary>(loadAuthorsExrDictionary(authorsDictionaryFolder()));
   }();
   return dictionary.get();
+}
+
+bool isPaperScaleScene(const std::string& name) { return name == "atrium" || name == "car"; }
+
+std::vector<std::string> smallBuiltinSceneNames() {
+  std::vector<std::string> names;
+  for (const std::string& name : scene::builtinSceneNames()) {
+    if (!isPaperScaleScene(name)) names.push_back(name);
+  }
+  return names;
 }
 
 std::filesystem::path temporaryFolder(const std::string& name) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -21,6 +22,13 @@ const Dictionary& defaultDictionary();
 // The authors' published EXR dictionary from ../shared, loaded once; nullptr when absent.
 const Dictionary* authorsDictionary();
 std::filesystem::path authorsDictionaryFolder();
+
+// The built-in scenes at the scale of the paper's performance table (atrium and car: a quarter and
+// three quarters of a million triangles), which have tests of their own at small sizes, and the
+// others (builtinSceneNames() without them), which have golden images and go through the slowest
+// whole-program checks (the viewer against render, the page against the desktop).
+bool isPaperScaleScene(const std::string& name);
+std::vector<std::string> smallBuiltinSceneNames();
 
 // A fresh, empty temporary folder for one test.
 std::filesystem::path temporaryFolder(const std::string& name);

@@ -132,16 +132,27 @@ TEST(PageWeb, DictionaryIsGlintsDefault) {
   EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
 }
 
-// The desktop renderer's 8-bit image of a built-in scene (what `glint render` writes), RGB.
-ImageRgb8 desktopImage(const std::string& name, int size, const std::string& brdf) {
+// A view of a built-in scene the page and the desktop renderer both draw: a BRDF and a cost tier.
+struct PageView {
+  std::string scene;
+  std::string brdf = "glint";
+  std::string quality = "exact";
+};
+
+// The desktop renderer's 8-bit image of a view (what `glint render` writes), RGB.
+ImageRgb8 desktopImage(const PageView& view, int size) {
   useGlContext();
-  const scene::Scene scene = scene::makeBuiltinScene(name);
+  const scene::Scene scene = scene::makeBuiltinScene(view.scene);
   gl::Renderer renderer(scene, defaultDictionary());
   gl::FrameSettings frame;
   frame.width = size;
   frame.height = size;
   frame.camera = scene.cameras.at("default");
-  frame.brdf = gl::brdfModelFromString(brdf);
+  frame.brdf = gl::brdfModelFromString(view.brdf);
+  const gl::QualityPreset& tier = gl::qualityPreset(view.quality);
+  frame.footprintPolicy = footprintPolicyFromString(tier.footprint);
+  frame.antiAliasing = tier.antiAliasing;
+  frame.shadowCascades = tier.shadowCascades;
   frame.shadows = false;  // as the page draws (WebGL2 has no cube-map arrays for point lights' maps)
   const ImageRgbF radiance = gl::renderSupersampled(renderer, frame, 1);
   return gl::DisplayPass().encode(radiance, scene.exposure);
@@ -153,34 +164,30 @@ struct ImageDifference {
   double meanAbsolute = 0.0;  // over the channels
 };
 
-// Every built-in scene in the page against the desktop renderer on llvmpipe, with the glint BRDF;
-// and the sphere and the car paint with the other two (the Zirr & Kaplanyan program uses the
-// prelude's GLSL ES glintFindLSB and glintLdexp, written out where ES 3.00 lacks the built-ins).
-ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
-  std::vector<std::pair<std::string, std::string>> views;  // scene, BRDF
-  for (const std::string& name : scene::builtinSceneNames()) views.emplace_back(name, "glint");
-  for (const char* brdf : {"cook-torrance", "zirr-kaplanyan"}) {
-    views.emplace_back("sphere", brdf);
-    views.emplace_back("carpaint", brdf);
-  }
+// The views in the page against the desktop renderer on llvmpipe; `report` gets the driver's.
+ImageDifference comparePageViews(const std::vector<PageView>& views, const std::string& backend, int size,
+                                 json* report = nullptr) {
   BrowserJob job("scenes-" + backend);
-  for (const auto& [name, brdf] : views) {
-    job.steps.push_back({{"kind", "scene"}, {"name", name}, {"brdf", brdf}, {"width", size}, {"height", size},
-                         {"output", name + "-" + brdf + ".rgba"}});
+  for (std::size_t s = 0; s < views.size(); ++s) {
+    job.steps.push_back({{"kind", "scene"}, {"name", views[s].scene}, {"brdf", views[s].brdf},
+                         {"quality", views[s].quality}, {"width", size}, {"height", size},
+                         {"output", std::to_string(s) + ".rgba"}});
   }
-  const json report = job.run(backend);
+  const json result = job.run(backend);
+  if (report) *report = result;
   ImageDifference total;
   for (std::size_t s = 0; s < views.size(); ++s) {
-    const auto& [name, brdf] = views[s];
-    if (report.contains("steps") && report["steps"].size() > s) {
-      EXPECT_EQ(report["steps"][s]["error"], "") << name << ", " << brdf << ": the page says so";
+    const PageView& view = views[s];
+    const std::string label = view.scene + ", " + view.brdf + ", quality " + view.quality;
+    if (result.contains("steps") && result["steps"].size() > s) {
+      EXPECT_EQ(result["steps"][s]["error"], "") << label << ": the page says so";
     }
-    const std::vector<char> page = job.readFile(name + "-" + brdf + ".rgba");
+    const std::vector<char> page = job.readFile(std::to_string(s) + ".rgba");
     if (page.size() != static_cast<std::size_t>(size) * size * 4) {
-      ADD_FAILURE() << name << ": no frame from the page";
+      ADD_FAILURE() << label << ": no frame from the page";
       continue;
     }
-    const ImageRgb8 desktop = desktopImage(name, size, brdf);
+    const ImageRgb8 desktop = desktopImage(view, size);
     ImageDifference d;
     long sum = 0;
     for (int y = 0; y < size; ++y) {
@@ -195,14 +202,26 @@ ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
       }
     }
     d.meanAbsolute = static_cast<double>(sum) / (3.0 * size * size);
-    std::printf("%s, %s, %s, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255, %.4f/255 on "
-                "average\n", backend.c_str(), name.c_str(), brdf.c_str(), size, size, d.pixelsDiffering, d.largest,
-                d.meanAbsolute);
+    std::printf("%s, %s, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255, %.4f/255 on average\n",
+                backend.c_str(), label.c_str(), size, size, d.pixelsDiffering, d.largest, d.meanAbsolute);
     total.largest = std::max(total.largest, d.largest);
     total.pixelsDiffering += d.pixelsDiffering;
     total.meanAbsolute = std::max(total.meanAbsolute, d.meanAbsolute);
   }
   return total;
+}
+
+// Every small built-in scene in the page against the desktop renderer on llvmpipe, with the glint BRDF;
+// and the sphere and the car paint with the other two (the Zirr & Kaplanyan program uses the
+// prelude's GLSL ES glintFindLSB and glintLdexp, written out where ES 3.00 lacks the built-ins).
+ImageDifference compareBuiltinScenes(const std::string& backend, int size) {
+  std::vector<PageView> views;
+  for (const std::string& name : smallBuiltinSceneNames()) views.push_back({name});
+  for (const char* brdf : {"cook-torrance", "zirr-kaplanyan"}) {
+    views.push_back({"sphere", brdf});
+    views.push_back({"carpaint", brdf});
+  }
+  return comparePageViews(views, backend, size);
 }
 
 // ANGLE on llvmpipe runs the desktop's Mesa: the page's frames are the desktop renderer's, bit for
@@ -211,6 +230,25 @@ TEST(PageWeb, BuiltinScenesOnLlvmpipeAreTheDesktopRenderersImages) {
   SKIP_WITHOUT_BROWSER();
   const ImageDifference d = compareBuiltinScenes("llvmpipe", 128);
   EXPECT_EQ(d.pixelsDiffering, 0);
+}
+
+// The scenes at the paper's scale fit the page's memory and draw as on the desktop, and each cost
+// tier chosen in the page's list draws what `--quality` draws (and shows its anti-aliasing).
+TEST(PageWeb, PaperScaleScenesAndCostTiersAreTheDesktopRenderersImages) {
+  SKIP_WITHOUT_BROWSER();
+  std::vector<PageView> views = {{"atrium"}, {"car"}};
+  for (const gl::QualityPreset& tier : gl::qualityPresets()) views.push_back({"grazing-rough", "glint", tier.name});
+  json report;
+  const ImageDifference d = comparePageViews(views, "llvmpipe", 96, &report);
+  EXPECT_EQ(d.pixelsDiffering, 0);
+  ASSERT_EQ(report["steps"].size(), views.size()) << report.dump();
+  for (std::size_t s = 0; s < views.size(); ++s) {
+    EXPECT_EQ(report["steps"][s]["antiAliasing"], gl::toString(gl::qualityPreset(views[s].quality).antiAliasing));
+  }
+  // The memory after the car, the largest scene: under WebAssembly's 2 GiB without MAXIMUM_MEMORY.
+  const double memory = report["steps"][1]["memoryBytes"].get<double>();
+  std::printf("the page's WebAssembly memory after the atrium and the car: %.0f MiB\n", memory / (1 << 20));
+  EXPECT_LT(memory, 2048.0 * (1 << 20));
 }
 
 // A broken glTF (its JSON cut short) dropped on the page: the page names the file and the problem

@@ -32,6 +32,9 @@ struct AaErrorOptions {
   // Which footprint draws the reference: "paper" (the paper's, for every policy) or "same" (each
   // policy's own, which asks whether a policy's centre frame shows the pixel's mean of its own glints).
   std::string referenceFootprint = "paper";
+  // Cost tiers (--quality, gl::qualityPresets) measured besides the modes: each tier's footprint,
+  // anti-aliasing and cascades against the paper's reference.
+  std::vector<std::string> qualities;
 };
 
 using Frame = std::vector<double>;  // RGB radiance, pixel after pixel
@@ -172,6 +175,14 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
       entry["footprints"][policyName][gl::toString(mode)] = measured;
     }
   }
+  for (const std::string& name : options.qualities) {
+    const gl::QualityPreset& preset = gl::qualityPreset(name);
+    gl::FrameSettings tier = frame;
+    tier.footprintPolicy = footprintPolicyFromString(preset.footprint);
+    tier.antiAliasing = preset.antiAliasing;
+    tier.shadowCascades = preset.shadowCascades;
+    entry["qualities"][name] = measureMode(renderer, tier, options, values, paperReference.radiance, paperMean, paperMean);
+  }
   return entry;
 }
 
@@ -183,6 +194,13 @@ void runAaError(const AaErrorOptions& options) {
   if (!(options.aaKernel >= 0.0f && options.aaKernel <= 16.0f)) throw Error("--aa-kernel must be in [0, 16]");
   if (options.referenceFootprint != "paper" && options.referenceFootprint != "same") {
     throw Error("--reference-footprint must be paper or same, not '" + options.referenceFootprint + "'");
+  }
+  for (const std::string& name : options.qualities) {
+    try {
+      gl::qualityPreset(name);
+    } catch (const Error& error) {
+      throw Error(std::string("--quality: ") + error.what());
+    }
   }
   const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
   SceneOptions sceneOptions;
@@ -238,6 +256,26 @@ void runAaError(const AaErrorOptions& options) {
     }
     std::printf("\n");
   }
+  if (!options.qualities.empty()) {
+    // Each tier's RMSE and flicker against the paper's reference, and their ratios to the last tier
+    // given (exact, when it is given last).
+    const std::string& last = options.qualities.back();
+    std::printf("\nquality tiers against the paper's footprint's reference (ratio to %s)\n", last.c_str());
+    std::printf("%-16s %-8s %22s %22s\n", "scene", "quality", "RMSE", "flicker");
+    for (const auto& entry : report["scenes"]) {
+      for (const std::string& name : options.qualities) {
+        std::printf("%-16s %-8s", entry["scene"].get<std::string>().c_str(), name.c_str());
+        for (const char* metric : {"relative_rmse", "relative_flicker"}) {
+          const double value = entry["qualities"][name][metric];
+          const double reference = entry["qualities"][last][metric];
+          char cell[64];
+          std::snprintf(cell, sizeof cell, "%.2f%% (%.3f)", 100.0 * value, value / reference);
+          std::printf(" %22s", cell);
+        }
+        std::printf("\n");
+      }
+    }
+  }
   if (footprints.size() < 2) return;
   // Each footprint policy's RMSE and flicker, and both as ratios to the first policy's, mode by mode.
   std::printf("\nfootprint policies, each against %s (ratio to %s)\n",
@@ -288,6 +326,12 @@ void registerAaErrorCommand(CLI::App& app) {
   command->add_option("--reference-footprint", options->referenceFootprint,
                       "Footprint of the reference: paper (the paper's, for every policy) or same (each policy's own)")
       ->capture_default_str();
+  std::string tiers;
+  for (const gl::QualityPreset& preset : gl::qualityPresets()) tiers += (tiers.empty() ? "" : ", ") + std::string(preset.name);
+  command->add_option("--quality", options->qualities,
+                      "Also measure a cost tier (" + tiers + "): its footprint, anti-aliasing and cascades against "
+                      "the paper's reference; repeat it for several")
+      ->allow_extra_args(false);
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runAaError(*options); });
 }

@@ -35,6 +35,7 @@ struct BenchOptions {
   bool gltfTarget = false;
   RasterOptions raster;
   FootprintOptions footprint;
+  QualityOptions quality;
   bool featureCost = false;
   EnvironmentOptions environment;
   bool compareEnvironmentLights = false;
@@ -132,6 +133,8 @@ void runBench(const BenchOptions& options) {
                     options.compareEnvironmentLights, options.featureCost, footprints);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"footprint", footprints.front().first},
+                           {"anti_aliasing", options.antiAliasing}, {"shadow_cascades", options.raster.shadowCascades},
+                           {"quality", options.quality.quality.empty() ? "none" : options.quality.quality},
                            {"scenes", nlohmann::json::array()}};
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     const scene::Scene& scene = scenes[s];
@@ -192,7 +195,9 @@ void runBench(const BenchOptions& options) {
       if (progress) std::fprintf(stderr, "\rglint: %s frame %d/%d   ", scene.name.c_str(), round + 1, options.frames);
     }
     if (glGetError() != GL_NO_ERROR) throw Error("OpenGL error while rendering scene '" + scene.name + "'");
-    nlohmann::json entry = {{"scene", sceneNames[s]}};
+    std::size_t triangles = 0;
+    for (const scene::Mesh& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
+    nlohmann::json entry = {{"scene", sceneNames[s]}, {"triangles", triangles}};
     std::map<std::string, Timing> timings;
     for (const Variant& model : models) {
       timings[model.label] = summarise(times[model.label]);
@@ -240,12 +245,13 @@ void runBench(const BenchOptions& options) {
     std::cout << report.dump() << std::endl;
     return;
   }
-  std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max), anti-aliasing %s, shadows %s, "
-              "msaa %d, footprint %s\n",
+  std::printf("%dx%d on %s, %s timer, median of %d frame%s after %d warm-up (min..max), %santi-aliasing %s, shadows %s "
+              "(%d cascade%s), msaa %d, footprint %s\n",
               width, height, info.renderer.c_str(), timer.method(), options.frames, options.frames == 1 ? "" : "s",
-              options.warmup, options.antiAliasing.c_str(), options.raster.shadows.c_str(), options.raster.msaa,
-              footprints.front().first.c_str());
-  std::printf("%-16s", "scene");
+              options.warmup, options.quality.quality.empty() ? "" : ("quality " + options.quality.quality + ": ").c_str(),
+              options.antiAliasing.c_str(), options.raster.shadows.c_str(), options.raster.shadowCascades,
+              options.raster.shadowCascades == 1 ? "" : "s", options.raster.msaa, footprints.front().first.c_str());
+  std::printf("%-16s %9s", "scene", "triangles");
   for (const Variant& model : models) std::printf("  %-26s", model.label.c_str());
   for (const Variant& model : models) {
     if (model.label != "glint") std::printf("  glint/%s", model.label.c_str());
@@ -255,7 +261,7 @@ void runBench(const BenchOptions& options) {
   }
   std::printf("\n");
   for (const auto& entry : report["scenes"]) {
-    std::printf("%-16s", entry["scene"].get<std::string>().c_str());
+    std::printf("%-16s %9zu", entry["scene"].get<std::string>().c_str(), entry["triangles"].get<std::size_t>());
     for (const Variant& model : models) {
       const auto& t = entry[model.label];
       char cell[64];
@@ -314,7 +320,11 @@ void registerBenchCommand(CLI::App& app) {
   command->add_flag("--compare-env-lights", options->compareEnvironmentLights,
                     "Also time glint without the lights taken out of the environment map (glint-no-env-lights)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
-  command->callback([options] { runBench(*options); });
+  options->quality.addTo(*command);
+  command->callback([options, command] {
+    options->quality.applyTo(*command, options->antiAliasing, options->footprint, options->raster);
+    runBench(*options);
+  });
 }
 
 }  // namespace glint::app

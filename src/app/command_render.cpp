@@ -30,6 +30,7 @@ struct RenderOptions {
   OrbitOptions orbit;
   RasterOptions raster;
   FootprintOptions footprint;
+  QualityOptions quality;
 };
 
 void runRender(const RenderOptions& options) {
@@ -133,7 +134,11 @@ void registerRenderCommand(CLI::App& app) {
   options->orbit.addTo(*command);
   options->raster.addTo(*command);
   options->footprint.addTo(*command, false);
-  command->callback([options] { runRender(*options); });
+  options->quality.addTo(*command);
+  command->callback([options, command] {
+    options->quality.applyTo(*command, options->antiAliasing, options->footprint, options->raster);
+    runRender(*options);
+  });
 }
 
 }  // namespace glint::app

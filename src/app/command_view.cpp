@@ -40,6 +40,7 @@ struct ViewOptions {
   bool hidePanel = false;  // start without the panel (H shows it)
   RasterOptions raster;
   FootprintOptions footprint;
+  QualityOptions quality;
 };
 
 // What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
@@ -399,7 +400,11 @@ void registerViewCommand(CLI::App& app) {
   command->add_flag("--hide-panel", options->hidePanel, "Start with the panel hidden (H shows and hides it)");
   options->raster.addTo(*command);
   options->footprint.addTo(*command, false);
-  command->callback([options] { runView(*options); });
+  options->quality.addTo(*command);
+  command->callback([options, command] {
+    options->quality.applyTo(*command, options->antiAliasing, options->footprint, options->raster);
+    runView(*options);
+  });
 }
 
 }  // namespace glint::app

@@ -73,4 +73,26 @@ void RasterOptions::applyTo(gl::FrameSettings& frame, const gl::Renderer& render
   frame.msaa = msaa;
 }
 
+void QualityOptions::addTo(CLI::App& command) {
+  std::string tiers;
+  for (const gl::QualityPreset& preset : gl::qualityPresets()) tiers += (tiers.empty() ? "" : ", ") + std::string(preset.name);
+  command.add_option("--quality", quality,
+                     "Cost tier: " + tiers + ", each a preset of --footprint, --aa and --shadow-cascades (any of "
+                     "them given wins); exact is the defaults");
+}
+
+void QualityOptions::applyTo(const CLI::App& command, std::string& antiAliasing, FootprintOptions& footprint,
+                             RasterOptions& raster) const {
+  if (command.get_option("--quality")->count() == 0) return;
+  const gl::QualityPreset* preset = nullptr;
+  try {
+    preset = &gl::qualityPreset(quality);
+  } catch (const Error& error) {
+    throw Error(std::string("--quality: ") + error.what());
+  }
+  if (command.get_option("--aa")->count() == 0) antiAliasing = gl::toString(preset->antiAliasing);
+  if (footprint.policies.empty()) footprint.policies = {preset->footprint};
+  if (command.get_option("--shadow-cascades")->count() == 0) raster.shadowCascades = preset->shadowCascades;
+}
+
 }  // namespace glint::app

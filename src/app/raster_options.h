@@ -1,5 +1,6 @@
 // The rasteriser's shadows and anti-aliased edges from the command line (render, view, bench,
-// aa-error): --shadows on|off, --shadow-cascades N and --msaa N (docs/cli.md, docs/renderer.md).
+// aa-error): --shadows on|off, --shadow-cascades N and --msaa N (docs/cli.md, docs/renderer.md);
+// the glint footprint policy (--footprint) and the cost tiers over these (--quality).
 #pragma once
 
 #include <string>
@@ -35,6 +36,19 @@ struct FootprintOptions {
   FootprintPolicy policy() const;
   // Each policy given, in order, with its name; exact alone when none.
   std::vector<std::pair<std::string, FootprintPolicy>> all() const;
+};
+
+// --quality: a cost tier (gl::qualityPresets; docs/cli.md) that sets --footprint, --aa and
+// --shadow-cascades at once. render, view, bench and aa-error take it; each of those options given
+// on the command line wins over the tier's value.
+struct QualityOptions {
+  std::string quality;  // the tier given, if any
+
+  void addTo(CLI::App& command);
+  // Sets what the tier sets and `command`'s line does not: the anti-aliasing mode's name, the
+  // footprint policy and the cascades. Throws Error with one line naming --quality for an unknown tier.
+  void applyTo(const CLI::App& command, std::string& antiAliasing, FootprintOptions& footprint,
+               RasterOptions& raster) const;
 };
 
 // ", footprint P" for a run's summary line, empty for the paper's footprint.

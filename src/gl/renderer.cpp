@@ -130,6 +130,26 @@ const char* toString(AntiAliasing mode) {
   return "unknown";
 }
 
+const std::vector<QualityPreset>& qualityPresets() {
+  // The values and why: docs/benchmarks.md, "Cost tiers".
+  static const std::vector<QualityPreset> presets = {
+      {"low", "aniso=2,cells=12,drop=0.9", AntiAliasing::None, 1},
+      {"medium", "cells=24", AntiAliasing::GgaaLean, 2},
+      {"high", "drop=0.1", AntiAliasing::GgaaLean, 2},
+      {"exact", "exact", AntiAliasing::GgaaLean, kShadowCascades},
+  };
+  return presets;
+}
+
+const QualityPreset& qualityPreset(const std::string& name) {
+  std::string choices;
+  for (const QualityPreset& preset : qualityPresets()) {
+    if (name == preset.name) return preset;
+    choices += (choices.empty() ? "" : ", ") + std::string(preset.name);
+  }
+  throw Error("unknown quality '" + name + "' (choices: " + choices + ")");
+}
+
 glm::vec2 supersampleJitter(int k) {
   if (k == 0) return glm::vec2(0.0f);
   // R2: the fractional parts of k / g and k / g^2, g the plastic number.

@@ -46,6 +46,20 @@ std::vector<AntiAliasing> allAntiAliasingModes();
 AntiAliasing antiAliasingFromString(const std::string& name);  // throws Error naming the choices
 const char* toString(AntiAliasing mode);
 
+// Cost tiers (`--quality`, docs/cli.md; chosen in docs/benchmarks.md, "Cost tiers"): named presets
+// over the frame's glint footprint policy, anti-aliasing and a directional light's shadow cascades.
+// `exact` is the defaults: the paper's footprint, anti-aliased, four cascades.
+struct QualityPreset {
+  const char* name;       // low, medium, high, exact
+  const char* footprint;  // a footprint policy, as footprintPolicyFromString reads it
+  AntiAliasing antiAliasing;
+  int shadowCascades;
+};
+// Every tier, from the cheapest to the paper's.
+const std::vector<QualityPreset>& qualityPresets();
+// Throws Error naming the choices for an unknown name.
+const QualityPreset& qualityPreset(const std::string& name);
+
 struct FrameSettings {
   int width = 512;
   int height = 512;

@@ -303,6 +303,32 @@ Material sparklySilver() {
   return m;
 }
 
+// The atrium's floor: pale sandstone whose sparse mineral grains glitter (one cell in twenty holds
+// microfacets), visible near the camera.
+Material sandstoneFloor() {
+  Material m;
+  m.name = "sandstone floor";
+  m.baseColour = glm::vec4(0.22f, 0.2f, 0.16f, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(0.15f);
+  m.glint = glintLayer(0.15f, 9.0f, 6.0f);  // uv in metres
+  m.glint.relativeArea = 0.05f;
+  return m;
+}
+
+// The atrium's glitter curtains: dyed cloth whose every cell holds flakes (relative area 1, twenty
+// times the floor's).
+Material glitterCloth(const char* name, glm::vec3 colour) {
+  Material m;
+  m.name = name;
+  m.baseColour = glm::vec4(colour, 1.0f);
+  m.metallic = 0.0f;
+  m.roughness = roughnessFor(0.4f);
+  m.glint = glintLayer(0.4f, 10.0f, 4.0f);  // uv in metres
+  m.doubleSided = true;
+  return m;
+}
+
 int addMaterial(Scene& scene, Material material) {
   scene.materials.push_back(std::move(material));
   return static_cast<int>(scene.materials.size()) - 1;
@@ -339,17 +365,205 @@ void addCar(Scene& scene, int material, glm::vec3 groundCentre, float scale) {
   scene.meshes.push_back(makeLathe("car cabin", material, cabinCentre, 48, 64, superellipse(1.05f * scale, 0.42f * scale, 2.2f)));
 }
 
-// A curtain: a sheet hanging in the plane z = z0, width x height metres with its bottom at y0,
-// folded as a sine of amplitude `depth`. uv in metres, v growing downwards (unmirrored from +z).
-Mesh curtain(int material, float z0, float width, float height, float y0, float depth, float foldWidth) {
+// A curtain: a sheet `width` x `height` metres hanging with its bottom at y0, its middle line
+// through `origin` (whose y is 0), running along the horizontal unit vector `along` and folded as a
+// sine of amplitude `depth` towards `facing` (horizontal, unit, perpendicular to `along`); `grid`
+// cells along and down. uv in metres, v growing downwards (unmirrored seen from `facing`).
+Mesh curtain(int material, glm::vec3 origin, glm::vec3 along, glm::vec3 facing, float width, float height, float y0,
+             float depth, float foldWidth, glm::ivec2 grid) {
   const float k = 2.0f * kPi / foldWidth;
-  return makeParametricSurface("curtain", material, 160, 40, [=](float s, float t) {
+  return makeParametricSurface("curtain", material, grid.x, grid.y, [=](float s, float t) {
     const float x = (s - 0.5f) * width;
     const float y = y0 + (1.0f - t) * height;
-    const float z = z0 + depth * std::sin(k * x);
-    const float slope = depth * k * std::cos(k * x);  // dz/dx
-    return SurfacePoint{glm::vec3(x, y, z), glm::vec3(-slope, 0.0f, 1.0f), glm::vec2(s * width, t * height)};
+    const float fold = depth * std::sin(k * x);
+    const float slope = depth * k * std::cos(k * x);  // d fold / dx
+    return SurfacePoint{origin + x * along + fold * facing + glm::vec3(0.0f, y, 0.0f), -slope * along + facing,
+                        glm::vec2(s * width, t * height)};
   });
+}
+
+// ---- Atrium ------------------------------------------------------------------------------------
+
+// A body of revolution about the unit vector `axis` through `base`, its profile a Catmull-Rom curve
+// through (radius, height along the axis) points (metres), `segments` around and `rings` along;
+// rings are spread over the control polygon's length, so that mouldings get as many as a plain
+// shaft. The normals point away from the axis where the profile climbs along it, towards +axis
+// where it comes in towards the axis. Open at both ends (a point on the axis closes it); uv: (angle
+// / 2 pi, height in metres).
+Mesh makeTurnedProfile(std::string name, int material, glm::vec3 base, glm::vec3 axis, const std::vector<glm::vec2>& points,
+                       int segments, int rings) {
+  const glm::vec3 first = anyPerpendicular(axis);
+  const glm::vec3 second = glm::cross(axis, first);
+  const int last = static_cast<int>(points.size()) - 1;
+  std::vector<float> start(points.size(), 0.0f);  // arc length of the control polygon up to each point
+  for (int i = 1; i <= last; ++i) start[i] = start[i - 1] + glm::length(points[i] - points[i - 1]);
+  auto point = [&](int i) { return points[static_cast<std::size_t>(std::clamp(i, 0, last))]; };
+  return makeParametricSurface(std::move(name), material, segments, rings, [=](float s, float t) {
+    // The segment and the local parameter tau at arc length t * total.
+    const float at = t * start[last];
+    int i = 0;
+    while (i < last - 1 && at > start[i + 1]) ++i;
+    const float tau = t >= 1.0f ? 1.0f : std::clamp((at - start[i]) / (start[i + 1] - start[i]), 0.0f, 1.0f);
+    const glm::vec2 p0 = point(i - 1), p1 = point(i), p2 = point(i + 1), p3 = point(i + 2);
+    const glm::vec2 a = -p0 + p2, b = 2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3, c = -p0 + 3.0f * p1 - 3.0f * p2 + p3;
+    const glm::vec2 profile = p1 + 0.5f * tau * (a + tau * (b + tau * c));
+    const glm::vec2 slope = 0.5f * (a + tau * (2.0f * b + 3.0f * tau * c));  // d profile / d tau: (dr, dy)
+    const float angle = s >= 1.0f ? 0.0f : 2.0f * kPi * s;
+    const glm::vec3 radial = std::cos(angle) * first + std::sin(angle) * second;
+    // Perpendicular to the profile's tangent (dr, dh) in the (radial, axis) plane.
+    const glm::vec3 normal = slope.y * radial - slope.x * axis;
+    return SurfacePoint{base + profile.x * radial + profile.y * axis, normal, glm::vec2(s, profile.y)};
+  });
+}
+
+// A column `height` metres tall standing at `ground`, shaft radius `radius` at its foot: a square
+// plinth, a torus moulding, a tapering shaft with a ring at its neck, a flaring capital and a
+// square abacus on which arches rest (its top at `height`).
+void addColumn(Scene& scene, int material, glm::vec3 ground, float height, float radius, int segments, int rings) {
+  const float r = radius;
+  const float plinth = 0.25f * r / 0.3f;     // proportions of a 0.3 m column
+  const float abacus = 0.2f * r / 0.3f;
+  const float top = height - abacus;
+  const std::vector<glm::vec2> profile = {
+      {1.25f * r, plinth},          {1.3f * r, plinth + 0.05f * r},  {1.18f * r, plinth + 0.22f * r},
+      {1.02f * r, plinth + 0.33f * r}, {r, plinth + 0.5f * r},         {0.93f * r, 0.55f * top},
+      {0.86f * r, top - 0.75f * r}, {0.98f * r, top - 0.68f * r},  {0.86f * r, top - 0.6f * r},
+      {0.95f * r, top - 0.4f * r},  {1.35f * r, top - 0.08f * r},  {1.45f * r, top}};
+  scene.meshes.push_back(makeTurnedProfile("column", material, ground, glm::vec3(0, 1, 0), profile, segments, rings));
+  scene.meshes.push_back(makeBox("column plinth", material, ground + glm::vec3(0.0f, 0.5f * plinth, 0.0f),
+                                 glm::vec3(1.4f * r, 0.5f * plinth, 1.4f * r), 1.0f));
+  scene.meshes.push_back(makeBox("column abacus", material, ground + glm::vec3(0.0f, top + 0.5f * abacus, 0.0f),
+                                 glm::vec3(1.55f * r, 0.5f * abacus, 1.55f * r), 1.0f));
+}
+
+// The face of a wall over a round arch: the plane through `origin` (its foot at the bay's start)
+// spanning `span` metres along the horizontal unit vector `along`, from the springing height up to
+// `top`, less the half disc of radius `archRadius` centred mid-span on the springing line; its
+// normal is `facing`. Vertical rulings from the arch (and the flat beds beside it) up to the top,
+// `columns` along the bottom edge by arc length, `rows` up. uv in metres.
+Mesh archedWallFace(int material, glm::vec3 origin, glm::vec3 along, glm::vec3 facing, float span, float archRadius,
+                    float springing, float top, int columns, int rows) {
+  const float bed = 0.5f * span - archRadius;  // the flat beds on either side of the arch
+  const float length = 2.0f * bed + kPi * archRadius;
+  return makeParametricSurface("arcade wall", material, columns, rows, [=](float s, float t) {
+    const float at = s * length;
+    glm::vec2 bottom;  // (along, up) of the bottom edge
+    if (at <= bed) {
+      bottom = {at, springing};
+    } else if (at >= bed + kPi * archRadius) {
+      bottom = {s >= 1.0f ? span : at - kPi * archRadius + 2.0f * archRadius, springing};
+    } else {
+      const float angle = (at - bed) / archRadius;  // 0 at the arch's start, pi at its end
+      bottom = {0.5f * span - archRadius * std::cos(angle), springing + archRadius * std::sin(angle)};
+    }
+    const float up = t >= 1.0f ? top : glm::mix(bottom.y, top, t);
+    return SurfacePoint{origin + bottom.x * along + glm::vec3(0.0f, up, 0.0f), facing, glm::vec2(bottom.x, up)};
+  });
+}
+
+// The underside of a round arch through a wall: the half cylinder of radius `archRadius` about the
+// springing line mid-span, from `origin` (the wall's foot at the bay's start, on one face) across
+// `thickness` metres along `across`; its normals point to the arch's axis. uv in metres.
+Mesh archIntrados(int material, glm::vec3 origin, glm::vec3 along, glm::vec3 across, float span, float archRadius,
+                  float springing, float thickness, int segments) {
+  return makeParametricSurface("arch intrados", material, segments, 1, [=](float s, float t) {
+    const float angle = s >= 1.0f ? kPi : kPi * s;
+    const float alongArch = 0.5f * span - archRadius * std::cos(angle);
+    const glm::vec3 position = origin + alongArch * along + t * thickness * across +
+                               glm::vec3(0.0f, springing + archRadius * std::sin(angle), 0.0f);
+    const glm::vec3 normal = std::cos(angle) * along - std::sin(angle) * glm::vec3(0, 1, 0);
+    return SurfacePoint{position, normal, glm::vec2(archRadius * angle, t * thickness)};
+  });
+}
+
+// ---- Car ---------------------------------------------------------------------------------------
+
+// sign(x) |x|^p: a superellipse's coordinate.
+float signedPower(float x, float p) { return std::copysign(std::pow(std::abs(x), p), x); }
+
+// The car's body, front towards +x, wheels on the ground at y = 0: a loft of rounded-rectangle
+// (superellipse) sections along x whose top follows a side profile (bonnet, windscreen, roof,
+// sloping tail) and whose upper part leans in (tumblehome), its ends rounded off by a superellipse
+// along x. Dimensions in metres, about a Citroen 2CV's.
+struct CarBody {
+  float halfLength = 1.95f;
+  float halfWidth = 0.76f;
+  float bottom = 0.36f;   // the sill, above the wheels' centres
+  float belt = 1.0f;      // the windows' sills
+  float roof = 1.6f;
+
+  // The top of the section at x: the bonnet rising to the scuttle, the windscreen, the roof and
+  // the tail sloping down to the rear.
+  float top(float x) const {
+    const float bonnet = 0.84f + 0.16f * glm::smoothstep(1.95f, 0.75f, x);
+    const float cabin = glm::smoothstep(0.8f, 0.22f, x);
+    const float tail = roof - 0.68f * std::pow(glm::smoothstep(-0.65f, -1.95f, x), 1.3f);
+    return glm::mix(bonnet, tail, cabin);
+  }
+  // The half width at x and height y: narrower at the nose, leaning in above the belt.
+  float width(float x, float y) const {
+    const float nose = 1.0f - 0.12f * glm::smoothstep(0.9f, 1.95f, x);
+    return halfWidth * nose * (1.0f - 0.27f * glm::smoothstep(belt - 0.05f, roof, y));
+  }
+  // The point at s along the body (0 rear, 1 front) and t around its section (0 and 1 under the
+  // middle of the floor).
+  glm::vec3 position(float s, float t) const {
+    const float along = kPi * (s - 0.5f);
+    const float x = halfLength * signedPower(std::sin(along), 0.45f);
+    const float section = s <= 0.0f || s >= 1.0f ? 0.0f : std::pow(std::cos(along), 0.45f);
+    const float around = 2.0f * kPi * t;
+    const float height = top(x) - bottom;
+    const float y = bottom + 0.5f * height * (1.0f - section * signedPower(std::cos(around), 0.4f));
+    return {x, y, width(x, y) * section * signedPower(std::sin(around), 0.4f)};
+  }
+  // The section's centre line, which the normals point away from.
+  glm::vec3 axis(float s) const {
+    const float x = halfLength * signedPower(std::sin(kPi * (s - 0.5f)), 0.45f);
+    return {x, 0.5f * (bottom + top(x)), 0.0f};
+  }
+};
+
+// Where the body is glass, for a triangle at `p` with normal `n`: the windscreen, a side window
+// each side of the B pillar, the rear window.
+bool carWindow(const CarBody& body, glm::vec3 p, glm::vec3 n) {
+  if (p.y < body.belt + 0.05f) return false;
+  const float edge = body.width(p.x, p.y);
+  const bool windscreen = p.x > 0.2f && p.x < 0.78f && n.x > 0.35f && std::abs(p.z) < 0.8f * edge;
+  const bool side = std::abs(n.z) > 0.55f && p.y < body.top(p.x) - 0.1f && p.x > -1.05f && p.x < 0.42f &&
+                    std::abs(p.x + 0.3f) > 0.06f;
+  const bool rear = p.x < -1.0f && n.x < -0.35f && std::abs(p.z) < 0.72f * edge && p.y > body.belt + 0.1f;
+  return windscreen || side || rear;
+}
+
+// A wheel at `hub` (on the axle, at the tyre's outer face), `outwards` the unit axle direction
+// away from the car: a tyre with a rounded-square section and a dished rim with a hub cap.
+void addWheel(Scene& scene, int rubber, int rim, glm::vec3 hub, glm::vec3 outwards, float radius) {
+  const float tyreHalfWidth = 0.09f;
+  const float tyreHalfHeight = 0.075f;
+  const glm::vec3 centre = hub - tyreHalfWidth * outwards;
+  const glm::vec3 first = anyPerpendicular(outwards);
+  const glm::vec3 second = glm::cross(outwards, first);
+  const float ring = radius - tyreHalfHeight;  // the tread's middle is `radius` from the axle
+  auto tyre = [=](float s, float t) {
+    const float a = s >= 1.0f ? 0.0f : 2.0f * kPi * s;
+    const float b = 2.0f * kPi * t;
+    const glm::vec3 radial = std::cos(a) * first + std::sin(a) * second;
+    return centre + (ring + tyreHalfHeight * signedPower(std::cos(b), 0.5f)) * radial +
+           tyreHalfWidth * signedPower(std::sin(b), 0.5f) * outwards;
+  };
+  auto tubeCentre = [=](float s, float) {
+    const float a = 2.0f * kPi * s;
+    return centre + ring * (std::cos(a) * first + std::sin(a) * second);
+  };
+  scene.meshes.push_back(makeSurfaceFromPositions(
+      "tyre", rubber, 72, 28, true, tyre, tubeCentre, [=](float, float) { return outwards; },
+      [=](float s, float t) { return glm::vec2(s * 2.0f * kPi * radius, t); }));
+  // The rim, from where it meets the tyre in to the hub cap's dome, its face turned outwards.
+  const float inner = ring - tyreHalfHeight;
+  const std::vector<glm::vec2> profile = {{inner + 0.01f, -0.03f}, {inner - 0.01f, 0.0f}, {0.7f * inner, -0.02f},
+                                          {0.45f * inner, 0.0f},    {0.4f * inner, 0.04f},  {0.2f * inner, 0.07f},
+                                          {0.0f, 0.075f}};
+  scene.meshes.push_back(makeTurnedProfile("rim", rim, centre + 0.05f * outwards, outwards, profile, 64, 24));
 }
 
 // The point of a sphere at `elevation` above its equator and `azimuth` to the left of `facing`
@@ -560,7 +774,7 @@ Scene showroomScene() {
   scene.meshes.push_back(makeUvSphere("sphere", red, stageCentre + glm::vec3(0.0f, stageHalf.y + sphereRadius, 0.0f),
                                       sphereRadius, 96, 48));
   addCar(scene, paint, glm::vec3(1.5f, 0.0f, -0.6f), 0.6f);
-  scene.meshes.push_back(curtain(cloth, -3.5f, 7.0f, 3.2f, 0.02f, 0.08f, 0.45f));
+  scene.meshes.push_back(curtain(cloth, {0.0f, 0.0f, -3.5f}, {1, 0, 0}, {0, 0, 1}, 7.0f, 3.2f, 0.02f, 0.08f, 0.45f, {160, 40}));
 
   // Glints show where a light's mirror image lies, so each light has a surface to sparkle on as
   // seen from the default camera: the key on the sphere, car and curtain; the back-left light
@@ -574,6 +788,190 @@ Scene showroomScene() {
   scene.cameras["wide"] = camera({4.5f, 3.2f, 6.0f}, {0.0f, 0.8f, -1.2f}, 60.0f);
   scene.cameras["curtain"] = camera({0.5f, 1.6f, -1.0f}, {0.0f, 1.6f, -3.5f});
   scene.cameras["car"] = camera({3.2f, 1.2f, 1.4f}, {1.5f, 0.45f, -0.6f});
+  return scene;
+}
+
+// The atrium: after the Sponza atrium of Chermain et al. 2020's performance table (262,267
+// triangles), glint's own geometry of the same size. A nave 10 m wide and 32 m long between two
+// storeys of round-arched arcades on columns, aisles and a gallery behind them, a sandstone floor
+// with sparse glittering grains, red, green and blue glitter curtains hanging between the columns of
+// both storeys, a great arch at the far end; open to the sky, lit by a high sun and three lamps
+// hanging in the nave. The tessellation is chosen for the triangle count (about 262,000), as the
+// paper's scene's counts come from its modelling.
+Scene atriumScene() {
+  Scene scene;
+  scene.name = "atrium";
+  const int floor = addMaterial(scene, sandstoneFloor());
+  const int stone = addMaterial(scene, matte("limestone", glm::vec3(0.5f, 0.45f, 0.37f)));
+  const int cloths[3] = {addMaterial(scene, glitterCloth("red curtain", glm::vec3(0.25f, 0.02f, 0.02f))),
+                         addMaterial(scene, glitterCloth("green curtain", glm::vec3(0.02f, 0.14f, 0.035f))),
+                         addMaterial(scene, glitterCloth("blue curtain", glm::vec3(0.025f, 0.04f, 0.22f)))};
+
+  constexpr float kHalfNave = 5.0f;   // column centres at x = +-5
+  constexpr float kBay = 4.0f;        // column spacing along z
+  constexpr int kBays = 8;
+  constexpr float kStart = -0.5f * kBay * kBays;  // the first column's z
+  constexpr float kAisleWall = 9.0f;  // inner face of the outer walls
+  struct Storey {
+    float floor;        // where its columns stand
+    float columnHeight;  // to the top of the abacus: the arches' springing line
+    float radius;       // the shaft's
+    float archRadius;
+    float wallTop;      // the arcade wall's top
+    float thickness;    // of the arcade wall
+  };
+  constexpr Storey kStoreys[2] = {{0.0f, 4.2f, 0.3f, 1.5f, 6.45f, 0.7f}, {6.75f, 3.1f, 0.22f, 1.6f, 12.3f, 0.5f}};
+  constexpr float kCornice = 0.3f;    // the band over each arcade wall
+  const glm::vec3 up(0, 1, 0);
+  const glm::vec3 along(0, 0, 1);
+
+  // The floor runs out through the far arch.
+  scene.meshes.push_back(makeQuad("floor", floor, glm::vec3(0.0f, 0.0f, -6.0f), {kAisleWall + 0.3f, 0, 0}, {0, 0, 24.0f},
+                                  glm::vec2(2.0f * (kAisleWall + 0.3f), 48.0f)));
+  for (float side : {-1.0f, 1.0f}) {
+    const glm::vec3 towardsNave(-side, 0.0f, 0.0f);
+    for (int level = 0; level < 2; ++level) {
+      const Storey& storey = kStoreys[level];
+      const float springing = storey.floor + storey.columnHeight;
+      for (int k = 0; k <= kBays; ++k) {
+        addColumn(scene, stone, glm::vec3(side * kHalfNave, storey.floor, kStart + kBay * static_cast<float>(k)),
+                  storey.columnHeight, storey.radius, 40, 48);
+      }
+      for (int k = 0; k < kBays; ++k) {
+        const float z0 = kStart + kBay * static_cast<float>(k);
+        const glm::vec3 front(side * (kHalfNave - 0.5f * storey.thickness), 0.0f, z0);
+        const glm::vec3 back(side * (kHalfNave + 0.5f * storey.thickness), 0.0f, z0);
+        scene.meshes.push_back(archedWallFace(stone, front, along, towardsNave, kBay, storey.archRadius, springing,
+                                              storey.wallTop, 48, 4));
+        scene.meshes.push_back(archedWallFace(stone, back, along, -towardsNave, kBay, storey.archRadius, springing,
+                                              storey.wallTop, 48, 4));
+        scene.meshes.push_back(archIntrados(stone, front, along, -towardsNave, kBay, storey.archRadius, springing,
+                                            storey.thickness, 32));
+      }
+      // The cornice over the arcade, and the floor (gallery) or roof of the aisle behind it.
+      const float halfLength = 0.5f * kBay * kBays + 0.5f;
+      scene.meshes.push_back(makeBox("cornice", stone,
+                                     glm::vec3(side * kHalfNave, storey.wallTop + 0.5f * kCornice, 0.0f),
+                                     glm::vec3(0.5f * storey.thickness + 0.15f, 0.5f * kCornice, halfLength), 1.0f));
+      const float slabTop = storey.wallTop + kCornice;
+      scene.meshes.push_back(makeBox(level == 0 ? "gallery floor" : "aisle roof", stone,
+                                     glm::vec3(side * 0.5f * (kHalfNave + kAisleWall), slabTop - 0.15f, 0.0f),
+                                     glm::vec3(0.5f * (kAisleWall - kHalfNave), 0.15f, halfLength), 1.0f));
+      // Curtains hang between the columns of every other bay, alternating with the other storey.
+      for (int k = level; k < kBays; k += 2) {
+        const float z = kStart + kBay * (static_cast<float>(k) + 0.5f);
+        const float width = kBay - 2.0f * 1.6f * storey.radius;
+        const float bottom = storey.floor + 0.15f;
+        const float offset = kHalfNave - 0.5f * storey.thickness - 0.25f;
+        const int colour = (k + (side > 0.0f ? 1 : 0)) % 3;
+        scene.meshes.push_back(curtain(cloths[colour], glm::vec3(side * offset, 0.0f, z), along, towardsNave, width,
+                                       springing - 0.2f - bottom, bottom, 0.06f, 0.4f, {72, 40}));
+      }
+    }
+    // The outer wall of the aisles, up to the roof.
+    scene.meshes.push_back(makeBox("aisle wall", stone, glm::vec3(side * (kAisleWall + 0.15f), 6.6f, 0.0f),
+                                   glm::vec3(0.15f, 6.6f, 0.5f * kBay * kBays + 0.5f), 1.0f));
+  }
+  // The far wall, with a great arch onto the open ground beyond.
+  const float farWall = kStart - 0.6f;
+  const float wallTop = kStoreys[1].wallTop + kCornice;
+  const glm::vec3 farCorner(-(kAisleWall + 0.3f), 0.0f, farWall);
+  const glm::vec3 across(1, 0, 0);
+  constexpr float kGreatArch = 2.6f;
+  constexpr float kGreatSpringing = 5.0f;
+  const float farSpan = 2.0f * (kAisleWall + 0.3f);
+  scene.meshes.push_back(archedWallFace(stone, farCorner, across, along, farSpan, kGreatArch, kGreatSpringing, wallTop, 96, 8));
+  scene.meshes.push_back(archedWallFace(stone, farCorner - glm::vec3(0.0f, 0.0f, 0.8f), across, -along, farSpan, kGreatArch,
+                                        kGreatSpringing, wallTop, 96, 8));
+  scene.meshes.push_back(archIntrados(stone, farCorner, across, -along, farSpan, kGreatArch, kGreatSpringing, 0.8f, 48));
+  // The wall below the springing line on either side of the great arch.
+  for (float side : {-1.0f, 1.0f}) {
+    const float halfWidth = 0.5f * (kAisleWall + 0.3f - kGreatArch);
+    scene.meshes.push_back(makeBox("far wall", stone, glm::vec3(side * (kGreatArch + halfWidth), 0.5f * kGreatSpringing, farWall - 0.4f),
+                                   glm::vec3(halfWidth, 0.5f * kGreatSpringing, 0.4f), 1.0f));
+  }
+
+  // A high sun from the front left lights the right-hand arcade and half the floor; three warm lamps
+  // hang low over the nave, their mirror images on the floor in the lower half of the default view.
+  scene.lights.push_back(directionalLight({0.45f, -1.0f, 0.35f}, glm::vec3(1.6f, 1.5f, 1.35f)));
+  for (float z : {6.0f, -4.0f, -14.0f}) scene.lights.push_back(pointLight({0.0f, 2.8f, z}, glm::vec3(40.0f, 33.0f, 24.0f)));
+  scene.environment = sky(0.25f);
+  scene.exposure = 0.6f;
+
+  setCameras(scene, camera({0.0f, 1.6f, 14.5f}, {0.0f, 3.0f, -16.0f}, 55.0f));
+  scene.cameras["floor"] = camera({0.8f, 1.0f, 8.0f}, {0.0f, 0.0f, 3.0f}, 50.0f);
+  scene.cameras["curtain"] = camera({0.5f, 2.0f, 5.0f}, {4.4f, 2.0f, -1.0f}, 50.0f);
+  scene.cameras["gallery"] = camera({-7.0f, 8.5f, 14.0f}, {2.0f, 4.0f, -8.0f}, 60.0f);
+  return scene;
+}
+
+// The car: after the Citroen 2CV of Chermain et al. 2020's performance table (704,527 triangles),
+// glint's own geometry of the same size. A rounded body with its cabin lofted from superellipse
+// sections, in metallic flake paint whose glints take random colours; tinted glass in the
+// windscreen, the side and rear windows; four wheels with tyres and dished rims; round headlamps and
+// chrome bumpers; on a concrete floor under a sun whose mirror image lies on the bonnet, the sky,
+// and a point light low in front of the flank whose mirror image runs along the doors as seen from
+// the default camera. The body's tessellation is chosen for the triangle count (about 705,000).
+Scene carScene() {
+  Scene scene;
+  scene.name = "car";
+  // The car paint with sparser flakes (log density 8 instead of 12): a few dozen to a pixel at the
+  // default view, so that they sparkle.
+  Material flakePaint = carPaint();
+  flakePaint.glint.logDensity = 8.0f;
+  const int paint = addMaterial(scene, flakePaint);
+  const int floor = addMaterial(scene, plainGrey("concrete", 0.3f));
+  Material glassMaterial = matte("glass", glm::vec3(0.015f, 0.02f, 0.025f));
+  glassMaterial.roughness = 0.1f;
+  const int glass = addMaterial(scene, glassMaterial);
+  const int rubber = addMaterial(scene, plainGrey("tyre", 0.03f));
+  Material rimMaterial = plainGrey("rim", 0.7f);
+  rimMaterial.metallic = 1.0f;
+  rimMaterial.roughness = 0.35f;
+  const int rim = addMaterial(scene, rimMaterial);
+  Material chromeMaterial = plainGrey("chrome", 0.9f);
+  chromeMaterial.metallic = 1.0f;
+  chromeMaterial.roughness = 0.2f;
+  const int chrome = addMaterial(scene, chromeMaterial);
+  Material lampMaterial = plainGrey("headlamp", 0.8f);
+  lampMaterial.emissive = glm::vec3(0.9f, 0.85f, 0.7f);
+  const int lamp = addMaterial(scene, lampMaterial);
+
+  const CarBody body;
+  Mesh shell = makeSurfaceFromPositions(
+      "car body", paint, 616, 548, true, [&](float s, float t) { return body.position(s, t); },
+      [&](float s, float) { return body.axis(s); },
+      [&](float s, float) { return glm::vec3(s < 0.5f ? -1.0f : 1.0f, 0.0f, 0.0f); },
+      [&](float s, float t) { return glm::vec2(4.0f * body.halfLength * s, 4.0f * t); });
+  const Mesh& shape = shell;
+  scene.meshes.push_back(splitOffTriangles(shell, "car windows", glass, [&](std::size_t triangle) {
+    const Vertex& a = shape.vertices[shape.indices[3 * triangle]];
+    const Vertex& b = shape.vertices[shape.indices[3 * triangle + 1]];
+    const Vertex& c = shape.vertices[shape.indices[3 * triangle + 2]];
+    return carWindow(body, (a.position + b.position + c.position) / 3.0f, glm::normalize(a.normal + b.normal + c.normal));
+  }));
+  scene.meshes.push_back(std::move(shell));
+
+  constexpr float kWheelRadius = 0.32f;
+  for (float x : {-1.2f, 1.2f}) {
+    for (float side : {-1.0f, 1.0f}) {
+      addWheel(scene, rubber, rim, glm::vec3(x, kWheelRadius, side * 0.72f), glm::vec3(0.0f, 0.0f, side), kWheelRadius);
+    }
+  }
+  for (float side : {-1.0f, 1.0f}) {
+    scene.meshes.push_back(makeUvSphere("headlamp", lamp, glm::vec3(1.84f, 0.64f, side * 0.36f), 0.08f, 32, 16));
+  }
+  for (float end : {-1.0f, 1.0f}) {
+    scene.meshes.push_back(makeBox("bumper", chrome, glm::vec3(end * 1.86f, 0.46f, 0.0f), glm::vec3(0.04f, 0.035f, 0.5f), 1.0f));
+  }
+  scene.meshes.push_back(makeQuad("floor", floor, glm::vec3(0.0f), {30, 0, 0}, {0, 0, 30}, glm::vec2(60.0f)));
+
+  scene.lights.push_back(directionalLight({-0.4f, -1.0f, -0.55f}, glm::vec3(2.6f, 2.5f, 2.3f)));
+  scene.lights.push_back(pointLight({-1.0f, 0.7f, 3.2f}, glm::vec3(20.0f)));
+  scene.environment = sky(0.35f);
+  setCameras(scene, camera({4.2f, 1.6f, 3.8f}, {0.0f, 0.65f, 0.0f}, 36.0f));
+  scene.cameras["side"] = camera({0.0f, 1.1f, 7.0f}, {0.0f, 0.8f, 0.0f}, 40.0f);
+  scene.cameras["bonnet"] = camera({2.9f, 1.5f, 1.6f}, {1.2f, 0.8f, 0.0f}, 40.0f);
   return scene;
 }
 
@@ -659,6 +1057,8 @@ constexpr BuiltinScene kBuiltinScenes[] = {
     {"grazing-smooth", grazingSmoothScene},
     {"grazing-rough", grazingRoughScene},
     {"arctic", arcticScene},
+    {"atrium", atriumScene},
+    {"car", carScene},
 };
 
 std::string joinedNames() {

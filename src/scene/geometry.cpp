@@ -1,5 +1,6 @@
 #include "scene/geometry.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <numbers>
@@ -156,6 +157,57 @@ Mesh makeParametricSurface(std::string name, int material, int columns, int rows
   }
   generateTangents(mesh);
   return mesh;
+}
+
+Mesh makeSurfaceFromPositions(std::string name, int material, int columns, int rows, bool periodicT,
+                              const std::function<glm::vec3(float s, float t)>& position,
+                              const std::function<glm::vec3(float s, float t)>& inside,
+                              const std::function<glm::vec3(float s, float t)>& poleNormal,
+                              const std::function<glm::vec2(float s, float t)>& uv) {
+  constexpr float kStep = 1e-3f;
+  return makeParametricSurface(std::move(name), material, columns, rows, [&](float s, float t) {
+    const glm::vec3 p = position(s, t);
+    const glm::vec3 alongS = position(std::min(s + kStep, 1.0f), t) - position(std::max(s - kStep, 0.0f), t);
+    const glm::vec3 alongT = periodicT ? position(s, t + kStep) - position(s, t - kStep)
+                                       : position(s, std::min(t + kStep, 1.0f)) - position(s, std::max(t - kStep, 0.0f));
+    glm::vec3 normal = glm::cross(alongS, alongT);
+    const float length2 = glm::dot(normal, normal);
+    // Differences that vanish against the size of the steps: a pole, or a fold.
+    const float scale = glm::dot(alongS, alongS) * glm::dot(alongT, alongT);
+    if (!(length2 > 1e-6f * scale) || !(length2 > kDegenerate)) {
+      normal = poleNormal(s, t);
+    } else if (glm::dot(normal, p - inside(s, t)) < 0.0f) {
+      normal = -normal;
+    }
+    return SurfacePoint{p, normal, uv(s, t)};
+  });
+}
+
+Mesh splitOffTriangles(Mesh& mesh, std::string name, int material, const std::function<bool(std::size_t)>& picked) {
+  Mesh pickedMesh;
+  pickedMesh.name = std::move(name);
+  pickedMesh.material = material;
+  Mesh kept;
+  kept.name = mesh.name;
+  kept.material = mesh.material;
+  // New index of each old vertex in either mesh, or none yet.
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> inPicked(mesh.vertices.size(), kNone), inKept(mesh.vertices.size(), kNone);
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const bool goes = picked(i / 3);
+    Mesh& into = goes ? pickedMesh : kept;
+    std::vector<std::uint32_t>& map = goes ? inPicked : inKept;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t old = mesh.indices[i + k];
+      if (map[old] == kNone) {
+        map[old] = static_cast<std::uint32_t>(into.vertices.size());
+        into.vertices.push_back(mesh.vertices[old]);
+      }
+      into.indices.push_back(map[old]);
+    }
+  }
+  mesh = std::move(kept);
+  return pickedMesh;
 }
 
 Mesh makeQuad(std::string name, int material, glm::vec3 centre, glm::vec3 halfU, glm::vec3 halfV, glm::vec2 uvExtent) {

@@ -44,6 +44,20 @@ using Surface = std::function<SurfacePoint(float s, float t)>;
 // corners (the poles of a sphere) are left out. Tangents are generated.
 Mesh makeParametricSurface(std::string name, int material, int columns, int rows, const Surface& surface);
 
+// A surface given by its positions alone, P(s, t) on [0, 1]^2, meshed as makeParametricSurface
+// does: each vertex's normal is the cross product of central differences of P (steps of 1e-3, one
+// side at the edges of [0, 1]; t wraps around when `periodicT`), turned to point away from
+// `inside(s, t)`; where the differences vanish (a pole) the normal is `poleNormal(s, t)`.
+Mesh makeSurfaceFromPositions(std::string name, int material, int columns, int rows, bool periodicT,
+                              const std::function<glm::vec3(float s, float t)>& position,
+                              const std::function<glm::vec3(float s, float t)>& inside,
+                              const std::function<glm::vec3(float s, float t)>& poleNormal,
+                              const std::function<glm::vec2(float s, float t)>& uv);
+
+// The triangles of `mesh` for which `picked(triangle index)` holds, as a mesh of their own named
+// `name` with `material`, and `mesh` without them; each keeps only the vertices it uses, in order.
+Mesh splitOffTriangles(Mesh& mesh, std::string name, int material, const std::function<bool(std::size_t)>& picked);
+
 // A parallelogram centred at `centre` spanning +-halfU and +-halfV; uv runs over [0, uvExtent] along
 // halfU and halfV (v grows along +halfV); the normal is cross(halfV, halfU) normalised, so a floor
 // with halfU = +x and halfV = +z faces +y.

@@ -7,7 +7,9 @@
 // JOB_DIR/job.json: {"steps": [...]}, each step one of
 //   {"kind": "kernel", "inputs": "in.bin", "count": N, "filtered": false, "output": "out.bin"}
 //   {"kind": "scene", "name": "sphere", "width": 128, "height": 128, "output": "sphere.rgba"}
-//     (and "brdf": "cook-torrance" or "zirr-kaplanyan"; glint by default)
+//     (and "brdf": "cook-torrance" or "zirr-kaplanyan", glint by default; "quality": a cost tier
+//     chosen in the page's quality list, exact by default; the step reports the page's
+//     anti-aliasing choice after it and the WebAssembly memory's size in bytes)
 //   {"kind": "time", "name": "sphere", "width": 256, "height": 256, "frames": 5}
 //   {"kind": "drop", "file": "broken.gltf"}
 //   {"kind": "sliders", "name": "sphere", "width": 64, "height": 64}
@@ -86,11 +88,14 @@ try {
       await writeFile(path.join(jobDir, step.output), Buffer.from(output, 'base64'));
       report.steps.push({ kind: 'kernel', output: step.output });
     } else if (step.kind === 'scene' || step.kind === 'time') {
-      const result = await page.evaluate((name, width, height, frames, read, brdf) => {
+      const result = await page.evaluate((name, width, height, frames, read, brdf, quality) => {
         const { page: p, loadBuiltin, drawFrame } = window.glint;
         p.width = document.querySelector('#view').width = width;
         p.height = document.querySelector('#view').height = height;
         p.renderer.setBrdf(brdf);
+        const tiers = document.querySelector('#quality');
+        tiers.value = quality;
+        tiers.dispatchEvent(new Event('change'));
         loadBuiltin(name);
         const ms = [];
         for (let i = 0; i < frames; ++i) {
@@ -102,10 +107,13 @@ try {
           const rgba = p.renderer.readFrame(width, height);
           for (let i = 0; i < rgba.length; i += 0x8000) pixels += String.fromCharCode(...rgba.subarray(i, i + 0x8000));
         }
-        return { ms, pixels: btoa(pixels), error: document.querySelector('#error').textContent };
-      }, step.name, step.width, step.height, step.frames || 1, step.kind === 'scene', step.brdf || 'glint');
+        return { ms, pixels: btoa(pixels), error: document.querySelector('#error').textContent,
+                 antiAliasing: document.querySelector('#aa').value, memoryBytes: p.renderer.memoryBytes() };
+      }, step.name, step.width, step.height, step.frames || 1, step.kind === 'scene', step.brdf || 'glint',
+      step.quality || 'exact');
       if (step.kind === 'scene') await writeFile(path.join(jobDir, step.output), Buffer.from(result.pixels, 'base64'));
-      report.steps.push({ kind: step.kind, name: step.name, ms: result.ms, error: result.error });
+      report.steps.push({ kind: step.kind, name: step.name, ms: result.ms, error: result.error,
+                          antiAliasing: result.antiAliasing, memoryBytes: result.memoryBytes });
     } else if (step.kind === 'drop') {
       // A real drop event on the page, carrying the file as a user's drag would.
       const bytes = (await readFile(path.join(jobDir, step.file))).toString('base64');

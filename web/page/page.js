@@ -1,9 +1,9 @@
-// The page's controls around the WebAssembly renderer (web/src/glint_web.cpp): scene, BRDF and
-// anti-aliasing choices, the desktop viewer's sliders, orbit and zoom by mouse, touch and wheel,
+// The page's controls around the WebAssembly renderer (web/src/glint_web.cpp): scene, BRDF,
+// anti-aliasing and cost-tier choices, the desktop viewer's sliders, orbit and zoom by mouse, touch and wheel,
 // glTF files dropped on the page. Frames are drawn only when something changed.
 'use strict';
 
-const SCENES = ['sphere', 'parquet', 'carpaint', 'showroom', 'grazing-smooth', 'grazing-rough', 'arctic'];
+const SCENES = ['sphere', 'parquet', 'carpaint', 'showroom', 'grazing-smooth', 'grazing-rough', 'arctic', 'atrium', 'car'];
 const RADIANS_PER_PIXEL = 0.01;  // as the desktop viewer's orbit
 
 const $ = (selector) => document.querySelector(selector);
@@ -55,6 +55,9 @@ async function loadRenderer() {
     },
     setBrdf: checked('glint_set_brdf', ['string']),
     setAntiAliasing: checked('glint_set_antialiasing', ['string']),
+    setQuality: checked('glint_set_quality', ['string']),
+    antiAliasing: call('glint_antialiasing', 'string', []),
+    memoryBytes: () => module.HEAPU8.length,  // the WebAssembly memory, which grows and never shrinks
     setExposure: call('glint_set_exposure', null, ['number']),
     glintMaterial: call('glint_glint_material', 'number', ['number']),
     materialName: call('glint_material_name', 'string', ['number']),
@@ -188,6 +191,12 @@ function wireControls() {
   });
   $('#brdf').addEventListener('change', (e) => { r.setBrdf(e.target.value); redraw(); });
   $('#aa').addEventListener('change', (e) => { r.setAntiAliasing(e.target.value); redraw(); });
+  // A cost tier sets the anti-aliasing too (and the footprint and cascades, which have no control).
+  $('#quality').addEventListener('change', (e) => {
+    r.setQuality(e.target.value);
+    $('#aa').value = r.antiAliasing();
+    redraw();
+  });
   $('#exposure').addEventListener('input', (e) => { r.setExposure(Number(e.target.value)); showValue(e.target); redraw(); });
   showValue($('#exposure'));
   page.syncMaterialSliders = controlSliders('#material-controls', '#material', r.getMaterial, r.setMaterial);

@@ -187,6 +187,18 @@ EMSCRIPTEN_KEEPALIVE int glint_set_antialiasing(const char* name) {
   return guarded([&] { page.frame.antiAliasing = gl::antiAliasingFromString(name); });
 }
 EMSCRIPTEN_KEEPALIVE void glint_set_exposure(float exposure) { page.exposure = exposure; }
+// A cost tier (gl::qualityPresets, `glint render --quality`): its footprint policy, anti-aliasing
+// and shadow cascades.
+EMSCRIPTEN_KEEPALIVE int glint_set_quality(const char* name) {
+  return guarded([&] {
+    const gl::QualityPreset& preset = gl::qualityPreset(name);
+    page.frame.footprintPolicy = footprintPolicyFromString(preset.footprint);
+    page.frame.antiAliasing = preset.antiAliasing;
+    page.frame.shadowCascades = preset.shadowCascades;
+  });
+}
+// The anti-aliasing mode the frame is drawn with, as --aa names it.
+EMSCRIPTEN_KEEPALIVE const char* glint_antialiasing() { return gl::toString(page.frame.antiAliasing); }
 
 // The scene's materials with a glint layer, as the desktop viewer lists them: the index of the
 // k-th one, -1 past the last.
