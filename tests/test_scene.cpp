@@ -1473,7 +1473,7 @@ TEST(GlintMaterial, PacksEveryFieldOfTheLayerAndTheTarget) {
   EXPECT_EQ(m.colouredCells, 1u);
   EXPECT_EQ(m.multipleScattering, 1u);
   EXPECT_EQ(m.enabled, 1u);
-  EXPECT_EQ(m.padding0 | m.padding1 | m.padding2, 0u);
+  EXPECT_EQ(m.padding1 | m.padding2, 0u);
   const kernel::GlintMaterial plain = glintMaterial(GlintLayer{});
   EXPECT_EQ(plain.enabled, 0u);
   EXPECT_EQ(plain.hasLogDensityTexture, 0u);

@@ -330,10 +330,11 @@ Texture toTexture(const tinygltf::Image& image, int imageIndex, bool srgb) {
 // Texture coordinates glint accepts, in magnitude.
 constexpr float kLargestUv = 1e6f;
 
-const std::array<const char*, 16> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
+const std::array<const char*, 17> kGlintFields = {"alpha", "rho", "log_density", "relative_area", "density_randomisation",
                                                   "max_anisotropy", "pattern_seed", "uv_scale", "random_colours",
                                                   "roughness_texture", "log_density_texture", "log_density_range",
-                                                  "relative_area_texture", "ndf", "masking", "multiple_scattering"};
+                                                  "relative_area_texture", "ndf", "masking", "multiple_scattering",
+                                                  "lod"};
 
 float numberField(const nlohmann::json& value, const std::string& field) {
   if (!value.is_number()) throw error(field, " must be a number");
@@ -1063,6 +1064,10 @@ class GltfReader {
     if (glint.contains("random_colours")) {
       if (!glint["random_colours"].is_boolean()) throw error("random_colours must be true or false");
       layer.randomColours = glint["random_colours"].get<bool>();
+    }
+    if (glint.contains("lod")) {
+      if (!glint["lod"].is_string()) throw error("lod must be \"paper\" or \"consistent\"");
+      layer.lod = lodFromName("lod", glint["lod"].get<std::string>());
     }
     if (glint.contains("log_density_range")) layer.logDensityRange = pairField(glint["log_density_range"], "log_density_range");
     const std::pair<const char*, int*> textures[] = {{"roughness_texture", &layer.roughnessTexture},

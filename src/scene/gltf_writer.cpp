@@ -61,6 +61,7 @@ tinygltf::Value glintExtras(const GlintLayer& layer, const MicrofacetTarget& spe
                               : tinygltf::Value(static_cast<double>(layer.patternSeed));
   glint["uv_scale"] = number(layer.uvScale);
   glint["random_colours"] = tinygltf::Value(layer.randomColours);
+  glint["lod"] = tinygltf::Value(std::string(lodName(layer.lod)));
   glint["log_density_range"] = pair(layer.logDensityRange);
   const std::pair<const char*, int> textures[] = {{"roughness_texture", layer.roughnessTexture},
                                                   {"log_density_texture", layer.logDensityTexture},
