@@ -813,7 +813,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
     d["materials"][0]["extras"] = {{"glint", {{"alpha", {0.2, 0.3}}, {"log_density", 20}, {"relative_area", 0.5},
                                               {"density_randomisation", 1}, {"max_anisotropy", 16}, {"pattern_seed", 4000000000u},
                                               {"uv_scale", 3}, {"random_colours", true}, {"roughness_texture", 1},
-                                              {"log_density_range", {10, 30}}}}};
+                                              {"log_density_range", {10, 30}}, {"lod", "consistent"}}}};
   });
   const Scene scene = loadGltf(path);
   expectWellFormed(scene);
@@ -827,6 +827,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
   EXPECT_EQ(g.patternSeed, 4000000000u);
   EXPECT_EQ(g.uvScale, 3.0f);
   EXPECT_TRUE(g.randomColours);
+  EXPECT_EQ(g.lod, kernel::GLINT_LOD_CONSISTENT);
   EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
   EXPECT_EQ(g.logDensityTexture, -1);
   ASSERT_GE(g.roughnessTexture, 0);
@@ -1075,6 +1076,10 @@ TEST(GltfErrors, BadGlintExtras) {
   expectLoadError(path, "uv_scale must be positive");
   withGlint({{"random_colours", 1}});
   expectLoadError(path, "random_colours must be true or false");
+  withGlint({{"lod", 1}});
+  expectLoadError(path, "lod must be \"paper\" or \"consistent\"");
+  withGlint({{"lod", "fast"}});
+  expectLoadError(path, "lod must be \"paper\" or \"consistent\", got \"fast\"");
   withGlint({{"rho", 1.0}});
   expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
   withGlint({{"rho", "0.5"}});
