@@ -4,6 +4,7 @@
 // supersampled reference does, and whether its mean over a fixed patch of surface drifts.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -41,6 +42,7 @@ struct LodConsistencyOptions {
   // difference too.
   std::string antiAliasing = gl::toString(gl::AntiAliasing::Ggaa);
   std::vector<std::string> lodModes;
+  std::optional<std::int64_t> patternSeed;  // another realisation of every glint layer (--pattern-seed)
   bool json = false;
 };
 
@@ -468,6 +470,7 @@ void runLodConsistency(LodConsistencyOptions options) {
   const std::vector<std::string> names = options.scenes.empty() ? kDefaultScenes : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
+  sceneOptions.patternSeed = options.patternSeed;
   std::vector<scene::Scene> scenes;
   for (const std::string& name : names) {
     sceneOptions.scene = name;
@@ -547,6 +550,8 @@ void registerLodConsistencyCommand(CLI::App& app) {
                       "(default: both)");
   command->add_option("--camera", options->camera, "Camera preset the dolly starts around")->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  command->add_option("--pattern-seed", options->patternSeed,
+                      "Every glint layer's pattern seed, 0..4294967295: the figures of another realisation");
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runLodConsistency(*options); });
 }
