@@ -29,6 +29,11 @@
 #ifndef GLINT_MASKING
 #define GLINT_MASKING 0
 #endif
+// The glint layer's LOD construction (glint_brdf.h, glintLodCell), compiled in likewise: the
+// paper's unless the host defines GLINT_CONSISTENT_LOD 1.
+#ifndef GLINT_CONSISTENT_LOD
+#define GLINT_CONSISTENT_LOD 0
+#endif
 #include "glint_brdf.h"
 #include "glint_material_block.glsl"
 #include "multiple_scattering.h"
@@ -181,6 +186,7 @@ void main() {
   material.ndf = GLINT_NDF;
   material.masking = GLINT_MASKING;
   material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
+  material.lod = GLINT_CONSISTENT_LOD != 0 ? GLINT_LOD_CONSISTENT : GLINT_LOD_PAPER;
   GlintFootprintPolicy footprintPolicy;
   footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
   footprintPolicy.maxCells = uGlintFootprintPolicy.y;

@@ -16,7 +16,7 @@ struct MaterialCase {
 };
 // GlintParameters, field after field: (alpha.x, alpha.y, rho, logDensity), (relativeArea,
 // densityRandomisation, maxAnisotropy, patternSeed), (colouredCells, ndf, masking,
-// multipleScattering), (footprintPolicy.maxAnisotropy, .maxCells, .minBlend, 0), then the glint uv
+// multipleScattering), (footprintPolicy.maxAnisotropy, .maxCells, .minBlend, lod), then the glint uv
 // of the case's uv (x, y, 0, 0).
 struct MaterialOutput {
   uvec4 words[5];
@@ -44,6 +44,6 @@ void main() {
   outputs[i].words[2] = uvec4(p.colouredCells ? 1u : 0u, uint(p.ndf), uint(p.masking), p.multipleScattering ? 1u : 0u);
   outputs[i].words[3] = uvec4(floatBitsToUint(p.footprintPolicy.maxAnisotropy),
                               floatBitsToUint(p.footprintPolicy.maxCells),
-                              floatBitsToUint(p.footprintPolicy.minBlend), 0u);
+                              floatBitsToUint(p.footprintPolicy.minBlend), uint(p.lod));
   outputs[i].words[4] = uvec4(floatBitsToUint(glintUv), 0u, 0u);
 }

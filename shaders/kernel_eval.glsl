@@ -21,7 +21,7 @@ struct KernelInput {
   vec4 randomisationEtc;     // density randomisation, max anisotropy, pattern seed (as float), rho
   vec4 slopeDerivatives;     // the half vector slope's (d/dx, d/dy), for GLINT_FILTERED
   vec4 target;               // ndf, masking (microfacet_targets.h), multiple scattering (0 or 1), as floats
-  vec4 footprintPolicy;      // GlintFootprintPolicy: aniso, cells, drop (0: the paper's footprint), unused
+  vec4 footprintPolicy;      // GlintFootprintPolicy: aniso, cells, drop (0: the paper's footprint); the LOD construction
 };
 
 // The case's parameters, footprint and directions.
@@ -41,6 +41,7 @@ void readCase(KernelInput data, GLINT_OUT(GlintParameters) params, GLINT_OUT(vec
   params.footprintPolicy.maxAnisotropy = data.footprintPolicy.x;
   params.footprintPolicy.maxCells = data.footprintPolicy.y;
   params.footprintPolicy.minBlend = data.footprintPolicy.z;
+  params.lod = int(data.footprintPolicy.w);
   uv = data.uvAndDuvdx.xy;
   duvdx = data.uvAndDuvdx.zw;
   duvdy = data.duvdyAndAlpha.xy;

@@ -36,6 +36,7 @@ void mainImage(out vec4 fragColor, in vec2 fragCoord) {
   params.colouredCells = false;
   params.ndf = GLINT_NDF_BECKMANN;
   params.masking = GLINT_MASKING_VCAVITY;
+  params.lod = GLINT_LOD_PAPER;
   params.multipleScattering = false;
   params.footprintPolicy.maxAnisotropy = 0.0;
   params.footprintPolicy.maxCells = 0.0;

@@ -38,7 +38,7 @@ FootprintPolicy randomFootprintPolicy(Pcg32& rng);
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
 // smooth, relative areas, footprints from magnified to minified, directions down to grazing, both
-// smooth targets, both maskings, with and without multiple scattering.
+// smooth targets, both maskings, with and without multiple scattering, both LOD constructions.
 std::vector<KernelCase> randomKernelCases(int count);
 // The same with slope derivatives, for the anti-aliased kernel: slope correlation in a third of the
 // cases, and derivatives from none to a few times the lobe's width, so that every mip level is read.

@@ -135,7 +135,7 @@ MaterialOutput materialOutputOnCpu(const kernel::GlintMaterial& material, const 
   out.words[2] = {p.colouredCells ? 1u : 0u, static_cast<std::uint32_t>(p.ndf), static_cast<std::uint32_t>(p.masking),
                   p.multipleScattering ? 1u : 0u};
   out.words[3] = {bitsOf(p.footprintPolicy.maxAnisotropy), bitsOf(p.footprintPolicy.maxCells),
-                  bitsOf(p.footprintPolicy.minBlend), 0u};
+                  bitsOf(p.footprintPolicy.minBlend), static_cast<std::uint32_t>(p.lod)};
   out.words[4] = {bitsOf(glintUv.x), bitsOf(glintUv.y), 0u, 0u};
   return out;
 }
@@ -163,6 +163,7 @@ kernel::GlintMaterial randomGlintMaterial(Pcg32& rng) {
   m.colouredCells = rng.nextBelow(2);
   m.multipleScattering = rng.nextBelow(2);
   m.enabled = rng.nextBelow(2);
+  m.lod = static_cast<int>(rng.nextBelow(2));
   return m;
 }
 
@@ -284,7 +285,7 @@ TEST(KernelGl, GlintMaterialBlockLayoutIsTheCppLayout) {
       {"colouredCells", offsetof(M, colouredCells)},
       {"multipleScattering", offsetof(M, multipleScattering)},
       {"enabled", offsetof(M, enabled)},
-      {"padding0", offsetof(M, padding0)},
+      {"lod", offsetof(M, lod)},
       {"padding1", offsetof(M, padding1)},
       {"padding2", offsetof(M, padding2)}};
   const GLuint block = glGetProgramResourceIndex(program.id(), GL_UNIFORM_BLOCK, "GlintMaterialBlock");

@@ -110,6 +110,7 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     EXPECT_EQ(g.patternSeed, h.patternSeed);
     EXPECT_EQ(g.uvScale, h.uvScale);
     EXPECT_EQ(g.randomColours, h.randomColours);
+    EXPECT_EQ(g.lod, h.lod);
     EXPECT_EQ(g.logDensityRange, h.logDensityRange);
     expectSameTexture(original, g.roughnessTexture, loaded, h.roughnessTexture, "glint roughness");
     expectSameTexture(original, g.logDensityTexture, loaded, h.logDensityTexture, "glint log density");

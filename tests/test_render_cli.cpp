@@ -413,6 +413,7 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectRenderFails(folder, "sphere --size 0x10", "--size");
   expectRenderFails(folder, "sphere --log-density nan", "log_density");
   expectRenderFails(folder, "sphere --relative-area 2", "relative_area");
+  expectRenderFails(folder, "sphere --lod fast", "--lod must be \"paper\" or \"consistent\", got \"fast\"");
   expectRenderFails(folder, "sphere --dict missing.gdict", "missing.gdict: cannot open");
   expectRenderFails(folder, "sphere --shadows maybe", "--shadows must be on or off, got 'maybe'");
   expectRenderFails(folder, "sphere --shadow-cascades 0", "--shadow-cascades must be from 1 to 4, got 0");

@@ -366,6 +366,7 @@ struct SamplingCase {
   int ndf = kernel::GLINT_NDF_BECKMANN;  // the smooth target (kernel/microfacet_targets.h)
   bool multipleScattering = false;  // the compensation lobe (kernel/multiple_scattering.h)
   FootprintPolicy footprintPolicy = exactFootprintPolicy();  // --footprint
+  int lod = kernel::GLINT_LOD_PAPER;  // the LOD construction (kernel glintLodCell)
 };
 
 // Footprint of a pixel: 1.5:1, rotated, area pi |det| = 1.5e-6 uv^2, so a log density of 15, 21,
@@ -389,6 +390,7 @@ GlintParameters caseParameters(const SamplingCase& c) {
   parameters.ndf = c.ndf;
   parameters.multipleScattering = c.multipleScattering;
   parameters.footprintPolicy = c.footprintPolicy;
+  parameters.lod = c.lod;
   return parameters;
 }
 
@@ -553,6 +555,38 @@ std::vector<SamplingCase> chiSquareCases() {
     c.logDensity = p.logDensity;
     c.thetaDegrees = p.theta;
     c.footprintPolicy = footprintPolicyFromString(p.policy);
+    cases.push_back(c);
+  }
+  // The consistent LOD construction: the sampler draws a block's complement marginal
+  // (sampleDictionaryMarginal) and the parent's rotation, as the P-SDF reads them. Sparse (dictionary
+  // levels near 0 and 1, where own cells at level 0 have no blocks), moderate, dense, GGX, masked
+  // cells, a footprint policy, the dielectric.
+  struct Consistent {
+    const char* name;
+    SamplingCase::Kind kind;
+    float alpha, logDensity, theta, relativeArea;
+    int ndf;
+    const char* policy;
+  };
+  for (const Consistent& q : {
+           Consistent{"Mixture_consistent_alpha0p25_density15_theta45", SamplingCase::Kind::Glint, 0.25f, 15.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
+           Consistent{"Mixture_consistent_alpha0p1_density21_theta5", SamplingCase::Kind::Glint, 0.1f, 21.0f, 5.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
+           Consistent{"Mixture_consistent_alpha0p6_density32_theta75", SamplingCase::Kind::Glint, 0.6f, 32.0f, 75.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
+           Consistent{"Mixture_consistent_ggx_alpha0p25_density21_theta45", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_GGX, ""},
+           Consistent{"Mixture_consistent_relativeArea0p5", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 0.5f, kernel::GLINT_NDF_BECKMANN, ""},
+           Consistent{"Mixture_consistent_cells12_alpha0p25_density21_theta30", SamplingCase::Kind::Glint, 0.25f, 21.0f, 30.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "cells=12"},
+           Consistent{"Dielectric_consistent_alpha0p25_outside45", SamplingCase::Kind::Dielectric, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
+       }) {
+    SamplingCase c;
+    c.name = q.name;
+    c.kind = q.kind;
+    c.alpha = q.alpha;
+    c.logDensity = q.logDensity;
+    c.thetaDegrees = q.theta;
+    c.relativeArea = q.relativeArea;
+    c.ndf = q.ndf;
+    if (*q.policy) c.footprintPolicy = footprintPolicyFromString(q.policy);
+    c.lod = kernel::GLINT_LOD_CONSISTENT;
     cases.push_back(c);
   }
   return cases;
@@ -821,7 +855,7 @@ TEST(Sampling, DictionaryMarginalInversionMatchesItsCdf) {
     for (int distribution : {0, 77, 191}) {
       float previous = -domain;
       for (float u : {0.01f, 0.1f, 0.25f, 0.4f, 0.49f, 0.5f, 0.51f, 0.6f, 0.75f, 0.9f, 0.99f}) {
-        const float x = sampling::sampleDictionaryMarginal(dictionary.view(), level, distribution, u);
+        const float x = sampling::sampleDictionaryMarginal(dictionary.view(), level, distribution, 0, u);
         EXPECT_GE(x, previous);
         EXPECT_LT(std::abs(x), domain);
         previous = x;

@@ -824,7 +824,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
     d["materials"][0]["extras"] = {{"glint", {{"alpha", {0.2, 0.3}}, {"log_density", 20}, {"relative_area", 0.5},
                                               {"density_randomisation", 1}, {"max_anisotropy", 16}, {"pattern_seed", 4000000000u},
                                               {"uv_scale", 3}, {"random_colours", true}, {"roughness_texture", 1},
-                                              {"log_density_range", {10, 30}}}}};
+                                              {"log_density_range", {10, 30}}, {"lod", "consistent"}}}};
   });
   const Scene scene = loadGltf(path);
   expectWellFormed(scene);
@@ -838,6 +838,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
   EXPECT_EQ(g.patternSeed, 4000000000u);
   EXPECT_EQ(g.uvScale, 3.0f);
   EXPECT_TRUE(g.randomColours);
+  EXPECT_EQ(g.lod, kernel::GLINT_LOD_CONSISTENT);
   EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
   EXPECT_EQ(g.logDensityTexture, -1);
   ASSERT_GE(g.roughnessTexture, 0);
@@ -1347,6 +1348,10 @@ TEST(GltfErrors, BadGlintExtras) {
   expectLoadError(path, "extras.glint: random_colours must be true or false (or 0 or 1), got the string \"yes\"");
   withGlint({{"random_colours", 0.5}});
   expectLoadError(path, "extras.glint: random_colours must be true or false (or 0 or 1), got 0.5");
+  withGlint({{"lod", 1}});
+  expectLoadError(path, "extras.glint: lod must be \"paper\" or \"consistent\"");
+  withGlint({{"lod", "fast"}});
+  expectLoadError(path, "extras.glint: lod must be \"paper\" or \"consistent\", got \"fast\"");
   withGlint({{"rho", 1.0}});
   expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
   withGlint({{"rho", "0.5"}});
@@ -1800,7 +1805,7 @@ TEST(GlintMaterial, PacksEveryFieldOfTheLayerAndTheTarget) {
   EXPECT_EQ(m.colouredCells, 1u);
   EXPECT_EQ(m.multipleScattering, 1u);
   EXPECT_EQ(m.enabled, 1u);
-  EXPECT_EQ(m.padding0 | m.padding1 | m.padding2, 0u);
+  EXPECT_EQ(m.padding1 | m.padding2, 0u);
   const kernel::GlintMaterial plain = glintMaterial(GlintLayer{});
   EXPECT_EQ(plain.enabled, 0u);
   EXPECT_EQ(plain.hasLogDensityTexture, 0u);

@@ -77,6 +77,10 @@ FIELDS = [
           0.0, FLOAT32_MAX, exclusive_minimum=True, default=1.0, soft_max=100.0),
     Field("random_colors", "randomColors", "boolean", "Random Colors",
           "Each cell's glints get a random hue (the flakes of a car paint)", default=False),
+    Field("lod", "lod", "choice", "Level of Detail",
+          "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell, or a "
+          "coarse cell's glints shared out among its children so that fewer glints pop as the surface recedes",
+          default="paper", choices=[("paper", "PAPER", "Paper"), ("consistent", "CONSISTENT", "Consistent")]),
     Field("ndf", "ndf", "choice", "NDF",
           "The distribution the glints converge to",
           default="ggx", choices=[("ggx", "GGX", "GGX"), ("beckmann", "BECKMANN", "Beckmann")]),

@@ -72,6 +72,7 @@ glint::kernel::GlintMaterial glintLayer() {
   m.hasLogDensityTexture = 0;
   m.ndf = glint::kernel::GLINT_NDF_BECKMANN;
   m.masking = glint::kernel::GLINT_MASKING_VCAVITY;
+  m.lod = glint::kernel::GLINT_LOD_PAPER;
   m.colouredCells = 0;
   m.multipleScattering = 0;
   m.enabled = 1;

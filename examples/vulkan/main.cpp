@@ -73,6 +73,7 @@ glint::kernel::GlintMaterial sphereMaterial() {
   m.uvScale = 4.0f;
   m.ndf = glint::kernel::GLINT_NDF_BECKMANN;
   m.masking = glint::kernel::GLINT_MASKING_VCAVITY;
+  m.lod = glint::kernel::GLINT_LOD_PAPER;
   m.enabled = 1;
   return m;
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,7 @@ struct AaErrorOptions {
   int sequence = 32;
   std::string camera = "default";
   std::string dictionary;
+  std::optional<std::string> lod;  // every glint layer's LOD construction (--lod), the scene's own otherwise
   float aaKernel = 1.0f;
   bool json = false;
   FootprintOptions footprint;
@@ -205,6 +207,7 @@ void runAaError(const AaErrorOptions& options) {
   const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
+  sceneOptions.lod = options.lod;
   std::vector<scene::Scene> scenes;
   for (const std::string& name : names) {
     sceneOptions.scene = name;
@@ -322,6 +325,8 @@ void registerAaErrorCommand(CLI::App& app) {
   command->add_option("--aa-kernel", options->aaKernel, "Size of the anti-aliasing kernel (as glint render's)")
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  command->add_option("--lod", options->lod,
+                      "The level-of-detail construction of every glint layer, reference included: paper or consistent");
   options->footprint.addTo(*command, true);
   command->add_option("--reference-footprint", options->referenceFootprint,
                       "Footprint of the reference: paper (the paper's, for every policy) or same (each policy's own)")

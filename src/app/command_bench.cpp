@@ -5,6 +5,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,7 @@ struct BenchOptions {
   int warmup = 3;
   bool json = false;
   std::string dictionary;
+  std::optional<std::string> lod;  // every glint layer's LOD construction (--lod), the scene's own otherwise
   std::string camera = "default";
   CameraOptions cameraOptions;
   std::string antiAliasing = "ggaa+lean";
@@ -117,6 +119,7 @@ void runBench(const BenchOptions& options) {
     sceneOptions.camera = options.camera;
     sceneOptions.cameraOptions = options.cameraOptions;
     sceneOptions.environment = options.environment;
+    sceneOptions.lod = options.lod;
     scenes.push_back(sceneOptions.loadScene());
   }
   SceneOptions dictionaryOptions;
@@ -307,6 +310,7 @@ void registerBenchCommand(CLI::App& app) {
                       "model is timed too (glint-none), for the filter's cost")
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
+  command->add_option("--lod", options->lod, "The level-of-detail construction of every glint layer: paper or consistent");
   command->add_flag("--gltf-target", options->gltfTarget,
                     "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
                     "multiple-scattering compensation (glint-gltf)");

@@ -15,6 +15,7 @@ void registerTraceCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
 void registerExportCommand(CLI::App& app);
 void registerAaErrorCommand(CLI::App& app);
+void registerLodConsistencyCommand(CLI::App& app);
 void registerAlbedoTablesCommand(CLI::App& app);
 void registerHdriCommand(CLI::App& app);
 void registerShaderBundleCommand(CLI::App& app);

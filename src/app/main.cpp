@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
   glint::app::registerExportCommand(app);
   glint::app::registerHdriCommand(app);
   glint::app::registerAaErrorCommand(app);
+  glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
   try {

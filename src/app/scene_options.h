@@ -53,6 +53,8 @@ struct SceneOptions {
   std::optional<std::string> ndf;
   std::optional<std::string> masking;
   std::optional<bool> multipleScattering;
+  // The LOD construction of every glint layer (GlintLayer::lod): paper or consistent.
+  std::optional<std::string> lod;
 
   // All of the options below (render, view, trace).
   void addTo(CLI::App& command);

@@ -216,6 +216,9 @@ struct ForwardVariant {
   // glintPixelFootprint), compiled in so that each policy pays for its own words only and exact for
   // none; their values come from uGlintFootprintPolicy.
   int footprintWords;
+  // GLINT_CONSISTENT_LOD: the material's glint layer takes the consistent LOD construction
+  // (kernel/glint_brdf.h, glintLodCell), compiled in so that the paper's pays nothing for it.
+  bool consistentLod;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -242,7 +245,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"SHADOW_CASCADES", std::to_string(kShadowCascades)},
                         {"SHADOW_CASCADE_MARGIN", std::to_string(kCascadeMarginTexels)},
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
-                        {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)}});
+                        {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)},
+                        {"GLINT_CONSISTENT_LOD", variant.consistentLod ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -289,7 +293,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.shadows && lightCount > 0,
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
-                        model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0};
+                        model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
+                        model == BrdfModel::Glint && material.glint.lod == kernel::GLINT_LOD_CONSISTENT};
 }
 
 // The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),
@@ -814,6 +819,16 @@ std::vector<float> Renderer::readRadiance() const {
   glGetTextureImage(gpu_->radiance, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)),
                     pixels.data());
   return pixels;
+}
+
+std::vector<float> Renderer::readDepth() const {
+  if (gpu_->samples > 1) throw Error("the depth of a multisampled frame is not read back");
+  std::vector<float> depths(static_cast<std::size_t>(gpu_->width) * gpu_->height);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->framebuffer);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, gpu_->width, gpu_->height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  return depths;
 }
 
 }  // namespace glint::gl

@@ -101,6 +101,10 @@ class Renderer {
   void renderFrame(const FrameSettings& settings);
   // The last frame: RGBA floats, rows bottom-up (as GL stores them).
   std::vector<float> readRadiance() const;
+  // The last frame's depth buffer (window depth in [0, 1], 1 where no mesh was drawn), rows
+  // bottom-up, to place each pixel's surface point (viewProjection's inverse). Only for frames of
+  // one sample a pixel: a multisampled depth has no single value (throws Error).
+  std::vector<float> readDepth() const;
   GLuint radianceTexture() const;
 
   // What the renderer draws otherwise than the scene says, one line each, for the commands to warn

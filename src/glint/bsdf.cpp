@@ -114,6 +114,7 @@ GlintParameters defaultGlintParameters() {
   p.colouredCells = false;
   p.ndf = kernel::GLINT_NDF_BECKMANN;
   p.masking = kernel::GLINT_MASKING_VCAVITY;
+  p.lod = kernel::GLINT_LOD_PAPER;
   p.multipleScattering = false;
   p.footprintPolicy = exactFootprintPolicy();
   return p;
@@ -134,6 +135,14 @@ int maskingFromName(const std::string& field, const std::string& name) {
   if (name == "smith") return kernel::GLINT_MASKING_SMITH;
   throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
 }
+
+int lodFromName(const std::string& field, const std::string& name) {
+  if (name == "paper") return kernel::GLINT_LOD_PAPER;
+  if (name == "consistent") return kernel::GLINT_LOD_CONSISTENT;
+  throw Error(field + " must be \"paper\" or \"consistent\", got \"" + name + "\"");
+}
+
+const char* lodName(int lod) { return lod == kernel::GLINT_LOD_CONSISTENT ? "consistent" : "paper"; }
 
 const char* ndfName(int ndf) { return ndf == kernel::GLINT_NDF_GGX ? "ggx" : "beckmann"; }
 const char* maskingName(int masking) { return masking == kernel::GLINT_MASKING_SMITH ? "smith" : "v-cavity"; }
@@ -173,6 +182,9 @@ void validateGlintParameters(const GlintParameters& p) {
   requireRange("density_randomisation", p.densityRandomisation, 0.0f, 10.0f);
   requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
   validateTarget(microfacetTarget(p));
+  if (p.lod != kernel::GLINT_LOD_PAPER && p.lod != kernel::GLINT_LOD_CONSISTENT) {
+    throw Error("lod must be paper (0) or consistent (1), got " + std::to_string(p.lod));
+  }
   validateFootprintPolicy(p.footprintPolicy);
 }
 

@@ -111,6 +111,10 @@ int ndfFromName(const std::string& field, const std::string& name);
 int maskingFromName(const std::string& field, const std::string& name);
 const char* ndfName(int ndf);
 const char* maskingName(int masking);
+// The glint layer's LOD construction (kernel GlintParameters::lod; docs/method.md 2.7), as
+// extras.glint's "lod" and --lod spell it: "paper" | "consistent".
+int lodFromName(const std::string& field, const std::string& name);
+const char* lodName(int lod);
 
 // Cook-Torrance with the target's NDF (roughness alpha, slope correlation rho) and masking:
 // the baseline, and the glint BRDF's limit.

@@ -77,17 +77,23 @@ glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u) {
   return ndf == kernel::GLINT_NDF_GGX ? sampleGgxSlope(alpha, rho, u) : sampleBeckmannSlope(alpha, rho, u);
 }
 
-float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, float u) {
+float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, int complement, float u) {
   // The even density, one half each side, inverted monotonically: u in [0, 1/2) covers
   // (-4 sigma_d, 0], u in [1/2, 1) covers [0, 4 sigma_d); v is the CDF of |x| on its half (exact in
   // double).
   const float sign = u < 0.5f ? -1.0f : 1.0f;
   const double v = u < 0.5f ? 1.0 - 2.0 * static_cast<double>(u) : 2.0 * static_cast<double>(u) - 1.0;
   // On [0, 4 sigma_d) the marginal is piecewise linear between texel values a_k at x_k = k h,
-  // h = 4 sigma_d / R, with a_R = 0: segment k holds h (a_k + a_{k+1}) / 2 of the mass.
+  // h = 4 sigma_d / R, with a_R = 0: segment k holds h (a_k + a_{k+1}) / 2 of the mass. A
+  // complement block's marginal (kernel glintBlockMarginal) is 2 p_{level+1} - p_level, piecewise
+  // linear on the same texels; its few texels below zero (at most 4e-4 of the peak, binary16
+  // rounding) are drawn as zero.
   const int texels = dict.texelsPerDistribution;
   auto texel = [&](int k) {
-    return k < texels ? static_cast<double>(kernel::glintDictionaryTexel(dict, level, distribution, k)) : 0.0;
+    if (k >= texels) return 0.0;
+    const double prefix = kernel::glintDictionaryTexel(dict, level, distribution, k);
+    if (complement == 0) return prefix;
+    return std::max(0.0, 2.0 * static_cast<double>(kernel::glintDictionaryTexel(dict, level + 1, distribution, k)) - prefix);
   };
   double total = 0.0;
   for (int k = 0; k < texels; ++k) total += 0.5 * (texel(k) + texel(k + 1));
@@ -162,9 +168,11 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, cons
   }
   uChoice = remapUniform(target, cellStart, cellWeight);
 
-  // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them.
-  const kernel::GlintCell drawn = kernel::glintCell(
-      dict, params, kernel::glintLevelDraw(dict, params, footprint.logDensity, level), cell.x, cell.y, level);
+  // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them (a block of
+  // its parent's under the consistent LOD construction).
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, footprint.logDensity, level);
+  const kernel::GlintLevelDraw parentDraw = kernel::glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
+  const kernel::GlintCell drawn = kernel::glintLodCell(dict, params, draw, parentDraw, cell.x, cell.y, level);
   if (drawn.smoothLimit) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
   if (drawn.ggxTail) return sampleGgxTailSlope(params.alpha, params.rho, u);
   if (!drawn.readsDictionary) return std::nullopt;
@@ -172,8 +180,8 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, cons
   const int dictLevel = drawn.dictionaryLevel;
   const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
   // Tensor product: x' and y' independent, each from its marginal (method.md 2.5).
-  const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, u.x);
-  const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, u.y);
+  const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, drawn.complement.x, u.x);
+  const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, drawn.complement.y, u.y);
   // Back from the dictionary's space: slope = M R(theta) (x', y') / sqrt(w), the inverse of
   // glintDictionarySlope(glintUnscaledSlope(slope) sqrt(w))'s (x', y') = R(-theta) M^-1 slope
   // sqrt(w) (w = 1 but for GGX cells).

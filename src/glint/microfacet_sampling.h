@@ -53,8 +53,9 @@ glm::vec2 sampleTargetSlope(int ndf, glm::vec2 alpha, float rho, glm::vec2 u);
 // the CDF of the kernel's piecewise-linear marginal (glintMarginal: texel k at slope k 4 sigma_d / R,
 // linear between texels, falling to 0 at 4 sigma_d). The marginal is even: u < 1/2 picks the
 // negative side, u >= 1/2 the positive one, and within each |x| follows the CDF of one half, so that
-// x is monotonic in u (the inverse of the full CDF).
-float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, float u);
+// x is monotonic in u (the inverse of the full CDF). With `complement` 1, the marginal of a
+// consistent-LOD block (kernel glintBlockMarginal): the lobes that level + 1 adds to `level`.
+float sampleDictionaryMarginal(kernel::GlintDictionaryView dict, int level, int distribution, int complement, float u);
 
 // A slope of the P-SDF P22_P (method.md 2.3-2.5, section 5): the LOD il or il + 1 by the blend
 // weight, a cell of that level by its normalised EWA weight (the cells glintLevelP22 visits, with

@@ -37,6 +37,7 @@ constexpr std::array<FieldNames, kGlintFieldCount> kFieldNames = {{
     {GlintField::PatternSeed, "patternSeed", "pattern_seed"},
     {GlintField::UvScale, "uvScale", "uv_scale"},
     {GlintField::RandomColors, "randomColors", "random_colours"},
+    {GlintField::Lod, "lod", "lod"},
     {GlintField::LogDensityRange, "logDensityRange", "log_density_range"},
     {GlintField::RoughnessTexture, "roughnessTexture", "roughness_texture"},
     {GlintField::LogDensityTexture, "logDensityTexture", "log_density_texture"},
@@ -265,6 +266,11 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
   }
   if (reader.has(GlintField::RandomColors)) {
     layer.randomColours = booleanField(reader.at(GlintField::RandomColors), reader.name(GlintField::RandomColors));
+  }
+  if (reader.has(GlintField::Lod)) {
+    const json& lod = reader.at(GlintField::Lod);
+    if (!lod.is_string()) throw Error(std::string(reader.name(GlintField::Lod)) + " must be \"paper\" or \"consistent\"");
+    layer.lod = lodFromName(reader.name(GlintField::Lod), lod.get<std::string>());
   }
   if (reader.has(GlintField::LogDensityRange)) {
     const std::string name = reader.name(GlintField::LogDensityRange);

@@ -35,12 +35,13 @@ enum class GlintField {
   PatternSeed,
   UvScale,
   RandomColors,
+  Lod,
   LogDensityRange,
   RoughnessTexture,
   LogDensityTexture,
   RelativeAreaTexture,
 };
-inline constexpr std::size_t kGlintFieldCount = 16;
+inline constexpr std::size_t kGlintFieldCount = 17;
 
 // The field's name in `spelling` ("relativeArea" or "relative_area").
 const char* glintFieldName(GlintField field, GlintSpelling spelling);

@@ -56,7 +56,8 @@ static_assert(offsetof(kernel::GlintMaterial, masking) == 52);
 static_assert(offsetof(kernel::GlintMaterial, colouredCells) == 56);
 static_assert(offsetof(kernel::GlintMaterial, multipleScattering) == 60);
 static_assert(offsetof(kernel::GlintMaterial, enabled) == 64);
-static_assert(offsetof(kernel::GlintMaterial, padding0) == 68);
+static_assert(offsetof(kernel::GlintMaterial, lod) == 68);
+static_assert(offsetof(kernel::GlintMaterial, padding1) == 72);
 
 kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTarget& target) {
   kernel::GlintMaterial m{};  // the padding zero too, so that equal layers pack to equal bytes
@@ -75,6 +76,7 @@ kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTar
   m.colouredCells = layer.randomColours ? 1u : 0u;
   m.multipleScattering = target.multipleScattering ? 1u : 0u;
   m.enabled = layer.enabled ? 1u : 0u;
+  m.lod = layer.lod;
   return m;
 }
 

@@ -35,6 +35,7 @@ PARAMETERS = """
   p.colouredCells = false;
   p.ndf = GLINT_NDF_BECKMANN;
   p.masking = GLINT_MASKING_VCAVITY;
+  p.lod = GLINT_LOD_PAPER;
   p.multipleScattering = false;
   p.footprintPolicy.maxAnisotropy = 0.0;
   p.footprintPolicy.maxCells = 0.0;

@@ -50,6 +50,7 @@ void main(uint3 id : SV_DispatchThreadID, uint index : SV_GroupIndex) {
   params.colouredCells = false;
   params.ndf = 0;
   params.masking = 0;
+  params.lod = 0;
   params.multipleScattering = false;
   params.footprintPolicy.maxAnisotropy = 0.0f;
   params.footprintPolicy.maxCells = 0.0f;

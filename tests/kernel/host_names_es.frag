@@ -78,6 +78,7 @@ void main() {
   params.colouredCells = false;
   params.ndf = 0;
   params.masking = 0;
+  params.lod = 0;
   params.multipleScattering = false;
   params.footprintPolicy.maxAnisotropy = 0.0f;
   params.footprintPolicy.maxCells = 0.0f;

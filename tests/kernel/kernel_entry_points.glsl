@@ -35,6 +35,7 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
   params.ndf = c.y > 0.5f ? GLINT_NDF_GGX : GLINT_NDF_BECKMANN;
   params.masking = c.z > 0.5f ? GLINT_MASKING_SMITH : GLINT_MASKING_VCAVITY;
   params.multipleScattering = true;
+  params.lod = c.w > 40.0f ? GLINT_LOD_CONSISTENT : GLINT_LOD_PAPER;
   params.footprintPolicy.maxAnisotropy = 0.0f;
   params.footprintPolicy.maxCells = c.w;
   params.footprintPolicy.minBlend = 0.0f;
@@ -59,13 +60,14 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
   int level = glintLodLevel(footprint);
   GlintCellGrid grid = glintCellGrid(footprint, glintWrapUv(uv, dict.numLevels), dict.numLevels, level);
   GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
+  GlintLevelDraw parentDraw = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
   GlintCellWalk walk = glintWalkStart(grid);
   float weights = 0.0f;
   while (glintWalkGoing(grid, walk)) {
     ivec2 index = glintCellAt(grid, walk.s, walk.t);
     float weight = glintWalkWeight(grid, walk);
-    GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
-    weights += cell.readsDictionary ? weight * glintCellRotation(cell.hash).x : weight;
+    GlintCell cell = glintLodCell(dict, params, draw, parentDraw, index.x, index.y, level);
+    weights += cell.readsDictionary ? weight * glintCellRotation(cell.hash).x * float(1 + cell.complement.x) : weight;
     walk = glintWalkStep(grid, walk);
   }
   vec2 scaled = glintScaledSlope(dict, params, glintUnscaledSlope(dict, params, slope));

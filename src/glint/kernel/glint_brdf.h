@@ -34,6 +34,24 @@ struct GlintFootprintPolicy {
   float minBlend;       // drop=W: the coarser level is skipped below this blend weight; 0: never
 };
 
+// How the cells of neighbouring levels of detail relate (method.md 2.7): GLINT_LOD_PAPER, each cell
+// draws its own glints (the 2020 model; a cell shares its first child's draws through the coherent
+// index only); GLINT_LOD_CONSISTENT, a cell's four children share out its lobes, so that its P-SDF
+// is the mean of theirs wherever the nested dictionary can split it.
+GLINT_CONST int GLINT_LOD_PAPER = 0;
+GLINT_CONST int GLINT_LOD_CONSISTENT = 1;
+
+// Whether the consistent construction is compiled in. A GLSL program is compiled for the
+// constructions its materials use (GLINT_CONSISTENT_LOD 0: the paper's only, which then pays
+// nothing for the other, as llvmpipe runs both sides of a branch; 1: the material's `lod` chooses);
+// C++ and programs that leave it undefined compile both, and the paper's values are the same bit
+// for bit either way.
+#if defined(__cplusplus) || !defined(GLINT_CONSISTENT_LOD)
+#define GLINT_CONSISTENT_LOD_COMPILED 1
+#else
+#define GLINT_CONSISTENT_LOD_COMPILED GLINT_CONSISTENT_LOD
+#endif
+
 // The material inputs of the model (method.md section 2), validated by the host.
 struct GlintParameters {
   vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
@@ -46,6 +64,7 @@ struct GlintParameters {
   bool colouredCells;          // each cell reflects a random hue (car paint's coloured flakes)
   int ndf;                     // the smooth target: GLINT_NDF_BECKMANN (the paper's) or GLINT_NDF_GGX (microfacet_targets.h)
   int masking;                 // GLINT_MASKING_VCAVITY (the paper's) or GLINT_MASKING_SMITH
+  int lod;                     // GLINT_LOD_PAPER or GLINT_LOD_CONSISTENT (method.md 2.7)
   // Adds the smooth target's multiple-scattering compensation lobe (multiple_scattering.h); the
   // BRDF's users add it (the host's BSDFs, the renderer), the P-SDF does not see it.
   bool multipleScattering;
@@ -298,6 +317,10 @@ struct GlintCell {
   bool smoothLimit;
   bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
   int dictionaryLevel;  // when it reads the dictionary
+  // Consistent LOD (glintLodCell): 1 on an axis whose marginal is the lobes that dictionary level
+  // dictionaryLevel + 1 adds to level dictionaryLevel (glintBlockMarginal), 0 where it is the level
+  // itself. Always 0 under GLINT_LOD_PAPER.
+  ivec2 complement;
   // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
   // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
   float scalePrecision;
@@ -312,6 +335,7 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   cell.smoothLimit = false;
   cell.ggxTail = false;
   cell.dictionaryLevel = 0;
+  cell.complement = ivec2(0, 0);
   cell.scalePrecision = 1.0f;
   cell.unscale = 1.0f;
   if (glintCellHasMicrofacets(params, cell.hash)) {
@@ -332,30 +356,112 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   return cell;
 }
 
+// Consistent LOD (method.md 2.7): whether the cell (cellX, cellY) of `level` holds a block of its
+// parent's lobes instead of drawing its own. A cell whose marginals are both whole dictionary
+// levels (an own cell: its own draws, as in the paper) hands its lobes to its four children: level
+// l + 1 of a distribution is level l's lobes plus as many new ones, so its tensor product is four
+// blocks of level-l size (prefix or complement on each axis); the first child (the coherent
+// index's, whose draws are the parent's already) takes prefix x prefix, the three others the blocks
+// with a complement. The nested dictionary tabulates prefixes only, so a block with a complement
+// cannot be split again: its children are own cells. Whether a cell is a block therefore depends
+// on where it sits in the cell tree alone: the top level's cells are own, and a cell below is a
+// block when it is not its parent's first child and its parent is own. 4/7 of the cells deep in
+// the tree are own. Bit j of the cell's level-0 corner (the coherent index) says whether its
+// level-j ancestor is a first child (0) or not.
+GLINT_FN bool glintCellIsBlock(int cellX, int cellY, int level, int numLevels) {
+  uint corner = ((uint(cellX) << uint(level)) | (uint(cellY) << uint(level))) & GLINT_CELL_INDEX_MASK;
+  bool parentOwn = true;  // the top level's cells are own
+  for (int j = GLINT_MAX_DICTIONARY_LEVELS - 2; j >= 0; --j) {
+    if (j > level && j < numLevels - 1) {
+      bool notFirstChild = ((corner >> uint(j)) & 1u) != 0u;
+      parentOwn = !(notFirstChild && parentOwn);  // own(j) from own(j + 1)
+    }
+  }
+  bool notFirstChild = ((corner >> uint(level)) & 1u) != 0u;
+  return level < numLevels - 1 && notFirstChild && parentOwn;
+}
+
+// The cell (cellX, cellY) of `level` under the material's LOD construction; parentDraw is the level
+// draw of level + 1 (glintNextLevelDraw), read only by the consistent construction. A block takes
+// its parent's draws (relative area, dictionary level, distributions, rotation, GGX scale, colour),
+// one dictionary level lower, with the complement on each axis where its position in the parent
+// is odd; so the mean of the four children's P22 is the parent's, to float rounding. A parent
+// without microfacets or in the GGX tail gives its children its own (empty or smooth) P22, the same
+// mean. A parent at dictionary level 0 (one lobe) or in the smooth limit (level L) has no blocks:
+// its children draw their own, as in the paper.
+GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw draw,
+                                GlintLevelDraw parentDraw, int cellX, int cellY, int level) {
+  GlintCell cell = glintCell(dict, params, draw, cellX, cellY, level);
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (params.lod == GLINT_LOD_CONSISTENT && glintCellIsBlock(cellX, cellY, level, dict.numLevels)) {
+    GlintCell parent = glintCell(dict, params, parentDraw, cellX >> 1, cellY >> 1, level + 1);
+    bool sameForEveryChild = !parent.readsDictionary && !parent.smoothLimit;  // empty, or the GGX tail
+    if (sameForEveryChild) {
+      cell = parent;
+    } else if (parent.readsDictionary && parent.dictionaryLevel >= 1) {
+      cell = parent;
+      cell.dictionaryLevel = parent.dictionaryLevel - 1;
+      cell.complement = ivec2(cellX & 1, cellY & 1);
+    }
+  }
+#endif
+  return cell;
+}
+
+// One axis's marginal of a cell at |slope| (< 4 sigma_d): dictionary level `level` of the
+// distribution, or with `complement` the lobes that level + 1 adds to it, 2 p_{level+1} - p_level
+// (method.md 2.7; level + 1 holds level's 2^level lobes and as many new ones, each table their
+// mean). Both tables integrate to 1, so the complement does too. Its texels are those of two
+// binary16 tables normalised apart, so where level + 1 adds no lobe it can dip below zero, by at
+// most 4e-4 of the level's peak in the default dictionary.
+GLINT_FN float glintBlockMarginal(GlintDictionaryView dict, int level, int distribution, int complement, float absSlope) {
+  float prefix = glintMarginal(dict, level, distribution, absSlope);
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (complement != 0) {
+    return 2.0f * glintMarginal(dict, level + 1, distribution, absSlope) - prefix;
+  }
+#endif
+  return prefix;
+}
+
+// The same filtered by the anti-aliasing kernel: the filter is linear, so the complement's filtered
+// value is the difference of the filtered tables'.
+GLINT_FN float glintFilteredBlockMarginal(GlintDictionaryView dict, GlintMarginalFilter marginalFilter, int level,
+                                          int distribution, int complement, float absSlope) {
+  float prefix = glintFilteredMarginal(dict, marginalFilter, level, distribution, absSlope);
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (complement != 0) {
+    return 2.0f * glintFilteredMarginal(dict, marginalFilter, level + 1, distribution, absSlope) - prefix;
+  }
+#endif
+  return prefix;
+}
+
 // The product of a dictionary cell's two marginals at an unscaled slope (glintUnscaledSlope),
 // without the scaling Jacobian; 0 outside the cell's rotated support.
-GLINT_FN float glintCellMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions, vec2 rotation,
-                                  vec2 unscaled) {
+GLINT_FN float glintCellMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions, ivec2 complement,
+                                  vec2 rotation, vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return 0.0f;
   }
-  return glintMarginal(dict, dictionaryLevel, distributions.x, abs(local.x)) *
-         glintMarginal(dict, dictionaryLevel, distributions.y, abs(local.y));
+  return glintBlockMarginal(dict, dictionaryLevel, distributions.x, complement.x, abs(local.x)) *
+         glintBlockMarginal(dict, dictionaryLevel, distributions.y, complement.y, abs(local.y));
 }
 
 // The same product with both marginals filtered by the anti-aliasing kernel (glint_antialiasing.h)
 // at the level of detail of its variance (glintKernelVariance, glintMarginalLod, glintMarginalFilter).
 GLINT_FN float glintCellFilteredMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions,
-                                          vec2 rotation, vec2 unscaled, GlintMarginalFilter marginalFilter) {
+                                          ivec2 complement, vec2 rotation, vec2 unscaled,
+                                          GlintMarginalFilter marginalFilter) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
   if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
     return 0.0f;
   }
-  return glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.x, abs(local.x)) *
-         glintFilteredMarginal(dict, marginalFilter, dictionaryLevel, distributions.y, abs(local.y));
+  return glintFilteredBlockMarginal(dict, marginalFilter, dictionaryLevel, distributions.x, complement.x, abs(local.x)) *
+         glintFilteredBlockMarginal(dict, marginalFilter, dictionaryLevel, distributions.y, complement.y, abs(local.y));
 }
 
 // The smooth target's P22 convolved with the anti-aliasing kernel of slope covariance K: for
@@ -564,6 +670,13 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
+  // The draws of the parent level, for the consistent construction's blocks (glintLodCell).
+  GlintLevelDraw parentDraw = draw;
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (params.lod == GLINT_LOD_CONSISTENT) {
+    parentDraw = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
+  }
+#endif
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
   float tailWeightSum = 0.0f;
@@ -581,7 +694,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     walk = glintWalkStep(grid, walk);
     if (weight > 0.0f) {
       weightSum += weight;
-      GlintCell cell = glintCell(dict, params, draw, index.x, index.y, level);
+      GlintCell cell = glintLodCell(dict, params, draw, parentDraw, index.x, index.y, level);
       smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
       tailWeightSum += cell.ggxTail ? weight : 0.0f;
       if (cell.readsDictionary && anyInSupport) {
@@ -596,9 +709,10 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
             if (filtering && params.ndf == GLINT_NDF_GGX) {
               cellFilter = glintMarginalFilter(dict, glintMarginalLod(dict, cell.scalePrecision * kernelVariance[k]));
             }
-            p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, rotation,
-                                                       cellUnscaled, cellFilter)
-                          : glintCellMarginals(dict, cell.dictionaryLevel, distributions, rotation, cellUnscaled);
+            p = filtering ? glintCellFilteredMarginals(dict, cell.dictionaryLevel, distributions, cell.complement,
+                                                       rotation, cellUnscaled, cellFilter)
+                          : glintCellMarginals(dict, cell.dictionaryLevel, distributions, cell.complement, rotation,
+                                               cellUnscaled);
             p *= cell.scalePrecision;
           }
           dictionarySum[k] += weight * p;
@@ -625,6 +739,12 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
         p22.p22[k] += glintSplat4(tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance));
       }
       p22.p22[k] = p22.p22[k] / weightSum;
+#if GLINT_CONSISTENT_LOD_COMPILED
+      // A complement's few texels below zero (glintBlockMarginal) never make the P-SDF negative.
+      if (params.lod == GLINT_LOD_CONSISTENT) {
+        p22.p22[k] = max(p22.p22[k], glintSplat4(0.0f));
+      }
+#endif
     }
   }
   return p22;

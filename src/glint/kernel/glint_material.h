@@ -24,7 +24,8 @@ GLINT_KERNEL_BEGIN
 //          40  float uvScale                52  int   masking
 //          44  uint  hasLogDensityTexture   56  uint  colouredCells
 //                                           60  uint  multipleScattering
-//          64  uint  enabled                68, 72, 76  padding (zero)
+//          64  uint  enabled                68  int   lod
+//                                           72, 76  padding (zero)
 // static_asserts pin these offsets in C++ (src/scene/scene.cpp, next to the packing of a scene's
 // glint layer); tests/test_gl_kernel.cpp checks that the GLSL compiler reports the same ones for
 // the renderer's block (shaders/glint_material_block.glsl).
@@ -44,7 +45,7 @@ struct GlintMaterial {
   uint colouredCells;          // 1: each cell reflects a random hue
   uint multipleScattering;     // 1: the smooth target's compensation lobe is added
   uint enabled;                // 1: the material has a glint layer (0: Cook-Torrance of its own roughness)
-  uint padding0;
+  int lod;                     // GLINT_LOD_PAPER (0) or GLINT_LOD_CONSISTENT (glint_brdf.h)
   uint padding1;
   uint padding2;
 };
@@ -68,6 +69,7 @@ GLINT_FN GlintParameters glintMaterialConstants(GlintMaterial material, GlintFoo
   p.colouredCells = material.colouredCells != 0u;
   p.ndf = material.ndf;
   p.masking = material.masking;
+  p.lod = material.lod;
   p.multipleScattering = material.multipleScattering != 0u;
   p.footprintPolicy = policy;
   return p;

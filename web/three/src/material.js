@@ -23,13 +23,14 @@ export class GlintLayer {
     this.masking = 'smith';                // or 'v-cavity'
     this.colouredCells = false;            // EXT_materials_glint's randomColors
     this.multipleScattering = true;
+    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7)
     this.roughnessTexture = null;          // three Textures, their R channel read as data
     this.logDensityTexture = null;
     this.relativeAreaTexture = null;
   }
 
   // The uniform struct's fields that are not parameters: flags as the kernel's uints. ndf,
-  // masking, colouredCells and multipleScattering are compiled in (the program's variant).
+  // masking, colouredCells, multipleScattering and lod are compiled in (the program's variant).
   get hasLogDensityTexture() {
     return this.logDensityTexture ? 1 : 0;
   }
@@ -70,7 +71,7 @@ function structValue(layer) {
     colouredCells: 0,
     multipleScattering: 0,
     get enabled() { return layer.enabled; },
-    padding0: 0,
+    lod: 0,
     padding1: 0,
     padding2: 0,
   };
@@ -128,6 +129,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
       masking: this.glint.masking,
       colouredCells: Boolean(this.glint.colouredCells),
       multipleScattering: Boolean(this.glint.multipleScattering),
+      consistentLod: this.glint.lod === 'consistent',
       smooth: Boolean(this.glintSmooth),
     };
   }
@@ -142,7 +144,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
 
   customProgramCacheKey() {
     const v = this.glintVariant;
-    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.smooth}`;
+    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.consistentLod}:${v.smooth}`;
   }
 
   // From another MeshGlintMaterial, or from a MeshPhysicalMaterial or MeshStandardMaterial (the

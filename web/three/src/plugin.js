@@ -36,6 +36,7 @@ const BOOLEANS = [
 const NAMES = [
   ['ndf', 'ndf', ['ggx', 'beckmann']],
   ['masking', 'masking', ['smith', 'v-cavity']],
+  ['lod', 'lod', ['paper', 'consistent']],
 ];
 const TEXTURES = [
   ['roughnessTexture', 'roughnessTexture'],

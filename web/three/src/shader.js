@@ -42,7 +42,8 @@ const VERTEX_MAIN = /* glsl */ `
 
 // The kernel's compile-time choices for one material (one program each, as in glint's rasteriser):
 // the smooth target and masking by the kernel's own constant names, coloured cells, the
-// multiple-scattering lobe, and the smooth lobe in place of the glints.
+// multiple-scattering lobe, the LOD construction (the paper's alone is compiled unless a material
+// asks for the consistent one), and the smooth lobe in place of the glints.
 function kernelDefines(variant) {
   return [
     `#define GLINT_MULTIPLE_SCATTERING ${variant.multipleScattering ? 1 : 0}`,
@@ -50,6 +51,7 @@ function kernelDefines(variant) {
     `#define GLINT_LAYER_MASKING ${variant.masking === 'v-cavity' ? 'GLINT_MASKING_VCAVITY' : 'GLINT_MASKING_SMITH'}`,
     `#define GLINT_LAYER_COLOURED_CELLS ${variant.colouredCells ? 1 : 0}`,
     `#define GLINT_LAYER_SMOOTH ${variant.smooth ? 1 : 0}`,
+    `#define GLINT_CONSISTENT_LOD ${variant.consistentLod ? 1 : 0}`,
   ].join('\n');
 }
 
@@ -109,6 +111,7 @@ void glintBeginFragment() {
   material.masking = GLINT_LAYER_MASKING;
   material.colouredCells = uint(GLINT_LAYER_COLOURED_CELLS);
   material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
+  material.lod = GLINT_CONSISTENT_LOD != 0 ? GLINT_LOD_CONSISTENT : GLINT_LOD_PAPER;
   GlintFootprintPolicy exact;  // the paper's footprint
   exact.maxAnisotropy = 0.0;
   exact.maxCells = 0.0;

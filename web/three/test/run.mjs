@@ -35,6 +35,8 @@ const FILES = [
   { name: 'carpaint', scene: 'carpaint', options: [], coreIsSmoothLobe: false },
   { name: 'sphere-gltf-target', scene: 'sphere', options: GLTF_TARGET, coreIsSmoothLobe: true },
   { name: 'carpaint-gltf-target', scene: 'carpaint', options: GLTF_TARGET, coreIsSmoothLobe: true },
+  // the consistent LOD construction (docs/method.md 2.7)
+  { name: 'sphere-consistent-lod', scene: 'sphere', options: ['--lod', 'consistent'], coreIsSmoothLobe: false },
   // anisotropic, correlated, coloured, its three glint textures
   { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
   // a plane to the horizon: footprints stretched up to the anisotropy cap
