@@ -215,6 +215,7 @@ TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
   layer.patternSeed = 4294967295u;
   layer.uvScale = 2.5f;
   layer.randomColours = true;
+  layer.lod = kernel::GLINT_LOD_CONSISTENT;
   layer.logDensityRange = glm::vec2(12.0f, 33.0f);
   layer.roughnessTexture = 1;  // the linear textures: metallic-roughness, normal, occlusion
   layer.logDensityTexture = 2;
@@ -242,6 +243,7 @@ TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
                          {"patternSeed", 4294967295.0},
                          {"uvScale", 2.5},
                          {"randomColors", true},
+                         {"lod", "consistent"},
                          {"logDensityRange", {12.0, 33.0}},
                          {"roughnessTexture", {{"index", 1}}},
                          {"logDensityTexture", {{"index", 2}}},

@@ -1103,7 +1103,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
   for (const auto& [name, property] : properties.items()) {
     if (property.contains("default")) defaults[name] = property["default"];
   }
-  EXPECT_EQ(defaults.size(), 12u);
+  EXPECT_EQ(defaults.size(), 13u);
   withExtension(json::object());
   const Material implicit = loadGltf(path).materials[0];
   withExtension(defaults);
@@ -1122,6 +1122,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
   EXPECT_EQ(a.patternSeed, b.patternSeed);
   EXPECT_EQ(a.uvScale, b.uvScale);
   EXPECT_EQ(a.randomColours, b.randomColours);
+  EXPECT_EQ(a.lod, b.lod);
   EXPECT_EQ(a.logDensityRange, b.logDensityRange);
 }
 
@@ -1392,6 +1393,8 @@ TEST(GltfErrors, BadGlintExtension) {
       {{{"logDensityRange", {10, 200}}}, "logDensityRange[1] must be in [0, 100], got 200"},
       {{{"ndf", "gxx"}}, "ndf must be \"beckmann\" or \"ggx\", got \"gxx\""},
       {{{"masking", 1}}, "masking must be \"v-cavity\" or \"smith\""},
+      {{{"lod", 1}}, "lod must be \"paper\" or \"consistent\""},
+      {{{"lod", "fast"}}, "lod must be \"paper\" or \"consistent\", got \"fast\""},
       {{{"roughnessTexture", 1}}, "roughnessTexture must be a textureInfo object with an index, got 1"},
       {{{"roughnessTexture", {{"index", 7}}}}, "roughnessTexture.index must be an integer in [0, 4], got 7"},
       {{{"logDensityTexture", {{"index", 1}, {"texCoord", -1}}}}, "logDensityTexture.texCoord must be an integer"},

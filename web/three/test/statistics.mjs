@@ -14,6 +14,28 @@ export function luminance(rgba, i) {
   return 0.2126 * rgba[4 * i] + 0.7152 * rgba[4 * i + 1] + 0.0722 * rgba[4 * i + 2];
 }
 
+// The pixels that glint, as glintStatistics counts them.
+export function glintMask(glints, smooth) {
+  const count = glints.length / 4;
+  const mask = new Uint8Array(count);
+  for (let i = 0; i < count; ++i) {
+    const s = luminance(smooth, i);
+    mask[i] = s > 0 && luminance(glints, i) > 2 * s + GLINT_MARGIN ? 1 : 0;
+  }
+  return mask;
+}
+
+// The share of the glint pixels of `a` that glint in `b` too.
+export function sharedGlintPixels(a, b) {
+  let glinting = 0;
+  let shared = 0;
+  for (let i = 0; i < a.length; ++i) {
+    glinting += a[i];
+    shared += a[i] & b[i];
+  }
+  return glinting ? shared / glinting : 0;
+}
+
 export function glintStatistics(glints, smooth) {
   const count = glints.length / 4;
   if (smooth.length !== glints.length) throw new Error('the two renders differ in size');
