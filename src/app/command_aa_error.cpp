@@ -208,13 +208,8 @@ void runAaError(const AaErrorOptions& options) {
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
   sceneOptions.lod = options.lod;
-  std::vector<scene::Scene> scenes;
-  for (const std::string& name : names) {
-    sceneOptions.scene = name;
-    sceneOptions.camera = options.camera;
-    scenes.push_back(sceneOptions.loadScene());
-    sceneOptions.findCamera(scenes.back());
-  }
+  sceneOptions.camera = options.camera;
+  const std::vector<scene::Scene> scenes = sceneOptions.loadScenes(names);
   const Dictionary dictionary = sceneOptions.loadDictionary();
   gl::HeadlessContext context;
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},

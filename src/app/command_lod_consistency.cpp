@@ -471,13 +471,8 @@ void runLodConsistency(LodConsistencyOptions options) {
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
   sceneOptions.patternSeed = options.patternSeed;
-  std::vector<scene::Scene> scenes;
-  for (const std::string& name : names) {
-    sceneOptions.scene = name;
-    sceneOptions.camera = options.camera;
-    scenes.push_back(sceneOptions.loadScene());
-    sceneOptions.findCamera(scenes.back());
-  }
+  sceneOptions.camera = options.camera;
+  const std::vector<scene::Scene> scenes = sceneOptions.loadScenes(names);
   const Dictionary dictionary = sceneOptions.loadDictionary();
   gl::HeadlessContext context;
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},

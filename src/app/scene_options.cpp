@@ -162,6 +162,16 @@ scene::Scene SceneOptions::loadScene() const {
   return s;
 }
 
+std::vector<scene::Scene> SceneOptions::loadScenes(const std::vector<std::string>& names) const {
+  SceneOptions each = *this;
+  std::vector<scene::Scene> scenes;
+  for (const std::string& name : names) {
+    each.scene = name;
+    scenes.push_back(each.loadScene());
+  }
+  return scenes;
+}
+
 const scene::Camera& SceneOptions::findCamera(const scene::Scene& s) const {
   const auto it = s.cameras.find(camera);
   if (it == s.cameras.end()) {

@@ -64,6 +64,8 @@ struct SceneOptions {
   // Loads the scene, applies --glint-material and the overrides (validated like the file's own
   // parameters), checks the camera and applies the camera options to it; throws Error with one line.
   scene::Scene loadScene() const;
+  // loadScene for each of `names` in turn, with these options (commands that measure several scenes).
+  std::vector<scene::Scene> loadScenes(const std::vector<std::string>& names) const;
   const scene::Camera& findCamera(const scene::Scene& scene) const;
   Dictionary loadDictionary() const;
   // The output of a command run without -o: the scene's name (scene::sceneName) with `extension`,
