@@ -547,7 +547,8 @@ TEST(ViewCli, OpensAndRendersUnderXvfb) {
 
 // The viewer opens on exactly what `glint render` draws: for every built-in scene but the two at the
 // paper's scale, which add nothing to it but time (and a camera
-// other than the default, and footprint policies and cascade counts the panel starts from), its first
+// other than the default, footprint policies and cascade counts the panel starts from, and each cost
+// tier), its first
 // frame with the panel hidden equals render's PNG of the same scene, camera, options and size, pixel
 // for pixel (both go through kernel/tonemap.h's display transform and its rounding to 8 bits). One
 // virtual X server runs all the viewers.
@@ -559,6 +560,9 @@ TEST(ViewCli, FirstFrameEqualsRenderForEveryBuiltinScene) {
   cases.push_back({"arctic", "ornament", " --shadow-cascades 1"});
   cases.push_back({"grazing-rough", "default", " --footprint cells=24"});  // one of the panel's policies
   cases.push_back({"grazing-rough", "default", " --footprint cells=32"});  // one it adds
+  // Each cost tier (docs/cli.md, "Cost tiers"): the viewer starts from the tier's footprint,
+  // anti-aliasing and cascades as render takes them.
+  for (const char* tier : {"low", "medium", "high", "exact"}) cases.push_back({"carpaint", "default", std::string(" --quality ") + tier});
   std::string views;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto& [name, camera, extra] = cases[i];
