@@ -3,6 +3,7 @@
 // defect of theirs is refused as corrupt, and the valid files of the fuzz corpus still load. The
 // crafted inputs are the fuzz targets' regression inputs (fuzz/regressions, written by
 // fuzz/make_corpus.cpp).
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <span>
@@ -110,6 +111,49 @@ TEST(DecoderChecks, GltfImagesThatAreNeitherPngNorJpegAreRefused) {
 TEST(DecoderChecks, ExrDataWindowThatOverflowsAnIntIsRefused) {
   expectError([&] { readImage(kFuzz / "regressions/image/exr-data-window-overflow.exr"); },
               {"exr-data-window-overflow.exr: truncated or corrupt EXR (data window (-1, 0) to (2147483647, 1)"});
+}
+
+// A header whose "type" attribute names an unknown kind, or a tiled kind without tiles: tinyexr
+// fails an assert converting it (found by fuzz_image), even when a later attribute is cut short,
+// and aborts; the walk refuses it first and passes every consistent header, tiled or not.
+std::vector<std::byte> exrHeader(const std::vector<std::pair<std::string, std::string>>& attributes, bool tiled = false) {
+  std::string text = std::string("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  if (tiled) text[5] = '\x02';
+  for (const auto& [name, value] : attributes) {
+    const auto size = static_cast<std::uint32_t>(value.size());
+    text += name + '\0' + (name == "tiles" ? "tiledesc" : "string") + '\0';
+    for (int k = 0; k < 4; ++k) text += static_cast<char>(size >> (8 * k) & 0xff);
+    text += value;
+  }
+  text += '\0';
+  std::vector<std::byte> bytes(text.size());
+  std::memcpy(bytes.data(), text.data(), text.size());
+  return bytes;
+}
+
+TEST(DecoderChecks, ExrTypeAttributeThatTinyexrAssertsOnIsRefused) {
+  expectError([&] { readImage(kFuzz / "regressions/image/exr-type-attribute-asserts.exr"); },
+              {"exr-type-attribute-asserts.exr: unsupported EXR (its type attribute is"});
+  const std::string tileDescription(9, '\x01');
+  expectError([&] { readImage(kFuzz / "regressions/image/exr-type-attribute-then-cut-short.exr"); },
+              {"exr-type-attribute-then-cut-short.exr: unsupported EXR (its type attribute is"});
+  expectError([&] { checkExrForDecoder(exrHeader({{"type", std::string("tiledimage\0", 11)}})); },
+              {"unsupported EXR (its type attribute is \"tiledimage\" in a scanline file"});
+  expectError([&] { checkExrForDecoder(exrHeader({{"type", "tiledimage"}, {"tiles", tileDescription}}, true)); },
+              {"unsupported EXR (its type attribute is \"tiledimage\" in a tiled file"});
+  expectError([&] { checkExrForDecoder(exrHeader({{"tiles", tileDescription}, {"type", "scanlineimage"}}, true)); },
+              {"unsupported EXR (its type attribute is \"scanlineimage\" in a tiled file"});
+  expectError([&] { checkExrForDecoder(exrHeader({{"type", "deepscanline"}})); },
+              {"unsupported EXR (its type attribute is \"deepscanline\""});
+  expectError([&] { checkExrForDecoder(exrHeader({{"tiles", "12345678"}}, true)); },
+              {"corrupt EXR (its tiles attribute holds 8 bytes, not 9)"});
+  EXPECT_NO_THROW(checkExrForDecoder(exrHeader({{"type", "scanlineimage"}})));
+  EXPECT_NO_THROW(checkExrForDecoder(exrHeader({{"tiles", tileDescription}, {"type", "tiledimage"}}, true)));
+  EXPECT_NO_THROW(checkExrForDecoder(exrHeader({{"name", "left"}, {"tiles", "12345678"}})));  // not read in a scanline file
+  // What follows an attribute tinyexr cannot read is not read.
+  std::vector<std::byte> cut = exrHeader({{"name", "left"}, {"type", "bogus"}});
+  cut.resize(cut.size() - 4);
+  EXPECT_NO_THROW(checkExrForDecoder(cut));
 }
 
 // A chunk that does not decompress: tinyexr fails after allocating the planes, and freed only their

@@ -115,9 +115,13 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   // D and P22 at the half vector, when it is above the surface; f is zero where the model is.
   const glm::vec3 sum = wo + wi;
   const glm::vec3 wh = glm::length(sum) > 0.0f ? glm::normalize(sum) : glm::vec3(0.0f);
+  // A half vector so near the horizon that its slope overflows a float has P22 = 0, as every
+  // distribution's has at infinite slopes; D = P22 / cos^4 is 0 wherever P22 is.
+  const glm::vec2 slope = wh.z > 0.0f ? kernel::glintSlopeFromNormal(wh) : glm::vec2(0.0f);
+  const bool aboveSurface = wh.z > 0.0f && std::isfinite(slope.x) && std::isfinite(slope.y);
   auto report = [&](const auto& bsdf) {
-    const float p22 = wh.z > 0.0f ? bsdf.p22(kernel::glintSlopeFromNormal(wh)) : 0.0f;
-    const float d = wh.z > 0.0f ? kernel::glintNdfFromP22(p22, wh.z) : 0.0f;
+    const float p22 = aboveSurface ? bsdf.p22(slope) : 0.0f;
+    const float d = p22 > 0.0f ? kernel::glintNdfFromP22(p22, wh.z) : 0.0f;
     return json{{"f", bsdf.f(wo, wi).x}, {"D", d}, {"P22", p22}};
   };
   if (brdf == "glint") return report(GlintBsdf(dictionary, parameters, footprint));

@@ -1,5 +1,6 @@
 #include "glint/decoder_checks.h"
 
+#include <optional>
 #include <string>
 
 #include "glint/error.h"
@@ -134,6 +135,55 @@ void checkJpegForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixe
         break;  // at the marker's 0xFF (or the end): the outer walk reads it
       }
     }
+  }
+}
+
+void checkExrForDecoder(std::span<const std::byte> bytes) {
+  // A C string at `at` within the bytes, or nullopt when it runs past their end.
+  auto cString = [&](std::size_t at) -> std::optional<std::string> {
+    std::string text;
+    for (std::size_t i = at; i < bytes.size(); ++i) {
+      const char c = static_cast<char>(std::to_integer<unsigned char>(bytes[i]));
+      if (c == '\0') return text;
+      text += c;
+    }
+    return std::nullopt;
+  };
+  auto littleEndian32 = [&](std::size_t at) {
+    return byteAt(bytes, at) | byteAt(bytes, at + 1) << 8 | byteAt(bytes, at + 2) << 16 | byteAt(bytes, at + 3) << 24;
+  };
+  // The version field's tiled flag (bit 9): tinyexr reads a "tiles" attribute only then.
+  const bool tiledFile = (byteAt(bytes, 5) & 0x02u) != 0;
+  bool tiled = false;  // what tinyexr has set once it has read a valid "tiles" attribute
+  // tinyexr reads the attributes in order until the header's end or one it cannot read, and then,
+  // even after an error, converts what it has read: each attribute is checked as it comes.
+  std::size_t at = 8;  // after the magic number and the version field
+  while (true) {
+    const std::optional<std::string> name = cString(at);
+    if (!name || name->empty()) return;  // past the end, or the header's end
+    const std::optional<std::string> type = cString(at + name->size() + 1);
+    if (!type) return;
+    const std::size_t sizeAt = at + name->size() + 1 + type->size() + 1;
+    if (sizeAt + 4 > bytes.size()) return;
+    const std::uint32_t size = littleEndian32(sizeAt);
+    const std::size_t valueAt = sizeAt + 4;
+    if (size > bytes.size() - valueAt || (size == 0 && *type != "string")) return;  // tinyexr stops here
+    if (tiledFile && *name == "tiles") {
+      if (size != 9) throw Error("corrupt EXR (its tiles attribute holds " + std::to_string(size) + " bytes, not 9)");
+      tiled = tiled || (littleEndian32(valueAt) <= 0x7fffffffu && littleEndian32(valueAt + 4) <= 0x7fffffffu);
+    }
+    if (*name == "type" && size > 0 && byteAt(bytes, valueAt) != 0) {
+      std::string kind;  // tinyexr keeps the value up to its first zero byte
+      for (std::size_t i = valueAt; i < valueAt + size && byteAt(bytes, i) != 0; ++i) kind += static_cast<char>(byteAt(bytes, i));
+      // A single-part image: scanlines in a file without the tiled flag, or tiles after a valid
+      // "tiles" attribute (OpenEXR writes attributes sorted by name, "tiles" before "type").
+      const bool consistent = (kind == "scanlineimage" && !tiledFile) || (kind == "tiledimage" && tiled);
+      if (!consistent) {
+        throw Error("unsupported EXR (its type attribute is \"" + kind + "\" in a " + (tiledFile ? "tiled" : "scanline") +
+                    " file; expected a single-part scanline or tiled image)");
+      }
+    }
+    at = valueAt + size;
   }
 }
 

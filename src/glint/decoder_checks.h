@@ -45,4 +45,12 @@ void checkJpegForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixe
 // allows (stb_image's others never see a file's bytes), checked as above; throws Error otherwise.
 void checkGltfImageForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixels = kMaxImagePixels);
 
+// For the bytes of a single-part EXR file: walks its header's attributes as tinyexr reads them
+// (name, type name, 32-bit little-endian size, value) and throws Error where tinyexr would fail an
+// assert, which aborts the program: a "tiles" attribute of a tiled file that does not hold 9 bytes,
+// or a "type" attribute other than scanlineimage in a scanline file or tiledimage after a valid
+// "tiles" attribute (tinyexr converts the header it has read even when reading it failed, and
+// asserts that the type matches). What tinyexr stops at (a truncated attribute) ends the walk.
+void checkExrForDecoder(std::span<const std::byte> bytes);
+
 }  // namespace glint

@@ -105,6 +105,11 @@ ImageRgbF decodeExr(const std::string& name, std::span<const std::byte> bytes, s
   if (version.multipart || version.non_image) {
     throw Error(name + ": unsupported EXR (multi-part or deep); expected a single RGB(A) or Y image");
   }
+  try {
+    checkExrForDecoder(bytes);
+  } catch (const Error& e) {
+    throw Error(name + ": " + e.what());
+  }
   EXRHeader header;
   InitEXRHeader(&header);
   const char* message = nullptr;

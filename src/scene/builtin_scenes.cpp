@@ -822,7 +822,6 @@ Scene atriumScene() {
   };
   constexpr Storey kStoreys[2] = {{0.0f, 4.2f, 0.3f, 1.5f, 6.45f, 0.7f}, {6.75f, 3.1f, 0.22f, 1.6f, 12.3f, 0.5f}};
   constexpr float kCornice = 0.3f;    // the band over each arcade wall
-  const glm::vec3 up(0, 1, 0);
   const glm::vec3 along(0, 0, 1);
 
   // The floor runs out through the far arch.

@@ -443,7 +443,8 @@ GLINT_FN float glintCellMarginals(GlintDictionaryView dict, int dictionaryLevel,
                                   vec2 rotation, vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
-  if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
+  // Written so that a NaN slope (a half vector on the horizon) is outside too.
+  if (!(abs(local.x) < fourSigma && abs(local.y) < fourSigma)) {
     return 0.0f;
   }
   return glintBlockMarginal(dict, dictionaryLevel, distributions.x, complement.x, abs(local.x)) *
@@ -457,7 +458,8 @@ GLINT_FN float glintCellFilteredMarginals(GlintDictionaryView dict, int dictiona
                                           GlintMarginalFilter marginalFilter) {
   float fourSigma = glintDictionaryDomain(dict);
   vec2 local = glintDictionarySlope(rotation, unscaled);
-  if (abs(local.x) >= fourSigma || abs(local.y) >= fourSigma) {
+  // Written so that a NaN slope (a half vector on the horizon) is outside too.
+  if (!(abs(local.x) < fourSigma && abs(local.y) < fourSigma)) {
     return 0.0f;
   }
   return glintFilteredBlockMarginal(dict, marginalFilter, dictionaryLevel, distributions.x, complement.x, abs(local.x)) *
