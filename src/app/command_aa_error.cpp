@@ -1,6 +1,5 @@
 // `glint aa-error`: how far each anti-aliasing mode's frame is from the supersampled reference, and
 // how much its glints flicker under sub-pixel camera drift (docs/antialiasing.md, "Metrics").
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -11,6 +10,7 @@
 
 #include "app/commands.h"
 #include "app/raster_options.h"
+#include "app/scene_measurements.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
@@ -220,12 +220,8 @@ void runAaError(const AaErrorOptions& options) {
                            {"reference_frames", options.reference},
                            {"sequence_frames", options.sequence},
                            {"scenes", nlohmann::json::array()}};
-  for (const scene::Scene& scene : scenes) {
-    const auto start = std::chrono::steady_clock::now();
-    report["scenes"].push_back(measureScene(scene, dictionary, options, width, height));
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "glint: measured %s in %.1f s\n", scene.name.c_str(), seconds);
-  }
+  measureScenes(scenes, report,
+                [&](const scene::Scene& scene) { return measureScene(scene, dictionary, options, width, height); });
   if (options.json) {
     std::printf("%s\n", report.dump(2).c_str());
     return;

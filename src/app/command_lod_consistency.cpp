@@ -3,7 +3,6 @@
 // how much of a frame's glint layer the next frame shows again, how much it pops beyond what a
 // supersampled reference does, and whether its mean over a fixed patch of surface drifts.
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/scene_measurements.h"
 #include "app/scene_options.h"
 #include "gl/context.h"
 #include "gl/renderer.h"
@@ -485,12 +485,8 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"block", options.block},
                            {"aa", options.antiAliasing},
                            {"scenes", nlohmann::json::array()}};
-  for (const scene::Scene& scene : scenes) {
-    const auto start = std::chrono::steady_clock::now();
-    report["scenes"].push_back(measureScene(scene, dictionary, options, width, height));
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "glint: measured %s in %.1f s\n", scene.name.c_str(), seconds);
-  }
+  measureScenes(scenes, report,
+                [&](const scene::Scene& scene) { return measureScene(scene, dictionary, options, width, height); });
   if (options.json) {
     std::printf("%s\n", report.dump(2).c_str());
     return;
