@@ -220,8 +220,10 @@ void runAaError(const AaErrorOptions& options) {
                            {"reference_frames", options.reference},
                            {"sequence_frames", options.sequence},
                            {"scenes", nlohmann::json::array()}};
-  measureScenes(scenes, report,
-                [&](const scene::Scene& scene) { return measureScene(scene, dictionary, options, width, height); });
+  // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
+  measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
+    return measureScene(scene, dictionary, options, w, h);
+  });
   if (options.json) {
     std::printf("%s\n", report.dump(2).c_str());
     return;

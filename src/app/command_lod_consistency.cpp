@@ -485,8 +485,10 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"block", options.block},
                            {"aa", options.antiAliasing},
                            {"scenes", nlohmann::json::array()}};
-  measureScenes(scenes, report,
-                [&](const scene::Scene& scene) { return measureScene(scene, dictionary, options, width, height); });
+  // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
+  measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
+    return measureScene(scene, dictionary, options, w, h);
+  });
   if (options.json) {
     std::printf("%s\n", report.dump(2).c_str());
     return;
