@@ -90,7 +90,7 @@ def main():
     valid = {
         "empty": {},
         "lowest": {"alpha": [0.005, 0.005], "rho": -0.99, "logDensity": 0, "relativeArea": 1e-6,
-                   "densityRandomization": 0, "maxAnisotropy": 1, "patternSeed": 0, "uvScale": 1e-6,
+                   "densityRandomization": 0, "maxAnisotropy": 1, "patternSeed": 0, "uvScale": 1.401298464324817e-45,
                    "logDensityRange": [0, 0]},
         "highest": {"alpha": [2, 2], "rho": 0.99, "logDensity": 100, "relativeArea": 1, "densityRandomization": 10,
                     "maxAnisotropy": 64, "patternSeed": 4294967295, "uvScale": 3.4028234663852886e38,
@@ -120,6 +120,7 @@ def main():
         "patternSeed 2^32": {"patternSeed": 4294967296},
         "patternSeed 1.5": {"patternSeed": 1.5},
         "uvScale 0": {"uvScale": 0},
+        "uvScale below a float's smallest": {"uvScale": 1e-50},
         "uvScale beyond a float": {"uvScale": 1e39},
         "logDensityRange end 200": {"logDensityRange": [10, 200]},
         "logDensityRange of one": {"logDensityRange": [10]},
