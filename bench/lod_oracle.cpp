@@ -11,7 +11,12 @@
 //               descendants at b, each drawn as the 2020 model draws its cells: a hierarchy that
 //               is consistent at every cell and every level, as a binary-tree dictionary would
 //               make it (docs/antialiasing.md), evaluated by brute force. b lies below every
-//               footprint of the sequence, the reference's samples included.
+//               footprint of the sequence, the reference's samples included;
+//   tree        a dictionary of today's size in which every level is the mean of two of the level
+//               below (TreeDictionary), so that every cell splits into four: own cells above every
+//               footprint of the sequence, every cell below them one of its parent's four blocks.
+//               Consistent at every cell like the oracle, but its lobes are the N single lobes of
+//               level 0, repeated, and a whole subtree shares its own cell's rotation.
 // Each against a reference of its own: the same construction at M x M jittered samples a pixel.
 // The glint layer is the P22 above the smooth target's at the slope (its positive part).
 #include <algorithm>
@@ -57,44 +62,117 @@ double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const
          kernel::glintScalingJacobian(dict, p);
 }
 
-// The oracle's P-SDF: the 2020 model's footprint, levels and EWA weights, each cell the mean of its
-// descendants at the base level.
-double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int base, glm::vec2 uv, float size) {
+// A dictionary in which level k + 1 of distribution i is the mean of level k of i and of another
+// distribution, split(k + 1, i): every level a tabulated pair of the level below, all of it built
+// from the N single lobes of level 0 (which therefore repeat from about level log2 N).
+struct TreeDictionary {
+  std::vector<float> texels;
+  std::vector<int> split;  // [level * N + i], for level >= 1
+  kernel::GlintDictionaryView view;
+};
+
+TreeDictionary treeDictionary(kernel::GlintDictionaryView dict) {
+  const int n = dict.numDistributions, r = dict.texelsPerDistribution;
+  TreeDictionary tree;
+  tree.texels.assign(static_cast<std::size_t>(dict.numLevels) * n * r, 0.0f);
+  tree.split.assign(static_cast<std::size_t>(dict.numLevels) * n, 0);
+  std::copy(dict.texels, dict.texels + static_cast<std::size_t>(n) * r, tree.texels.begin());
+  for (int level = 1; level < dict.numLevels; ++level) {
+    for (int i = 0; i < n; ++i) {
+      const int other = (i + 1 + static_cast<int>(kernel::glintPcg4d(glm::uvec4(level, i, 7u, 0u)).x % (n - 1))) % n;
+      tree.split[static_cast<std::size_t>(level) * n + i] = other;
+      for (int t = 0; t < r; ++t) {
+        tree.texels[(static_cast<std::size_t>(level) * n + i) * r + t] =
+            0.5f * (tree.texels[(static_cast<std::size_t>(level - 1) * n + i) * r + t] +
+                    tree.texels[(static_cast<std::size_t>(level - 1) * n + other) * r + t]);
+      }
+    }
+  }
+  tree.view = dict;
+  tree.view.texels = tree.texels.data();
+  return tree;
+}
+
+// The P-SDF with the 2020 model's footprint, levels and EWA weights and its own cells' values.
+template <typename CellValue>
+double walkedP22(kernel::GlintDictionaryView dict, const GlintParameters& p, glm::vec2 uv, float size, CellValue value) {
   const kernel::GlintFootprint footprint =
       kernel::glintPixelFootprint(glm::vec2(size, 0.0f), glm::vec2(0.0f, size), p, dict.numLevels);
   const glm::vec2 wrapped = kernel::glintWrapUv(uv, dict.numLevels);
   const int level = kernel::glintLodLevel(footprint);
   const float blend = kernel::glintLodBlend(footprint);
-  const kernel::GlintLevelDraw baseDraw = kernel::glintLevelDraw(dict, p, footprint.logDensity, base);
   const auto levelP22 = [&](int l) {
-    if (l < base) std::abort();  // the base must lie below every footprint
     const kernel::GlintCellGrid grid = kernel::glintCellGrid(footprint, wrapped, dict.numLevels, l);
-    const int side = 1 << (l - base);
     double sum = 0.0, weights = 0.0;
     for (kernel::GlintCellWalk walk = kernel::glintWalkStart(grid); kernel::glintWalkGoing(grid, walk);
          walk = kernel::glintWalkStep(grid, walk)) {
       const float weight = kernel::glintWalkWeight(grid, walk);
       if (!(weight > 0.0f)) continue;
       const glm::ivec2 cell = kernel::glintCellAt(grid, walk.s, walk.t);
-      double mean = 0.0;
-      for (int j = 0; j < side; ++j) {
-        for (int i = 0; i < side; ++i) {
-          mean += cellP22(dict, p, kernel::glintCell(dict, p, baseDraw, cell.x * side + i, cell.y * side + j, base));
-        }
-      }
-      sum += weight * mean / (static_cast<double>(side) * side);
+      sum += weight * value(cell.x, cell.y, l, footprint.logDensity);
       weights += weight;
     }
     return weights > 0.0 ? sum / weights : 0.0;
   };
-  double value = (1.0 - blend) * levelP22(level);
-  if (blend > 0.0f) value += blend * levelP22(level + 1);
-  return value;
+  double p22 = (1.0 - blend) * levelP22(level);
+  if (blend > 0.0f) p22 += blend * levelP22(level + 1);
+  return p22;
 }
 
-double modelP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const std::string& mode, int base,
-                glm::vec2 uv, float size) {
-  if (mode == "oracle") return oracleP22(dict, p, base, uv, size);
+// The oracle: each cell the mean of its descendants at the base level, drawn as the 2020 model's.
+double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int base, glm::vec2 uv, float size) {
+  return walkedP22(dict, p, uv, size, [&](int x, int y, int l, float logDensity) {
+    if (l < base) std::abort();  // the base must lie below every footprint
+    const kernel::GlintLevelDraw baseDraw = kernel::glintLevelDraw(dict, p, logDensity, base);
+    const int side = 1 << (l - base);
+    double mean = 0.0;
+    for (int j = 0; j < side; ++j) {
+      for (int i = 0; i < side; ++i) {
+        mean += cellP22(dict, p, kernel::glintCell(dict, p, baseDraw, x * side + i, y * side + j, base));
+      }
+    }
+    return mean / (static_cast<double>(side) * side);
+  });
+}
+
+// The tree: own cells at level `top` (drawn as the 2020 model's), every cell below one of the four
+// blocks of its parent: one dictionary level lower, on each axis the distribution itself or its
+// split as the cell's position in its parent says; below dictionary level 0 the children keep
+// their parent's single lobe. Every cell is the mean of its children; all of an own cell's
+// descendants share its rotation.
+double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size) {
+  const kernel::GlintDictionaryView dict = tree.view;
+  const int n = dict.numDistributions;
+  return walkedP22(dict, p, uv, size, [&](int x, int y, int l, float logDensity) {
+    if (l > top) std::abort();  // the own level must lie above every footprint
+    const int depth = top - l;
+    const kernel::GlintLevelDraw topDraw = kernel::glintLevelDraw(dict, p, logDensity, top);
+    kernel::GlintCell cell = kernel::glintCell(dict, p, topDraw, x >> depth, y >> depth, top);
+    if (!cell.readsDictionary) return cellP22(dict, p, cell);
+    glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
+    int dictionaryLevel = cell.dictionaryLevel;
+    for (int step = depth - 1; step >= 0 && dictionaryLevel >= 1; --step) {
+      if ((x >> step) & 1) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
+      if ((y >> step) & 1) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
+      --dictionaryLevel;
+    }
+    const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
+    return static_cast<double>(kernel::glintCellMarginals(dict, dictionaryLevel, distributions, glm::ivec2(0),
+                                                          kernel::glintCellRotation(cell.hash), unscaled)) *
+           kernel::glintScalingJacobian(dict, p);
+  });
+}
+
+// The levels a sequence spans: the base below its finest footprint, the own level above its coarsest.
+struct Span {
+  int base;
+  int top;
+};
+
+double modelP22(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p,
+                const std::string& mode, Span span, glm::vec2 uv, float size) {
+  if (mode == "oracle") return oracleP22(dict, p, span.base, uv, size);
+  if (mode == "tree") return treeP22(tree, p, span.top, uv, size);
   GlintParameters q = p;
   q.lod = mode == "consistent" ? kernel::GLINT_LOD_CONSISTENT : kernel::GLINT_LOD_PAPER;
   return kernel::glintP22(dict, q, uv, glm::vec2(size, 0.0f), glm::vec2(0.0f, size), kSlope);
@@ -103,7 +181,7 @@ double modelP22(kernel::GlintDictionaryView dict, const GlintParameters& p, cons
 using Frame = std::vector<double>;
 
 // Frame t's glint layer (its positive part), at one sample a pixel or the reference's M x M.
-Frame render(kernel::GlintDictionaryView dict, const GlintParameters& p, const std::string& mode, int base,
+Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p, const std::string& mode, Span span,
              const Setup& setup, int t, bool reference) {
   const float pixel = static_cast<float>(setup.pixelMid * growth(t));
   const double smooth = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
@@ -115,13 +193,13 @@ Frame render(kernel::GlintDictionaryView dict, const GlintParameters& p, const s
         const glm::vec2 at = centre + pixel * glm::vec2(x + 0.5f - 0.5f * kSize, y + 0.5f - 0.5f * kSize);
         double value = 0.0;
         if (!reference) {
-          value = modelP22(dict, p, mode, base, at, pixel);
+          value = modelP22(dict, tree, p, mode, span, at, pixel);
         } else {
           for (int j = 0; j < kSamples; ++j) {
             for (int i = 0; i < kSamples; ++i) {
               const glm::vec2 jitter(hashUnit(x, y, i + kSamples * j, 2 * t), hashUnit(x, y, i + kSamples * j, 2 * t + 1));
               const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + jitter) / float(kSamples) - 0.5f);
-              value += modelP22(dict, p, mode, base, sample, pixel / kSamples);
+              value += modelP22(dict, tree, p, mode, span, sample, pixel / kSamples);
             }
           }
           value /= kSamples * kSamples;
@@ -149,17 +227,20 @@ double warped(const Frame& next, int t, int x, int y) {
   return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) + ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
 }
 
-void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::string& mode, unsigned seed) {
+void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const Setup& setup, const std::string& mode,
+             unsigned seed) {
   GlintParameters p = defaultGlintParameters();
   p.logDensity = setup.logDensity;
   p.patternSeed = seed;
   // The base: a level below the reference's finest footprint (the first frame's, M times smaller).
   const float finest = static_cast<float>(setup.pixelMid * growth(0)) / kSamples;
-  const int base = static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(finest)));
+  const float coarsest = static_cast<float>(setup.pixelMid * growth(kFrames - 1));
+  const Span span{static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(finest))),
+                  static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(coarsest))) + 1};
   std::vector<Frame> model, reference;
   for (int t = 0; t < kFrames; ++t) {
-    model.push_back(render(dict, p, mode, base, setup, t, false));
-    reference.push_back(render(dict, p, mode, base, setup, t, true));
+    model.push_back(render(dict, tree, p, mode, span, setup, t, false));
+    reference.push_back(render(dict, tree, p, mode, span, setup, t, true));
   }
   double overlap = 0, energy = 0, referenceOverlap = 0, referenceEnergy = 0, change = 0, referenceChange = 0, beyond = 0;
   constexpr int blocks = kSize / kBlock;
@@ -194,35 +275,53 @@ void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::st
     }
     rmse += std::sqrt(squared / model[t].size()) / (mean / model[t].size()) / kFrames;
   }
-  std::printf("| %s | %u | %s | %d | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% |\n", setup.name, seed,
-              mode.c_str(), base, overlap / energy, referenceOverlap / referenceEnergy,
+  // The glint layer's correlation between pixels kBlock apart (the middle frame): glints that
+  // neighbouring cells show independently correlate little; a shared rotation or repeated lobes
+  // make them light up together.
+  const Frame& middle = model[kFrames / 2];
+  double mean = 0, meanProduct = 0, meanSquare = 0;
+  int pairs = 0;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x + kBlock < kSize; ++x) {
+      const double a = middle[static_cast<std::size_t>(y) * kSize + x], b = middle[static_cast<std::size_t>(y) * kSize + x + kBlock];
+      mean += 0.5 * (a + b);
+      meanProduct += a * b;
+      meanSquare += 0.5 * (a * a + b * b);
+      ++pairs;
+    }
+  }
+  mean /= pairs;
+  const double correlation = (meanProduct / pairs - mean * mean) / std::max(meanSquare / pairs - mean * mean, 1e-30);
+  std::printf("| %s | %u | %s | %d | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f |\n", setup.name, seed,
+              mode.c_str(), mode == "tree" ? span.top : span.base, overlap / energy, referenceOverlap / referenceEnergy,
               std::abs(overlap / energy - referenceOverlap / referenceEnergy), change / referenceEnergy,
-              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse);
+              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, correlation);
   std::fflush(stdout);
 }
 
 }  // namespace
 
-// Usage: glint_lod_oracle [MODE...] (default: paper consistent oracle). Two pattern seeds of a dense
+// Usage: glint_lod_oracle [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a dense
 // layer (log density 13, about 180 microfacets a pixel at the middle frame) and a sparse one (log
 // density 8, about 30); the oracle takes about a minute on two cores.
 int main(int argc, char** argv) {
-  std::vector<std::string> modes = {"paper", "consistent", "oracle"};
+  std::vector<std::string> modes = {"paper", "consistent", "oracle", "tree"};
   if (argc > 1) modes.assign(argv + 1, argv + argc);
   for (const std::string& mode : modes) {
-    if (mode != "paper" && mode != "consistent" && mode != "oracle") {
-      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent or oracle)\n", mode.c_str());
+    if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
+      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle or tree)\n", mode.c_str());
       return 1;
     }
   }
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
+  const TreeDictionary tree = treeDictionary(dict);
   const std::vector<Setup> setups = {{"dense", 13.0f, 0.02f}, {"sparse", 8.0f, 0.1f}};
-  std::printf("| layer | seed | lod | base | persistence (reference) | gap | change (reference) | popping | RMSE |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| layer | seed | lod | base (tree: own level) | persistence (reference) | gap | change (reference) | popping | RMSE | correlation |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
     for (unsigned seed : {0u, 1u}) {
-      for (const std::string& mode : modes) measure(dict, setup, mode, seed);
+      for (const std::string& mode : modes) measure(dict, tree, setup, mode, seed);
     }
   }
   return 0;
