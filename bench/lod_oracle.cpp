@@ -44,6 +44,9 @@ constexpr int kFrames = 16;
 constexpr int kSamples = 4;       // the reference's samples across a pixel
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
+// --centred-reference: the reference's samples at the centres of their strata, the same in every
+// frame, instead of jittered anew each frame.
+bool centredReference = false;
 
 double growth(int t) { return std::exp2(2.0 * (static_cast<double>(t) / (kFrames - 1) - 0.5)); }
 
@@ -197,7 +200,9 @@ Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
         } else {
           for (int j = 0; j < kSamples; ++j) {
             for (int i = 0; i < kSamples; ++i) {
-              const glm::vec2 jitter(hashUnit(x, y, i + kSamples * j, 2 * t), hashUnit(x, y, i + kSamples * j, 2 * t + 1));
+              const glm::vec2 jitter = centredReference ? glm::vec2(0.5f)
+                                                        : glm::vec2(hashUnit(x, y, i + kSamples * j, 2 * t),
+                                                                    hashUnit(x, y, i + kSamples * j, 2 * t + 1));
               const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + jitter) / float(kSamples) - 0.5f);
               value += modelP22(dict, tree, p, mode, span, sample, pixel / kSamples);
             }
@@ -301,12 +306,19 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 
 }  // namespace
 
-// Usage: glint_lod_oracle [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a dense
+// Usage: glint_lod_oracle [--centred-reference] [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a dense
 // layer (log density 13, about 180 microfacets a pixel at the middle frame) and a sparse one (log
 // density 8, about 30); the oracle takes about a minute on two cores.
 int main(int argc, char** argv) {
-  std::vector<std::string> modes = {"paper", "consistent", "oracle", "tree"};
-  if (argc > 1) modes.assign(argv + 1, argv + argc);
+  std::vector<std::string> modes;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--centred-reference") {
+      centredReference = true;
+    } else {
+      modes.emplace_back(argv[i]);
+    }
+  }
+  if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree"};
   for (const std::string& mode : modes) {
     if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
       std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle or tree)\n", mode.c_str());
