@@ -1,27 +1,29 @@
-// glint-lod-oracle: how far could any consistent level-of-detail construction go? (docs/antialiasing.md,
-// "Level-of-detail consistency", "A bound").
+// glint_lod_oracle: what level-of-detail constructions consistent at every cell would give
+// (docs/antialiasing.md, "Levels consistent at every cell").
 //
-// On an idealised dolly (a fronto-parallel glint plane under an orthographic camera, one half-vector
-// slope everywhere, the footprint doubling twice over 16 frames: a zoom, with nothing else changing),
-// it measures the same figures as `glint lod-consistency` (persistence, change, popping beyond the
-// reference's, RMSE) for three constructions of the P-SDF's levels:
-//   paper       the 2020 model (kernel glintP22Set, GLINT_LOD_PAPER);
+// On an idealised zoom (a fronto-parallel glint plane under an orthographic camera, one half-vector
+// slope everywhere, the footprint doubling twice over 16 frames, nothing else changing), it
+// measures the figures of `glint lod-consistency` (persistence, change, popping beyond the
+// reference's, RMSE) for four constructions of the P-SDF's levels:
+//   paper       the 2020 model (kernel glintP22, GLINT_LOD_PAPER);
 //   consistent  glint's four-blocks construction (GLINT_LOD_CONSISTENT);
 //   oracle      every cell of a level above a base level b is the exact mean of its 4^(l-b)
-//               descendants at b, each drawn as the 2020 model draws its cells: a hierarchy that
-//               is consistent at every cell and every level, as a binary-tree dictionary would
-//               make it (docs/antialiasing.md), evaluated by brute force. b lies below every
+//               descendants at b, each drawn as the 2020 model draws its cells: consistent at
+//               every cell and level by construction, evaluated by brute force. b lies below every
 //               footprint of the sequence, the reference's samples included;
 //   tree        a dictionary of today's size in which every level is the mean of two of the level
 //               below (TreeDictionary), so that every cell splits into four: own cells above every
 //               footprint of the sequence, every cell below them one of its parent's four blocks.
 //               Consistent at every cell like the oracle, but its lobes are the N single lobes of
 //               level 0, repeated, and a whole subtree shares its own cell's rotation.
-// Each against a reference of its own: the same construction at M x M jittered samples a pixel.
-// The glint layer is the P22 above the smooth target's at the slope (its positive part).
+// Each against a reference of its own: the same construction at 4 x 4 samples a pixel, at the
+// centres of the pixel's 4 x 4 sub-pixels (the first of `glint lod-consistency`'s reference frames).
+// The glint layer is the P22 above the smooth target's at the slope (its positive part); the image
+// spans less than the pattern's period (2 uv) in every frame, so no glint is counted twice.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
@@ -39,20 +41,13 @@ struct Setup {
   float pixelMid;  // the pixel's size in uv at the middle frame
 };
 
-constexpr int kSize = 96;         // pixels across
+constexpr int kSize = 96;    // pixels across
 constexpr int kFrames = 16;
-constexpr int kSamples = 4;       // the reference's samples across a pixel
+constexpr int kSamples = 4;  // the reference's samples across a pixel
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
-// --centred-reference: the reference's samples at the centres of their strata, the same in every
-// frame, instead of jittered anew each frame.
-bool centredReference = false;
 
 double growth(int t) { return std::exp2(2.0 * (static_cast<double>(t) / (kFrames - 1) - 0.5)); }
-
-float hashUnit(unsigned a, unsigned b, unsigned c, unsigned d) {
-  return kernel::glintHashToUnitOpen(kernel::glintPcg4d(glm::uvec4(a, b, c, d)).x);
-}
 
 // One cell's P22 at the slope, as glintLevelP22 sums it.
 double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const kernel::GlintCell& cell) {
@@ -183,11 +178,10 @@ double modelP22(kernel::GlintDictionaryView dict, const TreeDictionary& tree, co
 
 using Frame = std::vector<double>;
 
-// Frame t's glint layer (its positive part), at one sample a pixel or the reference's M x M.
-Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p, const std::string& mode, Span span,
-             const Setup& setup, int t, bool reference) {
+// Frame t's P22, at one sample a pixel or the reference's 4 x 4.
+Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p,
+             const std::string& mode, Span span, const Setup& setup, int t, bool reference) {
   const float pixel = static_cast<float>(setup.pixelMid * growth(t));
-  const double smooth = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
   const glm::vec2 centre(0.37f, 0.61f);
   Frame frame(static_cast<std::size_t>(kSize) * kSize);
   const auto rows = [&](int first, int step) {
@@ -200,16 +194,13 @@ Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
         } else {
           for (int j = 0; j < kSamples; ++j) {
             for (int i = 0; i < kSamples; ++i) {
-              const glm::vec2 jitter = centredReference ? glm::vec2(0.5f)
-                                                        : glm::vec2(hashUnit(x, y, i + kSamples * j, 2 * t),
-                                                                    hashUnit(x, y, i + kSamples * j, 2 * t + 1));
-              const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + jitter) / float(kSamples) - 0.5f);
+              const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + 0.5f) / float(kSamples) - 0.5f);
               value += modelP22(dict, tree, p, mode, span, sample, pixel / kSamples);
             }
           }
           value /= kSamples * kSamples;
         }
-        frame[static_cast<std::size_t>(y) * kSize + x] = std::max(0.0, value - smooth);
+        frame[static_cast<std::size_t>(y) * kSize + x] = value;
       }
     }
   };
@@ -217,6 +208,14 @@ Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   rows(0, 2);
   other.join();
   return frame;
+}
+
+// The glint layer: the P22 above the smooth target's, its positive part.
+Frame glints(const Frame& p22, const GlintParameters& p) {
+  const double smooth = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
+  Frame layer(p22.size());
+  for (std::size_t i = 0; i < p22.size(); ++i) layer[i] = std::max(0.0, p22[i] - smooth);
+  return layer;
 }
 
 // Frame t + 1 at frame t's pixel centre (x, y), bilinearly: the magnification undone.
@@ -232,20 +231,45 @@ double warped(const Frame& next, int t, int x, int y) {
   return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) + ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
 }
 
+// The share of the tree's own cells whose dictionary level reaches log2 N, from which a
+// distribution's 2^level lobes must repeat some of the N single ones (4,096 own cells).
+double ownCellsWithRepeatedLobes(kernel::GlintDictionaryView dict, const GlintParameters& p, int top) {
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, top);
+  int repeated = 0;
+  for (int i = 0; i < 4096; ++i) {
+    const kernel::GlintCell cell = kernel::glintCell(dict, p, draw, i % 64, i / 64, top);
+    repeated += cell.readsDictionary && std::exp2(static_cast<double>(cell.dictionaryLevel)) >= dict.numDistributions;
+  }
+  return repeated / 4096.0;
+}
+
 void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const Setup& setup, const std::string& mode,
              unsigned seed) {
   GlintParameters p = defaultGlintParameters();
   p.logDensity = setup.logDensity;
   p.patternSeed = seed;
-  // The base: a level below the reference's finest footprint (the first frame's, M times smaller).
+  // The base below the reference's finest footprint (the first frame's, 4 times smaller), the own
+  // level above the coarsest level walked (the last frame's floor(lod) + 1).
   const float finest = static_cast<float>(setup.pixelMid * growth(0)) / kSamples;
   const float coarsest = static_cast<float>(setup.pixelMid * growth(kFrames - 1));
   const Span span{static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(finest))),
                   static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(coarsest))) + 1};
-  std::vector<Frame> model, reference;
+  // The oracle's base cells hold microfacets as the 2020 model's cells do: at least one (dictionary
+  // level 0) however few the density gives them, so below one a cell its coarse cells would hold
+  // more microfacets than the layer has. It is measured where the base holds at least one.
+  const double baseMicrofacets = std::exp(static_cast<double>(p.logDensity)) * std::exp2(2.0 * (span.base - (dict.numLevels - 1)));
+  if (mode == "oracle" && baseMicrofacets < 1.0) {
+    std::printf("| %s | %u | %s | base %d | not measured: %.2f microfacets a base cell, which the model rounds up to 1 |\n",
+                setup.name, seed, mode.c_str(), span.base, baseMicrofacets);
+    std::fflush(stdout);
+    return;
+  }
+  std::vector<Frame> modelP22s, referenceP22s, model, reference;
   for (int t = 0; t < kFrames; ++t) {
-    model.push_back(render(dict, tree, p, mode, span, setup, t, false));
-    reference.push_back(render(dict, tree, p, mode, span, setup, t, true));
+    modelP22s.push_back(render(dict, tree, p, mode, span, setup, t, false));
+    referenceP22s.push_back(render(dict, tree, p, mode, span, setup, t, true));
+    model.push_back(glints(modelP22s.back(), p));
+    reference.push_back(glints(referenceP22s.back(), p));
   }
   double overlap = 0, energy = 0, referenceOverlap = 0, referenceEnergy = 0, change = 0, referenceChange = 0, beyond = 0;
   constexpr int blocks = kSize / kBlock;
@@ -271,24 +295,27 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
       beyond += std::max(0.0, own - theirs);
     }
   }
+  // RMSE as `glint lod-consistency` takes it: each frame's P22 (the radiance's glint part) against
+  // the reference's, relative to the reference's mean, averaged over the frames.
   double rmse = 0;
   for (int t = 0; t < kFrames; ++t) {
     double squared = 0, mean = 0;
-    for (std::size_t i = 0; i < model[t].size(); ++i) {
-      squared += (model[t][i] - reference[t][i]) * (model[t][i] - reference[t][i]);
-      mean += reference[t][i];
+    for (std::size_t i = 0; i < modelP22s[t].size(); ++i) {
+      squared += (modelP22s[t][i] - referenceP22s[t][i]) * (modelP22s[t][i] - referenceP22s[t][i]);
+      mean += referenceP22s[t][i];
     }
-    rmse += std::sqrt(squared / model[t].size()) / (mean / model[t].size()) / kFrames;
+    rmse += std::sqrt(squared / modelP22s[t].size()) / (mean / modelP22s[t].size()) / kFrames;
   }
-  // The glint layer's correlation between pixels kBlock apart (the middle frame): glints that
-  // neighbouring cells show independently correlate little; a shared rotation or repeated lobes
-  // make them light up together.
+  // The glint layer's correlation between neighbouring pixels (the middle frame), which share an
+  // own cell of the tree more often than not: glints that neighbouring cells show independently
+  // correlate only as far as the footprints overlap; a shared rotation or repeated lobes would make
+  // them light up together.
   const Frame& middle = model[kFrames / 2];
   double mean = 0, meanProduct = 0, meanSquare = 0;
   int pairs = 0;
   for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x + kBlock < kSize; ++x) {
-      const double a = middle[static_cast<std::size_t>(y) * kSize + x], b = middle[static_cast<std::size_t>(y) * kSize + x + kBlock];
+    for (int x = 0; x + 1 < kSize; ++x) {
+      const double a = middle[static_cast<std::size_t>(y) * kSize + x], b = middle[static_cast<std::size_t>(y) * kSize + x + 1];
       mean += 0.5 * (a + b);
       meanProduct += a * b;
       meanSquare += 0.5 * (a * a + b * b);
@@ -297,8 +324,15 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   }
   mean /= pairs;
   const double correlation = (meanProduct / pairs - mean * mean) / std::max(meanSquare / pairs - mean * mean, 1e-30);
-  std::printf("| %s | %u | %s | %d | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f |\n", setup.name, seed,
-              mode.c_str(), mode == "tree" ? span.top : span.base, overlap / energy, referenceOverlap / referenceEnergy,
+  std::string level = "-";
+  if (mode == "oracle") level = "base " + std::to_string(span.base);
+  if (mode == "tree") {
+    char own[64];
+    std::snprintf(own, sizeof own, "own %d, %.0f%% at log2 N+", span.top, 100.0 * ownCellsWithRepeatedLobes(dict, p, span.top));
+    level = own;
+  }
+  std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f |\n", setup.name, seed,
+              mode.c_str(), level.c_str(), overlap / energy, referenceOverlap / referenceEnergy,
               std::abs(overlap / energy - referenceOverlap / referenceEnergy), change / referenceEnergy,
               referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, correlation);
   std::fflush(stdout);
@@ -306,18 +340,11 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 
 }  // namespace
 
-// Usage: glint_lod_oracle [--centred-reference] [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a dense
-// layer (log density 13, about 180 microfacets a pixel at the middle frame) and a sparse one (log
-// density 8, about 30); the oracle takes about a minute on two cores.
+// Usage: glint_lod_oracle [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a
+// dense layer (about 180 microfacets a pixel at the middle frame) and a sparse one (about 30), with
+// pixels of 0.005 to 0.02 uv; about a minute on two cores.
 int main(int argc, char** argv) {
-  std::vector<std::string> modes;
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--centred-reference") {
-      centredReference = true;
-    } else {
-      modes.emplace_back(argv[i]);
-    }
-  }
+  std::vector<std::string> modes(argv + 1, argv + argc);
   if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree"};
   for (const std::string& mode : modes) {
     if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
@@ -328,8 +355,9 @@ int main(int argc, char** argv) {
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
   const TreeDictionary tree = treeDictionary(dict);
-  const std::vector<Setup> setups = {{"dense", 13.0f, 0.02f}, {"sparse", 8.0f, 0.1f}};
-  std::printf("| layer | seed | lod | base (tree: own level) | persistence (reference) | gap | change (reference) | popping | RMSE | correlation |\n");
+  // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
+  const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
+  std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
     for (unsigned seed : {0u, 1u}) {
