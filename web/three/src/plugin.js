@@ -23,7 +23,7 @@ const NUMBERS = [
   ['relativeArea', 'relativeArea', 0, 1, 'exclusive minimum'],
   ['densityRandomization', 'densityRandomisation', 0, 10],
   ['maxAnisotropy', 'maxAnisotropy', 1, 64],
-  ['uvScale', 'uvScale', 0, 3.4028234663852886e38, 'exclusive minimum'],
+  ['uvScale', 'uvScale', 1.401298464324817e-45, 3.4028234663852886e38],  // positive 32-bit floats
 ];
 const PAIRS = [
   ['alpha', 'alpha', 0.005, 2],

@@ -66,6 +66,7 @@ try {
   const layer = (extension) => () => glintLayerFromExtension(extension, 0.5, where);
   expectRefused('logDensity 120', layer({ logDensity: 120 }), `${where}: EXT_materials_glint.logDensity must be a number in [0, 100], got 120`);
   expectRefused('relativeArea 0', layer({ relativeArea: 0 }), 'EXT_materials_glint.relativeArea must be a number in (0, 1]');
+  expectRefused('uvScale 1e-50', layer({ uvScale: 1e-50 }), 'EXT_materials_glint.uvScale must be a number in [1.401298464324817e-45, ');
   expectRefused('one alpha', layer({ alpha: [0.3] }), 'EXT_materials_glint.alpha must be two numbers');
   expectRefused('randomColors "yes"', layer({ randomColors: 'yes' }), 'EXT_materials_glint.randomColors must be true or false');
   expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
