@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -119,14 +120,15 @@ double walkedP22(kernel::GlintDictionaryView dict, const GlintParameters& p, glm
 
 // The oracle: each cell the mean of its descendants at the base level, drawn as the 2020 model's.
 double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int base, glm::vec2 uv, float size) {
+  std::optional<kernel::GlintLevelDraw> baseDraw;  // the same for every cell of the footprint
   return walkedP22(dict, p, uv, size, [&](int x, int y, int l, float logDensity) {
     if (l < base) std::abort();  // the base must lie below every footprint
-    const kernel::GlintLevelDraw baseDraw = kernel::glintLevelDraw(dict, p, logDensity, base);
+    if (!baseDraw) baseDraw = kernel::glintLevelDraw(dict, p, logDensity, base);
     const int side = 1 << (l - base);
     double mean = 0.0;
     for (int j = 0; j < side; ++j) {
       for (int i = 0; i < side; ++i) {
-        mean += cellP22(dict, p, kernel::glintCell(dict, p, baseDraw, x * side + i, y * side + j, base));
+        mean += cellP22(dict, p, kernel::glintCell(dict, p, *baseDraw, x * side + i, y * side + j, base));
       }
     }
     return mean / (static_cast<double>(side) * side);
@@ -141,11 +143,12 @@ double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int
 double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size) {
   const kernel::GlintDictionaryView dict = tree.view;
   const int n = dict.numDistributions;
+  std::optional<kernel::GlintLevelDraw> topDraw;  // the same for every cell of the footprint
   return walkedP22(dict, p, uv, size, [&](int x, int y, int l, float logDensity) {
     if (l > top) std::abort();  // the own level must lie above every footprint
     const int depth = top - l;
-    const kernel::GlintLevelDraw topDraw = kernel::glintLevelDraw(dict, p, logDensity, top);
-    kernel::GlintCell cell = kernel::glintCell(dict, p, topDraw, x >> depth, y >> depth, top);
+    if (!topDraw) topDraw = kernel::glintLevelDraw(dict, p, logDensity, top);
+    const kernel::GlintCell cell = kernel::glintCell(dict, p, *topDraw, x >> depth, y >> depth, top);
     if (!cell.readsDictionary) return cellP22(dict, p, cell);
     glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
     int dictionaryLevel = cell.dictionaryLevel;
