@@ -916,7 +916,7 @@ TEST(RenderGl, PaperScaleScenesRenderFiniteAndGlint) {
   // non-negative radiance, and glints: a share of the
   // pixels at least twice the Cook-Torrance render's luminance, a third of what was measured (on
   // llvmpipe, 2026-12-03: the atrium 0.00187 from its `curtain` camera, where curtains and floor
-  // glitter in the lamps' light; the car 0.00483 from its default camera). With the glint layers
+  // glitter in the lamps' light; the car 0.00450 from its default camera). With the glint layers
   // smooth (log density 40, every cell holding microfacets) the share falls below a fifth of that.
   struct Case {
     const char* scene;

@@ -479,7 +479,10 @@ Mesh archIntrados(int material, glm::vec3 origin, glm::vec3 along, glm::vec3 acr
 // ---- Car ---------------------------------------------------------------------------------------
 
 // sign(x) |x|^p: a superellipse's coordinate.
-float signedPower(float x, float p) { return std::copysign(std::pow(std::abs(x), p), x); }
+template <typename Real>
+Real signedPower(Real x, Real p) {
+  return std::copysign(std::pow(std::abs(x), p), x);
+}
 
 // The car's body, front towards +x, wheels on the ground at y = 0: a loft of rounded-rectangle
 // (superellipse) sections along x whose top follows a side profile (bonnet, windscreen, roof,
@@ -493,34 +496,94 @@ struct CarBody {
   float roof = 1.6f;
 
   // The top of the section at x: the bonnet rising to the scuttle, the windscreen, the roof and
-  // the tail sloping down to the rear.
-  float top(float x) const {
-    const float bonnet = 0.84f + 0.16f * glm::smoothstep(1.95f, 0.75f, x);
-    const float cabin = glm::smoothstep(0.8f, 0.22f, x);
-    const float tail = roof - 0.68f * std::pow(glm::smoothstep(-0.65f, -1.95f, x), 1.3f);
+  // the tail sloping down to the rear. (In double for the paint's uv, CarPaintUv.)
+  template <typename Real>
+  Real top(Real x) const {
+    const Real bonnet = Real(0.84) + Real(0.16) * glm::smoothstep(Real(1.95), Real(0.75), x);
+    const Real cabin = glm::smoothstep(Real(0.8), Real(0.22), x);
+    const Real tail = Real(roof) - Real(0.68) * std::pow(glm::smoothstep(Real(-0.65), Real(-1.95), x), Real(1.3));
     return glm::mix(bonnet, tail, cabin);
   }
   // The half width at x and height y: narrower at the nose, leaning in above the belt.
-  float width(float x, float y) const {
-    const float nose = 1.0f - 0.12f * glm::smoothstep(0.9f, 1.95f, x);
-    return halfWidth * nose * (1.0f - 0.27f * glm::smoothstep(belt - 0.05f, roof, y));
+  template <typename Real>
+  Real width(Real x, Real y) const {
+    const Real nose = Real(1) - Real(0.12) * glm::smoothstep(Real(0.9), Real(1.95), x);
+    return Real(halfWidth) * nose * (Real(1) - Real(0.27) * glm::smoothstep(Real(belt) - Real(0.05), Real(roof), y));
   }
   // The point at s along the body (0 rear, 1 front) and t around its section (0 and 1 under the
-  // middle of the floor).
+  // middle of the floor). In double, rounded to float: WebAssembly's float sin and pow differ from
+  // glibc's in the last bit, their double ones far below a float's, and the page must draw the
+  // desktop's image.
   glm::vec3 position(float s, float t) const {
-    const float along = kPi * (s - 0.5f);
-    const float x = halfLength * signedPower(std::sin(along), 0.45f);
-    const float section = s <= 0.0f || s >= 1.0f ? 0.0f : std::pow(std::cos(along), 0.45f);
-    const float around = 2.0f * kPi * t;
-    const float height = top(x) - bottom;
-    const float y = bottom + 0.5f * height * (1.0f - section * signedPower(std::cos(around), 0.4f));
-    return {x, y, width(x, y) * section * signedPower(std::sin(around), 0.4f)};
+    const double along = std::numbers::pi * (static_cast<double>(s) - 0.5);
+    const double x = halfLength * signedPower(std::sin(along), 0.45);
+    const double section = s <= 0.0f || s >= 1.0f ? 0.0 : std::pow(std::cos(along), 0.45);
+    const double around = 2.0 * std::numbers::pi * static_cast<double>(t);
+    const double height = top(x) - bottom;
+    const double y = bottom + 0.5 * height * (1.0 - section * signedPower(std::cos(around), 0.4));
+    return glm::vec3(glm::dvec3(x, y, width(x, y) * section * signedPower(std::sin(around), 0.4)));
   }
   // The section's centre line, which the normals point away from.
   glm::vec3 axis(float s) const {
-    const float x = halfLength * signedPower(std::sin(kPi * (s - 0.5f)), 0.45f);
-    return {x, 0.5f * (bottom + top(x)), 0.0f};
+    const double x = halfLength * signedPower(std::sin(std::numbers::pi * (static_cast<double>(s) - 0.5)), 0.45);
+    return glm::vec3(glm::dvec3(x, 0.5 * (bottom + top(x)), 0.0));
   }
+};
+
+// The car body's paint uv, about a metre of surface a unit both ways, so that the flakes are as
+// dense on the nose and the tail as on the doors (a uv linear in the loft's (s, t) crowded them
+// there up to 20 times: the sections shrink to a point at both ends and x changes slowly there).
+// Along the body: x, plus about the distance the meridian travels round the rounded end,
+// (1 - section) r. Around: the arc length of the middle section's superellipse
+// up to t, as a fraction of its perimeter (tabulated once, below), times the section's perimeter,
+// estimated as 2 (height + 2 half width) scaled by its size. In double, rounded to float, as the
+// positions (CarBody::position).
+class CarPaintUv {
+ public:
+  explicit CarPaintUv(const CarBody& body) : body_(body), aroundFraction_(kTableSize + 1) {
+    const double height = body.top(0.0) - body.bottom;
+    const double halfWidth = body.width(0.0, body.bottom + 0.5 * height);
+    double length = 0.0;
+    glm::dvec2 previous = sectionPoint(0.0, height, halfWidth);
+    for (int i = 1; i <= kTableSize; ++i) {
+      const glm::dvec2 point = sectionPoint(static_cast<double>(i) / kTableSize, height, halfWidth);
+      length += glm::length(point - previous);
+      aroundFraction_[static_cast<std::size_t>(i)] = length;
+      previous = point;
+    }
+    for (double& f : aroundFraction_) f = f / length - 0.5;  // -0.5 under the floor, 0 on the roof
+  }
+
+  glm::vec2 operator()(float s, float t) const {
+    // The ends' rounding, metres: with 0.3 the nose and the tail hold the doors' flake density
+    // within 10% (BuiltinScenes.CarPaintFlakesAreAsDenseOnTheNoseAsOnTheDoors).
+    constexpr double kEndRadius = 0.3;
+    // The doors' median flake density under the loft's former uv (which varied 4 times along them).
+    constexpr double kUvPerMetre = 0.93;
+    const double along = std::numbers::pi * (static_cast<double>(s) - 0.5);
+    const double x = body_.halfLength * signedPower(std::sin(along), 0.45);
+    const double section = s <= 0.0f || s >= 1.0f ? 0.0 : std::pow(std::cos(along), 0.45);
+    const double alongEnd = (s < 0.5f ? -1.0 : s > 0.5f ? 1.0 : 0.0) * (1.0 - section) * kEndRadius;
+    const double height = body_.top(x) - body_.bottom;
+    const double perimeter = section * 2.0 * (height + 2.0 * body_.width(x, body_.bottom + 0.5 * height));
+    return glm::vec2(kUvPerMetre * glm::dvec2(x + alongEnd, around(t) * perimeter));
+  }
+
+ private:
+  static constexpr int kTableSize = 4096;
+  // The middle section's outline at t (CarBody::position's superellipse), in its plane.
+  static glm::dvec2 sectionPoint(double t, double height, double halfWidth) {
+    const double around = 2.0 * std::numbers::pi * t;
+    return {0.5 * height * signedPower(std::cos(around), 0.4), halfWidth * signedPower(std::sin(around), 0.4)};
+  }
+  double around(float t) const {
+    const double at = std::clamp(static_cast<double>(t), 0.0, 1.0) * kTableSize;
+    const int i = std::min(static_cast<int>(at), kTableSize - 1);
+    const double f = at - i;
+    return aroundFraction_[static_cast<std::size_t>(i)] * (1.0 - f) + aroundFraction_[static_cast<std::size_t>(i) + 1] * f;
+  }
+  const CarBody& body_;
+  std::vector<double> aroundFraction_;
 };
 
 // Where the body is glass, for a triangle at `p` with normal `n`: the windscreen, a side window
@@ -941,7 +1004,7 @@ Scene carScene() {
       "car body", paint, 616, 548, true, [&](float s, float t) { return body.position(s, t); },
       [&](float s, float) { return body.axis(s); },
       [&](float s, float) { return glm::vec3(s < 0.5f ? -1.0f : 1.0f, 0.0f, 0.0f); },
-      [&](float s, float t) { return glm::vec2(4.0f * body.halfLength * s, 4.0f * t); });
+      CarPaintUv(body));
   const Mesh& shape = shell;
   scene.meshes.push_back(splitOffTriangles(shell, "car windows", glass, [&](std::size_t triangle) {
     const Vertex& a = shape.vertices[shape.indices[3 * triangle]];
