@@ -44,7 +44,7 @@ struct Setup {
 
 constexpr int kSize = 96;    // pixels across
 constexpr int kFrames = 16;
-constexpr int kSamples = 4;  // the reference's samples across a pixel
+int kSamples = 4;  // the reference's samples across a pixel (--reference-samples)
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
 
@@ -347,7 +347,19 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 // dense layer (about 180 microfacets a pixel at the middle frame) and a sparse one (about 30), with
 // pixels of 0.005 to 0.02 uv; about a minute on two cores.
 int main(int argc, char** argv) {
-  std::vector<std::string> modes(argv + 1, argv + argc);
+  std::vector<std::string> modes;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--reference-samples" && a + 1 < argc) {
+      kSamples = std::atoi(argv[++a]);
+      if (kSamples < 1 || kSamples > 64) {
+        std::fprintf(stderr, "glint_lod_oracle: --reference-samples takes 1 to 64 (samples across a pixel)\n");
+        return 1;
+      }
+    } else {
+      modes.push_back(arg);
+    }
+  }
   if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree"};
   for (const std::string& mode : modes) {
     if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
