@@ -4,7 +4,9 @@
 // On an idealised zoom (a fronto-parallel glint plane under an orthographic camera, one half-vector
 // slope everywhere, the footprint doubling twice over 16 frames, nothing else changing), it
 // measures the figures of `glint lod-consistency` (persistence, change, popping beyond the
-// reference's, RMSE) for four constructions of the P-SDF's levels:
+// reference's, RMSE), the glint layer's correlation between neighbouring pixels, and how far the
+// last frame shows the first frame's glints averaged (coarseAndFine), for four constructions of the
+// P-SDF's levels:
 //   paper       the 2020 model (kernel glintP22, GLINT_LOD_PAPER);
 //   consistent  glint's four-blocks construction (GLINT_LOD_CONSISTENT);
 //   oracle      every cell of a level above a base level b is the exact mean of its 4^(l-b)
@@ -31,6 +33,7 @@
 
 #include "glint/bsdf.h"
 #include "glint/dictionary.h"
+#include "glint/image_io.h"
 
 namespace {
 
@@ -44,7 +47,10 @@ struct Setup {
 
 constexpr int kSize = 96;    // pixels across
 constexpr int kFrames = 16;
-int kSamples = 4;  // the reference's samples across a pixel (--reference-samples)
+int referenceSamples = 4;  // the reference's samples across a pixel (--reference-samples)
+// --figure: one row a construction, of the dense layer's first seed (figureRow).
+std::optional<ImageRgbF> figure;
+const char* figurePath = nullptr;
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
 
@@ -195,13 +201,13 @@ Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
         if (!reference) {
           value = modelP22(dict, tree, p, mode, span, at, pixel);
         } else {
-          for (int j = 0; j < kSamples; ++j) {
-            for (int i = 0; i < kSamples; ++i) {
-              const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + 0.5f) / float(kSamples) - 0.5f);
-              value += modelP22(dict, tree, p, mode, span, sample, pixel / kSamples);
+          for (int j = 0; j < referenceSamples; ++j) {
+            for (int i = 0; i < referenceSamples; ++i) {
+              const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + 0.5f) / float(referenceSamples) - 0.5f);
+              value += modelP22(dict, tree, p, mode, span, sample, pixel / referenceSamples);
             }
           }
-          value /= kSamples * kSamples;
+          value /= referenceSamples * referenceSamples;
         }
         frame[static_cast<std::size_t>(y) * kSize + x] = value;
       }
@@ -246,6 +252,86 @@ double ownCellsWithRepeatedLobes(kernel::GlintDictionaryView dict, const GlintPa
   return repeated / 4096.0;
 }
 
+// The surface that the first frame shows, seen at the last frame's footprint, 4 times larger: the
+// last frame's middle 24 x 24 pixels (`coarse`), and the means of the first frame's pixels over 4 x 4
+// blocks (`averagedFine`). Levels consistent at every cell make the first the second, to the
+// footprints' shapes; the 2020 model's coarse glints lie elsewhere.
+struct CoarseAndFine {
+  static constexpr int kWidth = kSize / 4;
+  Frame coarse, averagedFine;
+};
+
+CoarseAndFine coarseAndFine(const std::vector<Frame>& p22s) {
+  static_assert(kFrames > 1 && kSize % 4 == 0);  // growth(kFrames - 1) / growth(0) = 4
+  const Frame& fine = p22s.front();
+  const Frame& last = p22s.back();
+  constexpr int w = CoarseAndFine::kWidth;
+  CoarseAndFine views{Frame(w * w), Frame(w * w)};
+  for (int y = 0; y < w; ++y) {
+    for (int x = 0; x < w; ++x) {
+      double sum = 0.0;
+      for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) sum += fine[static_cast<std::size_t>(4 * y + j) * kSize + 4 * x + i];
+      }
+      views.averagedFine[static_cast<std::size_t>(y) * w + x] = sum / 16.0;
+      views.coarse[static_cast<std::size_t>(y) * w + x] =
+          last[static_cast<std::size_t>(y + (kSize - w) / 2) * kSize + x + (kSize - w) / 2];
+    }
+  }
+  return views;
+}
+
+// Pearson's correlation of two frames of the same size.
+double correlation(const Frame& a, const Frame& b) {
+  double meanA = 0.0, meanB = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    meanA += a[i] / static_cast<double>(a.size());
+    meanB += b[i] / static_cast<double>(b.size());
+  }
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ab += (a[i] - meanA) * (b[i] - meanB);
+    aa += (a[i] - meanA) * (a[i] - meanA);
+    bb += (b[i] - meanB) * (b[i] - meanB);
+  }
+  return ab / std::max(std::sqrt(aa * bb), 1e-300);
+}
+
+// The figure's row for one construction: the first frame's glint layer, then coarseAndFine's
+// averaged fine and coarse views of the same surface (drawn 4 times larger). Black to white over
+// the first panel's 99th percentile, the last two over the second's.
+void figureRow(const std::vector<Frame>& p22s, const GlintParameters& p) {
+  const CoarseAndFine views = coarseAndFine(p22s);
+  const Frame panels[3] = {glints(p22s.front(), p), glints(views.averagedFine, p), glints(views.coarse, p)};
+  const auto whitePoint = [](Frame layer) {
+    std::sort(layer.begin(), layer.end());
+    return std::max(layer[layer.size() * 99 / 100], 1e-30);
+  };
+  const double whites[3] = {whitePoint(panels[0]), whitePoint(panels[1]), whitePoint(panels[1])};
+  ImageRgbF row = ImageRgbF::filled(3 * kSize + 2 * 2, kSize, glm::vec3(1.0f));
+  for (int panel = 0; panel < 3; ++panel) {
+    const int zoom = panel == 0 ? 1 : 4, width = kSize / zoom;
+    for (int y = 0; y < kSize; ++y) {
+      for (int x = 0; x < kSize; ++x) {
+        const double value = panels[panel][static_cast<std::size_t>(y / zoom) * width + x / zoom] / whites[panel];
+        row.at(panel * (kSize + 2) + x, y) = glm::vec3(static_cast<float>(std::min(value, 1.0)));
+      }
+    }
+  }
+  if (!figure) {
+    figure = row;
+    return;
+  }
+  ImageRgbF taller = ImageRgbF::filled(row.width, figure->height + 2 + kSize, glm::vec3(1.0f));
+  for (int y = 0; y < taller.height; ++y) {
+    for (int x = 0; x < taller.width; ++x) {
+      if (y < figure->height) taller.at(x, y) = figure->at(x, y);
+      if (y >= figure->height + 2) taller.at(x, y) = row.at(x, y - figure->height - 2);
+    }
+  }
+  figure = taller;
+}
+
 void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const Setup& setup, const std::string& mode,
              unsigned seed) {
   GlintParameters p = defaultGlintParameters();
@@ -253,7 +339,7 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   p.patternSeed = seed;
   // The base below the reference's finest footprint (the first frame's, 4 times smaller), the own
   // level above the coarsest level walked (the last frame's floor(lod) + 1).
-  const float finest = static_cast<float>(setup.pixelMid * growth(0)) / kSamples;
+  const float finest = static_cast<float>(setup.pixelMid * growth(0)) / referenceSamples;
   const float coarsest = static_cast<float>(setup.pixelMid * growth(kFrames - 1));
   const Span span{static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(finest))),
                   static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(coarsest))) + 1};
@@ -274,6 +360,7 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
     model.push_back(glints(modelP22s.back(), p));
     reference.push_back(glints(referenceP22s.back(), p));
   }
+  if (figurePath && std::string(setup.name) == "dense" && seed == 0) figureRow(modelP22s, p);
   double overlap = 0, energy = 0, referenceOverlap = 0, referenceEnergy = 0, change = 0, referenceChange = 0, beyond = 0;
   constexpr int blocks = kSize / kBlock;
   for (int t = 0; t + 1 < kFrames; ++t) {
@@ -326,7 +413,11 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
     }
   }
   mean /= pairs;
-  const double correlation = (meanProduct / pairs - mean * mean) / std::max(meanSquare / pairs - mean * mean, 1e-30);
+  const double neighbourCorrelation =
+      (meanProduct / pairs - mean * mean) / std::max(meanSquare / pairs - mean * mean, 1e-30);
+  // How far the last frame shows the first frame's glints averaged (coarseAndFine), on the P22.
+  const CoarseAndFine views = coarseAndFine(modelP22s);
+  const double coarseFine = correlation(views.coarse, views.averagedFine);
   std::string level = "-";
   if (mode == "oracle") level = "base " + std::to_string(span.base);
   if (mode == "tree") {
@@ -334,28 +425,35 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
     std::snprintf(own, sizeof own, "own %d, %.0f%% at log2 N+", span.top, 100.0 * ownCellsWithRepeatedLobes(dict, p, span.top));
     level = own;
   }
-  std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f |\n", setup.name, seed,
+  std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f | %.3f |\n", setup.name, seed,
               mode.c_str(), level.c_str(), overlap / energy, referenceOverlap / referenceEnergy,
               std::abs(overlap / energy - referenceOverlap / referenceEnergy), change / referenceEnergy,
-              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, correlation);
+              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, neighbourCorrelation, coarseFine);
   std::fflush(stdout);
 }
 
 }  // namespace
 
-// Usage: glint_lod_oracle [MODE...] (default: paper consistent oracle tree). Two pattern seeds of a
-// dense layer (about 180 microfacets a pixel at the middle frame) and a sparse one (about 30), with
-// pixels of 0.005 to 0.02 uv; about a minute on two cores.
+// Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
+// paper consistent oracle tree). Two pattern seeds of a dense layer (about 180 microfacets a pixel
+// at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
+// on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
   std::vector<std::string> modes;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
-    if (arg == "--reference-samples" && a + 1 < argc) {
-      kSamples = std::atoi(argv[++a]);
-      if (kSamples < 1 || kSamples > 64) {
+    if (arg == "--reference-samples") {
+      referenceSamples = a + 1 < argc ? std::atoi(argv[++a]) : 0;
+      if (referenceSamples < 1 || referenceSamples > 64) {
         std::fprintf(stderr, "glint_lod_oracle: --reference-samples takes 1 to 64 (samples across a pixel)\n");
         return 1;
       }
+    } else if (arg == "--figure") {
+      if (a + 1 >= argc) {
+        std::fprintf(stderr, "glint_lod_oracle: --figure takes a PNG path\n");
+        return 1;
+      }
+      figurePath = argv[++a];
     } else {
       modes.push_back(arg);
     }
@@ -372,12 +470,30 @@ int main(int argc, char** argv) {
   const TreeDictionary tree = treeDictionary(dict);
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
-  std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
     for (unsigned seed : {0u, 1u}) {
       for (const std::string& mode : modes) measure(dict, tree, setup, mode, seed);
     }
+  }
+  if (figurePath && figure) {
+    try {
+      // Drawn twice as large, each pixel a 2 x 2 block, to be seen on a page.
+      ImageRgbF large = ImageRgbF::filled(2 * figure->width, 2 * figure->height);
+      for (int y = 0; y < large.height; ++y) {
+        for (int x = 0; x < large.width; ++x) large.at(x, y) = figure->at(x / 2, y / 2);
+      }
+      writePngSrgb(figurePath, large);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "glint_lod_oracle: %s\n", e.what());
+      return 1;
+    }
+    std::printf("wrote %s: a row a construction (%s), the dense layer's seed 0\n", figurePath, [&] {
+      std::string names;
+      for (const std::string& mode : modes) names += (names.empty() ? "" : ", ") + mode;
+      return names;
+    }().c_str());
   }
   return 0;
 }
