@@ -17,7 +17,10 @@
 //               below (TreeDictionary), so that every cell splits into four: own cells above every
 //               footprint of the sequence, every cell below them one of its parent's four blocks.
 //               Consistent at every cell like the oracle, but its lobes are the N single lobes of
-//               level 0, repeated, and a whole subtree shares its own cell's rotation.
+//               level 0, repeated, and a whole subtree shares its own cell's rotation. The cell's
+//               position bits choose the blocks, x's the x marginal's and y's the y marginal's;
+//   tree-hashed the same, with which child takes which block one of the 2 x 2 square's eight
+//               symmetries, hashed from the parent cell.
 // Each against a reference of its own: the same construction at 4 x 4 samples a pixel, at the
 // centres of the pixel's 4 x 4 sub-pixels (the first of `glint lod-consistency`'s reference frames).
 // The glint layer is the P22 above the smooth target's at the slope (its positive part); the image
@@ -146,7 +149,7 @@ double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int
 // split as the cell's position in its parent says; below dictionary level 0 the children keep
 // their parent's single lobe. Every cell is the mean of its children; all of an own cell's
 // descendants share its rotation.
-double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size) {
+double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size, bool hashedBlocks) {
   const kernel::GlintDictionaryView dict = tree.view;
   const int n = dict.numDistributions;
   std::optional<kernel::GlintLevelDraw> topDraw;  // the same for every cell of the footprint
@@ -159,8 +162,19 @@ double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, gl
     glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
     int dictionaryLevel = cell.dictionaryLevel;
     for (int step = depth - 1; step >= 0 && dictionaryLevel >= 1; --step) {
-      if ((x >> step) & 1) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
-      if ((y >> step) & 1) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
+      int splitX = (x >> step) & 1, splitY = (y >> step) & 1;
+      if (hashedBlocks) {
+        // Which child takes which block, one of the 2 x 2 square's 8 symmetries, hashed from the
+        // parent: otherwise a column of cells shares its x marginal all the way down.
+        const uint32_t h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(x >> (step + 1)),
+                                                         static_cast<uint32_t>(y >> (step + 1)),
+                                                         static_cast<uint32_t>(l + step + 1), p.patternSeed)).x;
+        if (h & 4u) std::swap(splitX, splitY);
+        splitX ^= static_cast<int>(h & 1u);
+        splitY ^= static_cast<int>((h >> 1) & 1u);
+      }
+      if (splitX) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
+      if (splitY) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
       --dictionaryLevel;
     }
     const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
@@ -179,7 +193,7 @@ struct Span {
 double modelP22(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p,
                 const std::string& mode, Span span, glm::vec2 uv, float size) {
   if (mode == "oracle") return oracleP22(dict, p, span.base, uv, size);
-  if (mode == "tree") return treeP22(tree, p, span.top, uv, size);
+  if (mode == "tree" || mode == "tree-hashed") return treeP22(tree, p, span.top, uv, size, mode == "tree-hashed");
   GlintParameters q = p;
   q.lod = mode == "consistent" ? kernel::GLINT_LOD_CONSISTENT : kernel::GLINT_LOD_PAPER;
   return kernel::glintP22(dict, q, uv, glm::vec2(size, 0.0f), glm::vec2(0.0f, size), kSlope);
@@ -420,7 +434,7 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   const double coarseFine = correlation(views.coarse, views.averagedFine);
   std::string level = "-";
   if (mode == "oracle") level = "base " + std::to_string(span.base);
-  if (mode == "tree") {
+  if (mode == "tree" || mode == "tree-hashed") {
     char own[64];
     std::snprintf(own, sizeof own, "own %d, %.0f%% at log2 N+", span.top, 100.0 * ownCellsWithRepeatedLobes(dict, p, span.top));
     level = own;
@@ -435,7 +449,7 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 }  // namespace
 
 // Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
-// paper consistent oracle tree). Two pattern seeds of a dense layer (about 180 microfacets a pixel
+// paper consistent oracle tree tree-hashed). Two pattern seeds of a dense layer (about 180 microfacets a pixel
 // at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
 // on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
@@ -458,10 +472,11 @@ int main(int argc, char** argv) {
       modes.push_back(arg);
     }
   }
-  if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree"};
+  if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree", "tree-hashed"};
   for (const std::string& mode : modes) {
-    if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
-      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle or tree)\n", mode.c_str());
+    if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree" && mode != "tree-hashed") {
+      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle, tree or tree-hashed)\n",
+                   mode.c_str());
       return 1;
     }
   }
