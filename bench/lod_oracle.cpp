@@ -86,8 +86,22 @@ TreeDictionary treeDictionary(kernel::GlintDictionaryView dict) {
   tree.split.assign(static_cast<std::size_t>(dict.numLevels) * n, 0);
   std::copy(dict.texels, dict.texels + static_cast<std::size_t>(n) * r, tree.texels.begin());
   for (int level = 1; level < dict.numLevels; ++level) {
+    // Each level's pairs a permutation without fixed points, so that every distribution of the
+    // level below is some distribution's other half exactly once: the level's mean is then the
+    // level below's, down to level 0's, whose lobes stratify the target (with another distribution
+    // drawn at random for each, some would weigh three times and others not at all, and the
+    // levels' means would drift from the target).
+    std::vector<int> order(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
+    for (int i = n - 1; i > 0; --i) {
+      const int j = static_cast<int>(kernel::glintPcg4d(glm::uvec4(level, i, 7u, 0u)).x % static_cast<uint32_t>(i + 1));
+      std::swap(order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(j)]);
+    }
+    for (int i = 0; i < n; ++i) {  // a fixed point swaps with its neighbour: still a permutation
+      if (order[static_cast<std::size_t>(i)] == i) std::swap(order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>((i + 1) % n)]);
+    }
     for (int i = 0; i < n; ++i) {
-      const int other = (i + 1 + static_cast<int>(kernel::glintPcg4d(glm::uvec4(level, i, 7u, 0u)).x % (n - 1))) % n;
+      const int other = order[static_cast<std::size_t>(i)];
       tree.split[static_cast<std::size_t>(level) * n + i] = other;
       for (int t = 0; t < r; ++t) {
         tree.texels[(static_cast<std::size_t>(level) * n + i) * r + t] =
@@ -429,6 +443,15 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   mean /= pairs;
   const double neighbourCorrelation =
       (meanProduct / pairs - mean * mean) / std::max(meanSquare / pairs - mean * mean, 1e-30);
+  // The middle frame's P22: its mean against the smooth target's (1 when unbiased) and its
+  // coefficient of variation, how spiky the glints are.
+  double p22Mean = 0.0, p22Square = 0.0;
+  for (double v : modelP22s[kFrames / 2]) {
+    p22Mean += v / static_cast<double>(modelP22s[kFrames / 2].size());
+    p22Square += v * v / static_cast<double>(modelP22s[kFrames / 2].size());
+  }
+  const double target = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
+  const double variation = std::sqrt(std::max(p22Square - p22Mean * p22Mean, 0.0)) / p22Mean;
   // How far the last frame shows the first frame's glints averaged (coarseAndFine), on the P22.
   const CoarseAndFine views = coarseAndFine(modelP22s);
   const double coarseFine = correlation(views.coarse, views.averagedFine);
@@ -439,10 +462,11 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
     std::snprintf(own, sizeof own, "own %d, %.0f%% at log2 N+", span.top, 100.0 * ownCellsWithRepeatedLobes(dict, p, span.top));
     level = own;
   }
-  std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f | %.3f |\n", setup.name, seed,
-              mode.c_str(), level.c_str(), overlap / energy, referenceOverlap / referenceEnergy,
+  std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f | %.3f | %.3f, %.2f |\n",
+              setup.name, seed, mode.c_str(), level.c_str(), overlap / energy, referenceOverlap / referenceEnergy,
               std::abs(overlap / energy - referenceOverlap / referenceEnergy), change / referenceEnergy,
-              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, neighbourCorrelation, coarseFine);
+              referenceChange / referenceEnergy, beyond / referenceEnergy, 100.0 * rmse, neighbourCorrelation, coarseFine,
+              p22Mean / target, variation);
   std::fflush(stdout);
 }
 
@@ -485,8 +509,8 @@ int main(int argc, char** argv) {
   const TreeDictionary tree = treeDictionary(dict);
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
-  std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
     for (unsigned seed : {0u, 1u}) {
       for (const std::string& mode : modes) measure(dict, tree, setup, mode, seed);
