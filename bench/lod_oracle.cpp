@@ -163,39 +163,105 @@ double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int
 // split as the cell's position in its parent says; below dictionary level 0 the children keep
 // their parent's single lobe. Every cell is the mean of its children; all of an own cell's
 // descendants share its rotation.
-double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size, bool hashedBlocks) {
+// One cell (x, y) of level l of the tree, below its own cell at level `top`, whose level draw is
+// topDraw.
+double treeCellP22(const TreeDictionary& tree, const GlintParameters& p, int top, const kernel::GlintLevelDraw& topDraw,
+                   int x, int y, int l, bool hashedBlocks) {
   const kernel::GlintDictionaryView dict = tree.view;
   const int n = dict.numDistributions;
-  std::optional<kernel::GlintLevelDraw> topDraw;  // the same for every cell of the footprint
-  return walkedP22(dict, p, uv, size, [&](int x, int y, int l, float logDensity) {
-    if (l > top) std::abort();  // the own level must lie above every footprint
-    const int depth = top - l;
-    if (!topDraw) topDraw = kernel::glintLevelDraw(dict, p, logDensity, top);
-    const kernel::GlintCell cell = kernel::glintCell(dict, p, *topDraw, x >> depth, y >> depth, top);
-    if (!cell.readsDictionary) return cellP22(dict, p, cell);
-    glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
-    int dictionaryLevel = cell.dictionaryLevel;
-    for (int step = depth - 1; step >= 0 && dictionaryLevel >= 1; --step) {
-      int splitX = (x >> step) & 1, splitY = (y >> step) & 1;
-      if (hashedBlocks) {
-        // Which child takes which block, one of the 2 x 2 square's 8 symmetries, hashed from the
-        // parent: otherwise a column of cells shares its x marginal all the way down.
-        const uint32_t h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(x >> (step + 1)),
-                                                         static_cast<uint32_t>(y >> (step + 1)),
-                                                         static_cast<uint32_t>(l + step + 1), p.patternSeed)).x;
-        if (h & 4u) std::swap(splitX, splitY);
-        splitX ^= static_cast<int>(h & 1u);
-        splitY ^= static_cast<int>((h >> 1) & 1u);
-      }
-      if (splitX) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
-      if (splitY) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
-      --dictionaryLevel;
+  const int depth = top - l;
+  const kernel::GlintCell cell = kernel::glintCell(dict, p, topDraw, x >> depth, y >> depth, top);
+  if (!cell.readsDictionary) return cellP22(dict, p, cell);
+  glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
+  int dictionaryLevel = cell.dictionaryLevel;
+  for (int step = depth - 1; step >= 0 && dictionaryLevel >= 1; --step) {
+    int splitX = (x >> step) & 1, splitY = (y >> step) & 1;
+    if (hashedBlocks) {
+      // Which child takes which block, one of the 2 x 2 square's 8 symmetries, hashed from the
+      // parent: otherwise a column of cells shares its x marginal all the way down.
+      const uint32_t h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(x >> (step + 1)),
+                                                       static_cast<uint32_t>(y >> (step + 1)),
+                                                       static_cast<uint32_t>(l + step + 1), p.patternSeed)).x;
+      if (h & 4u) std::swap(splitX, splitY);
+      splitX ^= static_cast<int>(h & 1u);
+      splitY ^= static_cast<int>((h >> 1) & 1u);
     }
-    const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
-    return static_cast<double>(kernel::glintCellMarginals(dict, dictionaryLevel, distributions, glm::ivec2(0),
-                                                          kernel::glintCellRotation(cell.hash), unscaled)) *
-           kernel::glintScalingJacobian(dict, p);
+    if (splitX) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
+    if (splitY) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
+    --dictionaryLevel;
+  }
+  const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
+  return static_cast<double>(kernel::glintCellMarginals(dict, dictionaryLevel, distributions, glm::ivec2(0),
+                                                        kernel::glintCellRotation(cell.hash), unscaled)) *
+         kernel::glintScalingJacobian(dict, p);
+}
+
+double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size, bool hashedBlocks) {
+  std::optional<kernel::GlintLevelDraw> topDraw;  // the same for every cell of the footprint
+  return walkedP22(tree.view, p, uv, size, [&](int x, int y, int l, float logDensity) {
+    if (l > top) std::abort();  // the own level must lie above every footprint
+    if (!topDraw) topDraw = kernel::glintLevelDraw(tree.view, p, logDensity, top);
+    return treeCellP22(tree, p, top, *topDraw, x, y, l, hashedBlocks);
   });
+}
+
+// --check: what the tree's figures rest on. Every level's mean marginal (over the distributions) is
+// level 0's, texel by texel, within 1e-5 of level 0's largest texel (float sums of halves); and
+// every cell is the mean of its four children within 1e-5 of the smooth target's P22 (10,000
+// random cells, levels 1 to 10, both child orders, two pattern seeds, the dense and the sparse
+// layer). Prints what it found; exit 1 on a failure.
+int checkTree(const TreeDictionary& tree) {
+  const kernel::GlintDictionaryView dict = tree.view;
+  const int n = dict.numDistributions, r = dict.texelsPerDistribution;
+  int failures = 0;
+  double largestLevel0 = 0.0, worstMean = 0.0;
+  std::vector<double> level0(static_cast<std::size_t>(r), 0.0);
+  for (int level = 0; level < dict.numLevels; ++level) {
+    std::vector<double> mean(static_cast<std::size_t>(r), 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int t = 0; t < r; ++t) mean[static_cast<std::size_t>(t)] += tree.texels[(static_cast<std::size_t>(level) * n + i) * r + t] / n;
+    }
+    if (level == 0) {
+      level0 = mean;
+      largestLevel0 = *std::max_element(level0.begin(), level0.end());
+    }
+    for (int t = 0; t < r; ++t) {
+      worstMean = std::max(worstMean, std::abs(mean[static_cast<std::size_t>(t)] - level0[static_cast<std::size_t>(t)]) / largestLevel0);
+    }
+  }
+  std::printf("every level's mean marginal against level 0's: at most %.2e of its largest texel\n", worstMean);
+  failures += worstMean > 1e-5;
+  double worstCell = 0.0;
+  int cells = 0;
+  for (float logDensity : {14.4f, 12.6f}) {
+    for (unsigned seed : {0u, 1u}) {
+      GlintParameters p = defaultGlintParameters();
+      p.logDensity = logDensity;
+      p.patternSeed = seed;
+      constexpr int kTop = 10;
+      const kernel::GlintLevelDraw topDraw = kernel::glintLevelDraw(dict, p, p.logDensity, kTop);
+      const double target = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
+      for (int c = 0; c < 1250; ++c) {
+        const glm::uvec4 h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(c), seed, 99u, 0u));
+        const int l = 1 + static_cast<int>(h.z % kTop);
+        const int side = 1 << (dict.numLevels - 1 - l);  // cells across the pattern at level l
+        const int x = static_cast<int>(h.x % static_cast<uint32_t>(side)), y = static_cast<int>(h.y % static_cast<uint32_t>(side));
+        for (bool hashed : {false, true}) {
+          double children = 0.0;
+          for (int j = 0; j < 2; ++j) {
+            for (int i = 0; i < 2; ++i) children += 0.25 * treeCellP22(tree, p, kTop, topDraw, 2 * x + i, 2 * y + j, l - 1, hashed);
+          }
+          const double parent = treeCellP22(tree, p, kTop, topDraw, x, y, l, hashed);
+          worstCell = std::max(worstCell, std::abs(parent - children) / target);
+          ++cells;
+        }
+      }
+    }
+  }
+  std::printf("%d cells against the mean of their four children: at most %.2e of the smooth target's P22\n", cells,
+              worstCell);
+  failures += worstCell > 1e-5;
+  return failures == 0 ? 0 : 1;
 }
 
 // The levels a sequence spans: the base below its finest footprint, the own level above its coarsest.
@@ -472,12 +538,13 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 
 }  // namespace
 
-// Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
+// Usage: glint_lod_oracle [--check] [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
 // paper consistent oracle tree tree-hashed). Two pattern seeds of a dense layer (about 180 microfacets a pixel
 // at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
 // on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
   std::vector<std::string> modes;
+  bool check = false;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--reference-samples") {
@@ -486,6 +553,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "glint_lod_oracle: --reference-samples takes 1 to 64 (samples across a pixel)\n");
         return 1;
       }
+    } else if (arg == "--check") {
+      check = true;
     } else if (arg == "--figure") {
       if (a + 1 >= argc) {
         std::fprintf(stderr, "glint_lod_oracle: --figure takes a PNG path\n");
@@ -507,6 +576,7 @@ int main(int argc, char** argv) {
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
   const TreeDictionary tree = treeDictionary(dict);
+  if (check) return checkTree(tree);
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
   std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
