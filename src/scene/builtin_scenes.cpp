@@ -510,22 +510,30 @@ struct CarBody {
     const Real nose = Real(1) - Real(0.12) * glm::smoothstep(Real(0.9), Real(1.95), x);
     return Real(halfWidth) * nose * (Real(1) - Real(0.27) * glm::smoothstep(Real(belt) - Real(0.05), Real(roof), y));
   }
-  // The point at s along the body (0 rear, 1 front) and t around its section (0 and 1 under the
-  // middle of the floor). In double, rounded to float: WebAssembly's float sin and pow differ from
-  // glibc's in the last bit, their double ones far below a float's, and the page must draw the
-  // desktop's image.
-  glm::vec3 position(float s, float t) const {
+  // The section at s along the body (0 rear, 1 front): where it lies on x, and its size, 1 in the
+  // middle falling to 0 at both ends (a superellipse along x). In double, as what is built on it:
+  // WebAssembly's float sin and pow differ from glibc's in the last bit, their double ones far
+  // below a float's, and the page must draw the desktop's image.
+  struct Station {
+    double x;
+    double size;
+  };
+  Station station(float s) const {
     const double along = std::numbers::pi * (static_cast<double>(s) - 0.5);
-    const double x = halfLength * signedPower(std::sin(along), 0.45);
-    const double section = s <= 0.0f || s >= 1.0f ? 0.0 : std::pow(std::cos(along), 0.45);
+    return {halfLength * signedPower(std::sin(along), 0.45), s <= 0.0f || s >= 1.0f ? 0.0 : std::pow(std::cos(along), 0.45)};
+  }
+  // The point at s along the body and t around its section (0 and 1 under the middle of the
+  // floor), rounded to float.
+  glm::vec3 position(float s, float t) const {
+    const Station at = station(s);
     const double around = 2.0 * std::numbers::pi * static_cast<double>(t);
-    const double height = top(x) - bottom;
-    const double y = bottom + 0.5 * height * (1.0 - section * signedPower(std::cos(around), 0.4));
-    return glm::vec3(glm::dvec3(x, y, width(x, y) * section * signedPower(std::sin(around), 0.4)));
+    const double height = top(at.x) - bottom;
+    const double y = bottom + 0.5 * height * (1.0 - at.size * signedPower(std::cos(around), 0.4));
+    return glm::vec3(glm::dvec3(at.x, y, width(at.x, y) * at.size * signedPower(std::sin(around), 0.4)));
   }
   // The section's centre line, which the normals point away from.
   glm::vec3 axis(float s) const {
-    const double x = halfLength * signedPower(std::sin(std::numbers::pi * (static_cast<double>(s) - 0.5)), 0.45);
+    const double x = station(s).x;
     return glm::vec3(glm::dvec3(x, 0.5 * (bottom + top(x)), 0.0));
   }
 };
@@ -534,10 +542,10 @@ struct CarBody {
 // dense on the nose and the tail as on the doors (a uv linear in the loft's (s, t) crowded them
 // there up to 20 times: the sections shrink to a point at both ends and x changes slowly there).
 // Along the body: x, plus about the distance the meridian travels round the rounded end,
-// (1 - section) r. Around: the arc length of the middle section's superellipse
-// up to t, as a fraction of its perimeter (tabulated once, below), times the section's perimeter,
-// estimated as 2 (height + 2 half width) scaled by its size. In double, rounded to float, as the
-// positions (CarBody::position).
+// (1 - size) r. Around: the arc length of the middle section's superellipse up to t, as a fraction
+// of its perimeter (tabulated once, below), times the section's perimeter, estimated as
+// 2 (height + 2 half width) times its size. In double, rounded to float, as the positions
+// (CarBody::station).
 class CarPaintUv {
  public:
   explicit CarPaintUv(const CarBody& body) : body_(body), aroundFraction_(kTableSize + 1) {
@@ -558,15 +566,13 @@ class CarPaintUv {
     // The ends' rounding, metres: with 0.3 the nose and the tail hold the doors' flake density
     // within 10% (BuiltinScenes.CarPaintFlakesAreAsDenseOnTheNoseAsOnTheDoors).
     constexpr double kEndRadius = 0.3;
-    // The doors' median flake density under the loft's former uv (which varied 4 times along them).
+    // About the doors' median flake density under the loft's former uv, which varied along them.
     constexpr double kUvPerMetre = 0.93;
-    const double along = std::numbers::pi * (static_cast<double>(s) - 0.5);
-    const double x = body_.halfLength * signedPower(std::sin(along), 0.45);
-    const double section = s <= 0.0f || s >= 1.0f ? 0.0 : std::pow(std::cos(along), 0.45);
-    const double alongEnd = (s < 0.5f ? -1.0 : s > 0.5f ? 1.0 : 0.0) * (1.0 - section) * kEndRadius;
-    const double height = body_.top(x) - body_.bottom;
-    const double perimeter = section * 2.0 * (height + 2.0 * body_.width(x, body_.bottom + 0.5 * height));
-    return glm::vec2(kUvPerMetre * glm::dvec2(x + alongEnd, around(t) * perimeter));
+    const CarBody::Station at = body_.station(s);
+    const double alongEnd = (s < 0.5f ? -1.0 : s > 0.5f ? 1.0 : 0.0) * (1.0 - at.size) * kEndRadius;
+    const double height = body_.top(at.x) - body_.bottom;
+    const double perimeter = at.size * 2.0 * (height + 2.0 * body_.width(at.x, body_.bottom + 0.5 * height));
+    return glm::vec2(kUvPerMetre * glm::dvec2(at.x + alongEnd, around(t) * perimeter));
   }
 
  private:
