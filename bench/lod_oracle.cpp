@@ -5,7 +5,7 @@
 // slope everywhere, the footprint doubling twice over 16 frames, nothing else changing), it
 // measures the figures of `glint lod-consistency` (persistence, change, popping beyond the
 // reference's, RMSE), the glint layer's correlation between neighbouring pixels, and how far the
-// last frame shows the first frame's glints averaged (coarseAndFine), for four constructions of the
+// last frame shows the first frame's glints averaged (coarseAndFine), for five constructions of the
 // P-SDF's levels:
 //   paper       the 2020 model (kernel glintP22, GLINT_LOD_PAPER);
 //   consistent  glint's four-blocks construction (GLINT_LOD_CONSISTENT);
