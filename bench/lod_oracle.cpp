@@ -21,8 +21,9 @@
 //               position bits choose the blocks, x's the x marginal's and y's the y marginal's;
 //   tree-hashed the same, with which child takes which block one of the 2 x 2 square's eight
 //               symmetries, hashed from the parent cell.
-// Each against a reference of its own: the same construction at 4 x 4 samples a pixel, at the
-// centres of the pixel's 4 x 4 sub-pixels (the first of `glint lod-consistency`'s reference frames).
+// Each against a reference of its own: the same construction at N x N samples a pixel (4 x 4 unless
+// --reference-samples says), at the centres of the pixel's sub-pixels (the first of
+// `glint lod-consistency`'s reference frames).
 // The glint layer is the P22 above the smooth target's at the slope (its positive part); the image
 // spans less than the pattern's period (2 uv) in every frame, so no glint is counted twice.
 #include <algorithm>
@@ -158,13 +159,12 @@ double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int
   });
 }
 
-// The tree: own cells at level `top` (drawn as the 2020 model's), every cell below one of the four
-// blocks of its parent: one dictionary level lower, on each axis the distribution itself or its
-// split as the cell's position in its parent says; below dictionary level 0 the children keep
-// their parent's single lobe. Every cell is the mean of its children; all of an own cell's
-// descendants share its rotation.
-// One cell (x, y) of level l of the tree, below its own cell at level `top`, whose level draw is
-// topDraw.
+// The cell (x, y) of level l of the tree: own cells at level `top` (drawn as the 2020 model's, with
+// topDraw), every cell below one of the four blocks of its parent: one dictionary level lower, on
+// each axis the distribution itself or its split as the cell's position in its parent says (or,
+// with hashedBlocks, a symmetry of that hashed from the parent); below dictionary level 0 the
+// children keep their parent's single lobe. Every cell is the mean of its children; all of an own
+// cell's descendants share its rotation.
 double treeCellP22(const TreeDictionary& tree, const GlintParameters& p, int top, const kernel::GlintLevelDraw& topDraw,
                    int x, int y, int l, bool hashedBlocks) {
   const kernel::GlintDictionaryView dict = tree.view;
@@ -431,7 +431,7 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   GlintParameters p = defaultGlintParameters();
   p.logDensity = setup.logDensity;
   p.patternSeed = seed;
-  // The base below the reference's finest footprint (the first frame's, 4 times smaller), the own
+  // The base below the reference's finest footprint (the first frame's, N times smaller), the own
   // level above the coarsest level walked (the last frame's floor(lod) + 1).
   const float finest = static_cast<float>(setup.pixelMid * growth(0)) / referenceSamples;
   const float coarsest = static_cast<float>(setup.pixelMid * growth(kFrames - 1));
