@@ -438,7 +438,7 @@ namespace glint {
 namespace {
 
 TEST(GlintBrdf, ColouredCellsTintTheCpuBsdfAndUncolouredOnesStayGrey) {
-  // Car paint: each cell reflects a random hue (kernel glintCellColour). The CPU BSDF, used by the
+  // Car paint: each cell reflects a random colour (kernel glintCellChroma). The CPU BSDF, used by the
   // path tracer, tints its glints; uncoloured glints stay grey. That the tint is the shader's, once,
   // is TraceGl.DirectLightMatchesTheRealTimeRenderer's car paint case.
   using namespace glint::test;
@@ -459,6 +459,55 @@ TEST(GlintBrdf, ColouredCellsTintTheCpuBsdfAndUncolouredOnesStayGrey) {
     tinted += std::abs(coloured.r - coloured.g) > 1e-3f * (coloured.r + coloured.g);
   }
   EXPECT_GT(tinted, 50);
+}
+
+TEST(GlintBrdf, CellColoursAverageWhiteIndependentlyOfTheDraws) {
+  // A coloured cell's colour, glintTintedP22(1, glintCellChroma(hash)), over the 65,536 cells of a
+  // 256 x 256 block: white on average, every channel >= 0, coloured (some cells far from white);
+  // and drawn from bits the model's draws do not read, so that the cells that hold microfacets
+  // (relative area 0.1: the top bits of lane x), a dictionary level's cells (the top bits of lane
+  // y: u < 0.3) or a rotation's quarter (the top bits of lane z) average white as well. A channel's
+  // std over cells is at most 0.85 * 0.82 / sqrt 3 = 0.40, so the mean of n cells has std
+  // 0.40 / sqrt n: 0.0016 for all cells, 0.005 for the 6,500 with microfacets, 0.003 for the
+  // others; the bound 0.025 is 5 of the largest (the subsets are at least 6,000 cells). Colour
+  // from the draws' bits (the top bits of lane x, say) misses it by 0.3 or more.
+  GlintParameters parameters = defaultGlintParameters();
+  parameters.patternSeed = 7u;
+  struct Mean {
+    glm::dvec3 sum{0.0};
+    int n = 0;
+    void add(glm::vec3 c) { sum += glm::dvec3(c), ++n; }
+  };
+  Mean all, withMicrofacets, lowLevel, firstQuarter;
+  float weakestChannel = 1.0f;
+  float strongestChroma = 0.0f;
+  parameters.relativeArea = 0.1f;
+  for (int y = 0; y < 256; ++y) {
+    for (int x = 0; x < 256; ++x) {
+      const glm::uvec4 hash = kernel::glintCellHash(parameters, x, y, 3);
+      const glm::vec2 chroma = kernel::glintCellChroma(hash);
+      const glm::vec3 colour = kernel::glintTintedP22(1.0f, chroma);
+      weakestChannel = std::min({weakestChannel, colour.r, colour.g, colour.b});
+      strongestChroma = std::max(strongestChroma, glm::length(chroma));
+      all.add(colour);
+      if (kernel::glintCellHasMicrofacets(parameters, hash)) withMicrofacets.add(colour);
+      if (kernel::glintHashToUnitOpen(hash.y) < 0.3f) lowLevel.add(colour);
+      if (kernel::glintHashToUnitOpen(hash.z) < 0.25f) firstQuarter.add(colour);
+    }
+  }
+  for (const Mean* m : {&all, &withMicrofacets, &lowLevel, &firstQuarter}) {
+    ASSERT_GT(m->n, 6000);
+    const glm::dvec3 mean = m->sum / static_cast<double>(m->n);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], 1.0, 0.025) << "channel " << c << " of " << m->n << " cells";
+  }
+  EXPECT_GE(weakestChannel, 0.0f);
+  EXPECT_GT(strongestChroma, 1.0f);  // the square's corners reach 0.85 sqrt 2 = 1.2 from white
+  // Colours that sum, as the walk sums them (glintLevelP22): the tint of a sum is the sum's colour.
+  const glm::vec2 a = kernel::glintCellChroma(glm::uvec4(3u, 250u, 0u, 0u));
+  const glm::vec2 b = kernel::glintCellChroma(glm::uvec4(200u, 17u, 0u, 0u));
+  const glm::vec3 sum = kernel::glintTintedP22(0.25f, 0.25f * a) + kernel::glintTintedP22(2.0f, 2.0f * b);
+  const glm::vec3 together = kernel::glintTintedP22(2.25f, 0.25f * a + 2.0f * b);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], together[c], 1e-6f);
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ FIELDS = [
           "Glint uv = TEXCOORD_0 times this; raising it by k multiplies the facets per unit of surface by k squared",
           0.0, FLOAT32_MAX, exclusive_minimum=True, default=1.0, soft_max=100.0),
     Field("random_colors", "randomColors", "boolean", "Random Colors",
-          "Each cell's glints get a random hue (the flakes of a car paint)", default=False),
+          "Each cell's glints get a random colour (the flakes of a car paint)", default=False),
     Field("lod", "lod", "choice", "Level of Detail",
           "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell, or a "
           "coarse cell's glints shared out among its children so that fewer glints pop as the surface recedes",

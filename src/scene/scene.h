@@ -54,7 +54,7 @@ struct GlintLayer {
   float maxAnisotropy = 8.0f;
   std::uint32_t patternSeed = 0;
   float uvScale = 1.0f;            // glint uv = mesh uv * uvScale (density is per glint-uv area)
-  bool randomColours = false;      // each cell's glints get a random hue (car paint)
+  bool randomColours = false;      // each cell's glints get a random colour (car paint)
   int lod = 0;                     // kernel::GLINT_LOD_PAPER or GLINT_LOD_CONSISTENT (docs/method.md 2.7)
   // Optional textures (indices into Scene::textures, -1 for none); each multiplies or replaces
   // the constant above as documented in docs/scenes.md.

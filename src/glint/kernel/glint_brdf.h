@@ -61,7 +61,7 @@ struct GlintParameters {
   float densityRandomisation;  // zeta: std of the per-cell dictionary level around log4(n)
   float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
   uint patternSeed;            // selects an independent glint pattern for the same uv
-  bool colouredCells;          // each cell reflects a random hue (car paint's coloured flakes)
+  bool colouredCells;          // each cell reflects a random colour (car paint's coloured flakes)
   int ndf;                     // the smooth target: GLINT_NDF_BECKMANN (the paper's) or GLINT_NDF_GGX (microfacet_targets.h)
   int masking;                 // GLINT_MASKING_VCAVITY (the paper's) or GLINT_MASKING_SMITH
   int lod;                     // GLINT_LOD_PAPER or GLINT_LOD_CONSISTENT (method.md 2.7)
@@ -150,14 +150,26 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   return footprint;
 }
 
-// A saturated random hue for a cell (the paper's "cheap iridescence"), from its own hash so that
-// the four draws of the model stay untouched. Each channel of the hue wheel averages 1/2 over
-// hues, so mix(1, hue, 0.7) averages 0.65: dividing by it makes the expected colour white, and the
-// mean appearance that of uncoloured glints.
-GLINT_FN vec3 glintCellColour(uvec4 h) {
-  float hue = glintHashToUnitOpen(glintPcg4d(h).x) * 6.0f;
-  vec3 rgb = clamp(vec3(abs(hue - 3.0f) - 1.0f, 2.0f - abs(hue - 2.0f), 2.0f - abs(hue - 4.0f)), 0.0f, 1.0f);
-  return glintMix(glintSplat3(1.0f), rgb, 0.7f) * (1.0f / 0.65f);
+// A cell's random colour (the paper's "cheap iridescence"), as its offset from white in the
+// chroma plane, the colours whose channels average 1: white + a U + b V, with U and V the plane's
+// orthonormal axes (glintTintedP22). (a, b) is uniform on a square of half-width 0.85, so the
+// expected colour is white and the mean appearance that of uncoloured glints; at two of the
+// square's corners the weakest channel is 1 - 0.85 (1 / sqrt 6 + 1 / sqrt 2) = 0.05, never below 0.
+// It reads the bits the model's draws leave (glintHashToUnitOpen takes the top 24 of a lane): the
+// low 8 of the first two lanes, so the draws stay untouched and there is no second hash. Being
+// linear in (a, b), a footprint's colour sums two numbers a slope, not three. With a second hash
+// and a hue wheel, the coloured car paint's fragment shader ran 8% more instructions than the
+// uncoloured one; now 3% (docs/benchmarks.md, "What made it fast, and why").
+GLINT_FN vec2 glintCellChroma(uvec4 h) {
+  return vec2(float(h.x & 0xFFu) - 127.5f, float(h.y & 0xFFu) - 127.5f) * (0.85f / 127.5f);
+}
+
+// The colour-weighted P22 of a footprint from its P22 sum and its chroma sum (the P22-weighted sum
+// of its cells' glintCellChroma): white times the one plus the chroma along the plane's axes
+// U = (2, -1, -1) / sqrt 6 and V = (0, 1, -1) / sqrt 2.
+GLINT_FN vec3 glintTintedP22(float p22, vec2 chroma) {
+  return glintSplat3(p22) + chroma.x * vec3(0.81649658f, -0.40824829f, -0.40824829f) +
+         chroma.y * vec3(0.0f, 0.70710678f, -0.70710678f);
 }
 
 // The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
@@ -231,11 +243,16 @@ GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParame
 
 GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   float u = glintHashToUnitOpen(h.y);
-  int dictLevel = 0;
-  for (int j = 0; j < GLINT_MAX_DICTIONARY_LEVELS; ++j) {
-    dictLevel += u >= draw.threshold[j] ? 1 : 0;
-  }
-  return dictLevel;
+  // The thresholds rise with j, so the count is a binary search: four comparisons, each against a
+  // threshold chosen by the ones before (selects of constant indices, no indexed read).
+  bool b8 = u >= draw.threshold[7];
+  bool b4 = u >= (b8 ? draw.threshold[11] : draw.threshold[3]);
+  float t2 = b8 ? (b4 ? draw.threshold[13] : draw.threshold[9]) : (b4 ? draw.threshold[5] : draw.threshold[1]);
+  bool b2 = u >= t2;
+  float t1 = b8 ? (b4 ? (b2 ? draw.threshold[14] : draw.threshold[12]) : (b2 ? draw.threshold[10] : draw.threshold[8]))
+                : (b4 ? (b2 ? draw.threshold[6] : draw.threshold[4]) : (b2 ? draw.threshold[2] : draw.threshold[0]));
+  bool b1 = u >= t1;
+  return (b8 ? 8 : 0) + (b4 ? 4 : 0) + (b2 ? 2 : 0) + (b1 ? 1 : 0) + (u >= draw.threshold[15] ? 1 : 0);
 }
 
 // The cell's random rotation theta = 2 pi hash (method.md 2.5), as (cos theta, sin theta). The
@@ -642,7 +659,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   vec2 unscaled[GLINT_SLOPE_COUNT];
   float dictionarySum[GLINT_SLOPE_COUNT];
-  vec3 colouredSum[GLINT_SLOPE_COUNT];
+  vec2 chromaSum[GLINT_SLOPE_COUNT];
   // A slope beyond every rotated support reads no dictionary cell (glintCellMarginals' per-axis
   // test agrees but for the rotation's rounding, so the slope is gated as a walk for it alone
   // would be); when all are, the cells' rotations and texel reads are skipped.
@@ -660,7 +677,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     unscaled[k] = glintUnscaledSlope(dict, params, slopes.slope[k]);
     dictionarySum[k] = 0.0f;
-    colouredSum[k] = glintSplat3(0.0f);
+    chromaSum[k] = glintSplat2(0.0f);
     inSupport[k] = !glintBeyondEveryRotatedSupport(dict, unscaled[k] * widestUnscale);
     anyInSupport = anyInSupport || inSupport[k];
     vec4 d = slopes.derivatives[k];
@@ -702,7 +719,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
       if (cell.readsDictionary && anyInSupport) {
         vec2 rotation = glintCellRotation(cell.hash);
         ivec2 distributions = glintCellDistributions(dict, cell.hash);
-        vec3 colour = params.colouredCells ? glintCellColour(cell.hash) : glintSplat3(1.0f);
+        vec2 chroma = params.colouredCells ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
         for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
           float p = 0.0f;
           if (inSupport[k]) {
@@ -717,9 +734,10 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
                                                cellUnscaled);
             p *= cell.scalePrecision;
           }
-          dictionarySum[k] += weight * p;
+          float weighted = weight * p;
+          dictionarySum[k] += weighted;
           if (params.colouredCells) {
-            colouredSum[k] += weight * (colour * p);
+            chromaSum[k] += weighted * chroma;
           }
         }
       }
@@ -729,7 +747,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     p22.p22[k] = glintSplat4(0.0f);
     if (weightSum > 0.0f) {
-      vec3 colourWeighted = params.colouredCells ? colouredSum[k] : glintSplat3(dictionarySum[k]);
+      vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum[k], chromaSum[k]) : glintSplat3(dictionarySum[k]);
       p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
       if (smoothWeightSum > 0.0f) {
         float smoothP22 = filtering ? glintFilteredTargetP22(params, slopes.slope[k], slopeKernel[k])

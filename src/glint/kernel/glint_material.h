@@ -42,7 +42,7 @@ struct GlintMaterial {
   uint hasLogDensityTexture;   // 1: D comes from the log-density texture
   int ndf;                     // GLINT_NDF_BECKMANN or GLINT_NDF_GGX (microfacet_targets.h)
   int masking;                 // GLINT_MASKING_VCAVITY or GLINT_MASKING_SMITH
-  uint colouredCells;          // 1: each cell reflects a random hue
+  uint colouredCells;          // 1: each cell reflects a random colour
   uint multipleScattering;     // 1: the smooth target's compensation lobe is added
   uint enabled;                // 1: the material has a glint layer (0: Cook-Torrance of its own roughness)
   int lod;                     // GLINT_LOD_PAPER (0) or GLINT_LOD_CONSISTENT (glint_brdf.h)

@@ -81,9 +81,9 @@ GLINT_FN float glintStudentTailSlopeP22(vec2 slope, vec3 covariance) {
          (2.0f * GLINT_PI * sqrt(determinant) * b * b * GLINT_GGX_TAIL_PROBABILITY);
 }
 
-// A cell's draw of the mixture's precision w ~ Exp(1), from a second hash of the cell's (the four
-// lanes of the first are the 2020 model's draws; glintCellColour takes the second hash's x lane,
-// this its y lane).
+// A cell's draw of the mixture's precision w ~ Exp(1), from the y lane of a second hash of the
+// cell's (the first's four lanes are the 2020 model's draws, and glintCellChroma takes the 8 low
+// bits they leave of two lanes: too few for w's tail).
 GLINT_FN float glintCellPrecision(uvec4 h) {
   return -log(glintHashToUnitOpen(glintPcg4d(h).y));
 }
