@@ -165,7 +165,7 @@ GLINT_FN vec2 glintCellChroma(uvec4 h) {
 }
 
 // The colour-weighted P22 of a footprint from its P22 sum and its chroma sum (the P22-weighted sum
-// of its cells' glintCellChroma): white times the one plus the chroma along the plane's axes
+// of its cells' glintCellChroma): white times the P22 plus the chroma along the plane's axes
 // U = (2, -1, -1) / sqrt 6 and V = (0, 1, -1) / sqrt 2.
 GLINT_FN vec3 glintTintedP22(float p22, vec2 chroma) {
   return glintSplat3(p22) + chroma.x * vec3(0.81649658f, -0.40824829f, -0.40824829f) +
@@ -243,8 +243,11 @@ GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParame
 
 GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   float u = glintHashToUnitOpen(h.y);
-  // The thresholds rise with j, so the count is a binary search: four comparisons, each against a
-  // threshold chosen by the ones before (selects of constant indices, no indexed read).
+  // The thresholds rise with j, so the count is a binary search over the GLINT_MAX_DICTIONARY_LEVELS
+  // = 16 of them: four comparisons, each against a threshold chosen by the ones before (selects of
+  // constant indices, no indexed read), and the last threshold's. Exact: the same count as 16
+  // comparisons; the car's fragment shader runs 0.8% fewer instructions (docs/benchmarks.md, item 10 of
+  // "What made it fast").
   bool b8 = u >= draw.threshold[7];
   bool b4 = u >= (b8 ? draw.threshold[11] : draw.threshold[3]);
   float t2 = b8 ? (b4 ? draw.threshold[13] : draw.threshold[9]) : (b4 ? draw.threshold[5] : draw.threshold[1]);
