@@ -197,9 +197,10 @@ GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
 // The same draw without inverting the normal per cell: the level reaches j exactly when
 // log4(n) + 1/2 + zeta N >= j, that is when u >= Phi((j - log4(n) - 1/2) / zeta). The L thresholds
 // depend on the footprint level only, so glintLevelDraw computes them once per footprint and a
-// cell's level is the number of thresholds its u passes: L comparisons instead of a logarithm and
-// two polynomials per cell (the inverse error function was 19% of the glint shader's instructions).
-// Thresholds past the dictionary's L are above every u, so the loop has a fixed length.
+// cell's level is the number of thresholds its u passes, found by a binary search of five
+// comparisons, instead of a logarithm and two polynomials per cell (the inverse error function was
+// 19% of the glint shader's instructions). Thresholds past the dictionary's L are above every u,
+// so the search has a fixed length.
 GLINT_CONST int GLINT_MAX_DICTIONARY_LEVELS = 16;  // the largest L a Dictionary accepts
 
 struct GlintLevelDraw {
