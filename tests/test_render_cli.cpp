@@ -5,6 +5,7 @@
 #include <array>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -202,11 +203,17 @@ TEST(RenderCli, GlintMaterialShowsGlintsAtAnyUvScale) {
 // (glTF has no environment: --sky gives both the same). The loader normalises normals in double and
 // puts each camera's target on its view ray at another distance, so a few float ulps of direction
 // differ: at 96 x 96 the relative MSE measured 0 (parquet) to 3.9e-9 (carpaint), under the bound
-// 1e-8; the same files with their glint layers left out measured 1.1e-3 to 2.9e-2.
+// 1e-8; the same files with their glint layers left out measured 1.1e-3 to 2.9e-2. The atrium's
+// many silhouettes are the exception: those ulps move a pixel centre across an edge in 2 of its
+// 9,216 pixels (relative MSE 3.1e-6), so it is drawn from its default camera given on the command
+// line to both (4.1e-11): its file's camera is the other scenes' kind, which they check.
 TEST(ExportCli, ExportedBuiltinScenesRenderAsTheBuiltinOnes) {
   const auto folder = temporaryFolder("export_round_trip");
-  for (const char* name : {"sphere", "parquet", "carpaint", "showroom"}) {
+  const std::map<std::string, std::string> cameraOptions = {
+      {"atrium", " --look-from 0,1.6,14.5 --look-at 0,3,-16 --up 0,1,0 --fov 55"}};
+  for (const char* name : {"sphere", "parquet", "carpaint", "showroom", "arctic", "atrium", "car"}) {
     SCOPED_TRACE(name);
+    const std::string camera = cameraOptions.count(name) != 0 ? cameraOptions.at(name) : std::string();
     const std::string file = std::string(name) + (std::string(name) == "showroom" ? ".gltf" : ".glb");
     RunResult result = runGlint(folder, "export " + std::string(name) + " -o " + file);
     ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -215,7 +222,7 @@ TEST(ExportCli, ExportedBuiltinScenesRenderAsTheBuiltinOnes) {
         << result.err;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 2) << result.err;  // the warning, "wrote"
     for (const std::string& scene : {std::string(name), file}) {
-      result = runGlint(folder, "render " + scene + " --sky 0.2 -o " + scene + ".exr --size 96x96");
+      result = runGlint(folder, "render " + scene + " --sky 0.2" + camera + " -o " + scene + ".exr --size 96x96");
       ASSERT_EQ(result.exitCode, 0) << result.err;
     }
     const ImageRgbF builtin = readImage(folder / (std::string(name) + ".exr"));
