@@ -553,12 +553,11 @@ TEST(ViewCli, OpensAndRendersUnderXvfb) {
 }
 
 // The viewer opens on exactly what `glint render` draws: for every built-in scene but the two at the
-// paper's scale, which add nothing to it but time (and a camera
-// other than the default, footprint policies and cascade counts the panel starts from, and each cost
-// tier), its first
-// frame with the panel hidden equals render's PNG of the same scene, camera, options and size, pixel
-// for pixel (both go through kernel/tonemap.h's display transform and its rounding to 8 bits). One
-// virtual X server runs all the viewers.
+// paper's scale, which add nothing to it but time (and a camera other than the default, footprint
+// policies and cascade counts the panel starts from, and each cost tier), its first frame with the
+// panel hidden equals render's PNG of the same scene, camera, options and size, pixel for pixel
+// (both go through kernel/tonemap.h's display transform and its rounding to 8 bits). One virtual X
+// server runs all the viewers.
 TEST(ViewCli, FirstFrameEqualsRenderForEveryBuiltinScene) {
   ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0) << "xvfb-run is missing (scripts/deps installs it)";
   const auto folder = temporaryFolder("view_equals_render");
