@@ -326,6 +326,41 @@ TEST(GlintBrdf, LevelThresholdsDrawTheRoundedNormalQuantile) {
   RecordProperty("levels_seen", levelsSeen);
 }
 
+TEST(GlintBrdf, LevelSearchCountsThePassedThresholdsExactly) {
+  // glintCellDictionaryLevel finds the number of thresholds u passes by a binary search; it must be
+  // the linear count for any non-decreasing thresholds, including the hand-made cases the realistic
+  // draws above rarely reach: runs of equal thresholds, u exactly at a threshold or one float step
+  // either side, thresholds at 0 and at the padding 2.0, all or none passed.
+  Pcg32 rng(16, 3);
+  for (int c = 0; c < 3000; ++c) {
+    // u as the kernel rounds a hash lane, from a 24-bit draw.
+    std::vector<float> us;
+    for (int i = 0; i < 24; ++i) us.push_back(kernel::glintHashToUnitOpen((rng.next() >> 8u) << 8u));
+    std::vector<float> values;
+    for (int j = 0; j < kernel::GLINT_MAX_DICTIONARY_LEVELS; ++j) {
+      const std::uint32_t pick = rng.next() % 6u;
+      const float u = us[rng.next() % us.size()];
+      values.push_back(pick == 0   ? u                                    // exactly a cell's u
+                       : pick == 1 ? std::nextafter(u, 0.0f)              // a step below it
+                       : pick == 2 ? std::nextafter(u, 1.0f)              // a step above it
+                       : pick == 3 ? (c % 2 == 0 ? 0.0f : 2.0f)           // passed by all, or the padding
+                       : pick == 4 && j > 0 ? values.back()               // equal to the one before
+                                   : uniform(rng, 0.0f, 1.0f));
+    }
+    std::sort(values.begin(), values.end());
+    kernel::GlintLevelDraw draw{};
+    for (int j = 0; j < kernel::GLINT_MAX_DICTIONARY_LEVELS; ++j) draw.threshold[j] = values[static_cast<std::size_t>(j)];
+    for (const float u : us) {
+      const std::uint32_t lane = static_cast<std::uint32_t>(std::lround(u * 16777216.0f - 0.5f)) << 8u;
+      ASSERT_EQ(kernel::glintHashToUnitOpen(lane), u);
+      int passed = 0;
+      for (float t : values) passed += u >= t ? 1 : 0;
+      ASSERT_EQ(kernel::glintCellDictionaryLevel(draw, glm::uvec4(0u, lane, 0u, 0u)), passed)
+          << "case " << c << ", u " << u;
+    }
+  }
+}
+
 TEST(GlintBrdf, RendererSkipsOnlyNegligibleSlopes) {
   // The renderer takes P22 = 0 where glintSlopeIsNegligible holds (docs/renderer.md, "Cost"). The
   // exact P22 there comes from smooth-limit cells only and must be below exp(-16) = 1.13e-7 of the

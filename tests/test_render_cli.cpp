@@ -203,7 +203,8 @@ TEST(RenderCli, GlintMaterialShowsGlintsAtAnyUvScale) {
 // (glTF has no environment: --sky gives both the same). The loader normalises normals in double and
 // puts each camera's target on its view ray at another distance, so a few float ulps of direction
 // differ: at 96 x 96 the relative MSE measured 0 (parquet) to 3.9e-9 (carpaint), under the bound
-// 1e-8; the same files with their glint layers left out measured 1.1e-3 to 2.9e-2. The atrium's
+// 1e-8; the same files with their glint layers left out measured 1.1e-3 to 2.9e-2 (the car, the
+// atrium and the arctic drawn with Cook-Torrance instead: 3.0e-2, 1.3, 10.9). The atrium's
 // many silhouettes are the exception: those ulps move a pixel centre across an edge in 2 of its
 // 9,216 pixels (relative MSE 3.1e-6), so it is drawn from its default camera given on the command
 // line to both (4.1e-11): its file's camera is the other scenes' kind, which they check.
