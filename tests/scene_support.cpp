@@ -1,5 +1,6 @@
 #include "scene_support.h"
 
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -195,6 +196,19 @@ fs::path sharedAsset(const std::string& relative) {
 
 std::string sharedAssetMissing(const std::string& relative) {
   return "needs ../shared/" + relative + " (third-party asset, not in the repository)";
+}
+
+std::string triple(glm::vec3 v) {
+  char text[128];
+  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
+  return text;
+}
+
+std::string cameraOptions(const scene::Camera& camera) {
+  char fov[32];
+  std::snprintf(fov, sizeof fov, "%.9g", camera.verticalFovDegrees);
+  return " --look-from " + triple(camera.position) + " --look-at " + triple(camera.target) + " --up " + triple(camera.up) +
+         " --fov " + fov;
 }
 
 }  // namespace glint::test

@@ -30,6 +30,12 @@ std::filesystem::path writeSeparateGltf(const scene::Scene& scene, const std::fi
 // Reads, edits and writes back the JSON of a .gltf file.
 void editGltfJson(const std::filesystem::path& path, const std::function<void(nlohmann::json&)>& edit);
 
+// A vector as `glint render` takes one on its command line, "x,y,z" to float precision.
+std::string triple(glm::vec3 v);
+// The command-line options that place `camera` (a perspective one): --look-from, --look-at, --up
+// and --fov, each with a leading space.
+std::string cameraOptions(const scene::Camera& camera);
+
 // A third-party asset under ../shared (e.g. "scenes/damaged-helmet/DamagedHelmet.glb"), or an empty
 // path when it is absent: callers GTEST_SKIP() with sharedAssetMissing(relative).
 std::filesystem::path sharedAsset(const std::string& relative);

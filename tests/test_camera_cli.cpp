@@ -17,12 +17,6 @@ namespace {
 
 using namespace glint::test;
 
-std::string triple(glm::vec3 v) {
-  char text[128];
-  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
-  return text;
-}
-
 // The share of pixels of which a channel differs by more than 0.01 (linear, decoded from the sRGB
 // PNGs: a step of 2 to 3 codes in the mid-tones) between two images of the same size.
 double differingShare(const std::filesystem::path& a, const std::filesystem::path& b) {

@@ -190,9 +190,9 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 // with or without coloured glints (GLINT_COLOURED_CELLS), for the scene's number of lights
 // (LIGHT_COUNT). The colour is a compile-time switch, not a uniform: llvmpipe runs both sides of
 // every branch for all pixels, so a uniform flag made every glint material pay for the colour
-// (15% of the glint shader's instructions when it was a second hash and a hue). So are the glTF features most meshes do
-// not use: texture transforms cost 14% of a Cook-Torrance frame's instructions and vertex colours
-// 2% where every pixel paid for them (docs/benchmarks.md, "What made it fast, and why").
+// (15% of the glint shader's instructions when it was a second hash and a hue). So are the glTF
+// features most meshes do not use: texture transforms cost 14% of a Cook-Torrance frame's
+// instructions and vertex colours 2% where every pixel paid for them (docs/benchmarks.md, "What made it fast, and why").
 struct ForwardVariant {
   BrdfModel model;
   bool colouredCells;
