@@ -1,11 +1,11 @@
 // glint_lod_oracle: what level-of-detail constructions consistent at every cell would give
-// (docs/antialiasing.md, "Levels consistent at every cell").
+// (docs/antialiasing.md, "Levels consistent at every cell, idealised").
 //
 // On an idealised zoom (a fronto-parallel glint plane under an orthographic camera, one half-vector
 // slope everywhere, the footprint doubling twice over 16 frames, nothing else changing), it
 // measures the figures of `glint lod-consistency` (persistence, change, popping beyond the
 // reference's, RMSE), the glint layer's correlation between neighbouring pixels, and how far the
-// last frame shows the first frame's glints averaged (coarseAndFine), for five constructions of the
+// last frame shows the first frame's glints averaged (coarseAndFine), for four constructions of the
 // P-SDF's levels:
 //   paper       the 2020 model (kernel glintP22, GLINT_LOD_PAPER);
 //   consistent  glint's four-blocks construction (GLINT_LOD_CONSISTENT);
@@ -13,14 +13,10 @@
 //               descendants at b, each drawn as the 2020 model draws its cells: consistent at
 //               every cell and level by construction, evaluated by brute force. b lies below every
 //               footprint of the sequence, the reference's samples included;
-//   tree        a dictionary of today's size in which every level is the mean of two of the level
-//               below (TreeDictionary), so that every cell splits into four: own cells above every
-//               footprint of the sequence, every cell below them one of its parent's four blocks.
-//               Consistent at every cell like the oracle, but its lobes are the N single lobes of
-//               level 0, repeated, and a whole subtree shares its own cell's rotation. The cell's
-//               position bits choose the blocks, x's the x marginal's and y's the y marginal's;
-//   tree-hashed the same, with which child takes which block one of the 2 x 2 square's eight
-//               symmetries, hashed from the parent cell.
+//   tree        glint's tree construction (GLINT_LOD_TREE, docs/method.md 2.8): every cell below
+//               the own level (set by the density, above every footprint of the sequence here) is
+//               the mean of its four children, read from the dictionary's tree levels, whose lobes
+//               are level 0's N single ones; a whole subtree shares its own cell's rotation.
 // Each against a reference of its own: the same construction at N x N samples a pixel (4 x 4 unless
 // --reference-samples says), at the centres of the pixel's sub-pixels (the first of
 // `glint lod-consistency`'s reference frames).
@@ -66,54 +62,9 @@ double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const
   if (!cell.readsDictionary) return 0.0;
   const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
   return static_cast<double>(kernel::glintCellMarginals(dict, cell.dictionaryLevel,
-                                                        kernel::glintCellDistributions(dict, cell.hash), cell.complement,
+                                                        cell.distributions, cell.complement,
                                                         kernel::glintCellRotation(cell.hash), unscaled)) *
          kernel::glintScalingJacobian(dict, p);
-}
-
-// A dictionary in which level k + 1 of distribution i is the mean of level k of i and of another
-// distribution, split(k + 1, i): every level a tabulated pair of the level below, all of it built
-// from the N single lobes of level 0 (which therefore repeat from about level log2 N).
-struct TreeDictionary {
-  std::vector<float> texels;
-  std::vector<int> split;  // [level * N + i], for level >= 1
-  kernel::GlintDictionaryView view;
-};
-
-TreeDictionary treeDictionary(kernel::GlintDictionaryView dict) {
-  const int n = dict.numDistributions, r = dict.texelsPerDistribution;
-  TreeDictionary tree;
-  tree.texels.assign(static_cast<std::size_t>(dict.numLevels) * n * r, 0.0f);
-  tree.split.assign(static_cast<std::size_t>(dict.numLevels) * n, 0);
-  std::copy(dict.texels, dict.texels + static_cast<std::size_t>(n) * r, tree.texels.begin());
-  for (int level = 1; level < dict.numLevels; ++level) {
-    // Each level's pairs a permutation without fixed points, so that every distribution of the
-    // level below is some distribution's other half exactly once: the level's mean is then the
-    // level below's, down to level 0's, whose lobes stratify the target (with another distribution
-    // drawn at random for each, some would weigh three times and others not at all, and the
-    // levels' means would drift from the target).
-    std::vector<int> order(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
-    for (int i = n - 1; i > 0; --i) {
-      const int j = static_cast<int>(kernel::glintPcg4d(glm::uvec4(level, i, 7u, 0u)).x % static_cast<uint32_t>(i + 1));
-      std::swap(order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>(j)]);
-    }
-    for (int i = 0; i < n; ++i) {  // a fixed point swaps with its neighbour: still a permutation
-      if (order[static_cast<std::size_t>(i)] == i) std::swap(order[static_cast<std::size_t>(i)], order[static_cast<std::size_t>((i + 1) % n)]);
-    }
-    for (int i = 0; i < n; ++i) {
-      const int other = order[static_cast<std::size_t>(i)];
-      tree.split[static_cast<std::size_t>(level) * n + i] = other;
-      for (int t = 0; t < r; ++t) {
-        tree.texels[(static_cast<std::size_t>(level) * n + i) * r + t] =
-            0.5f * (tree.texels[(static_cast<std::size_t>(level - 1) * n + i) * r + t] +
-                    tree.texels[(static_cast<std::size_t>(level - 1) * n + other) * r + t]);
-      }
-    }
-  }
-  tree.view = dict;
-  tree.view.texels = tree.texels.data();
-  return tree;
 }
 
 // The P-SDF with the 2020 model's footprint, levels and EWA weights and its own cells' values.
@@ -159,131 +110,25 @@ double oracleP22(kernel::GlintDictionaryView dict, const GlintParameters& p, int
   });
 }
 
-// The cell (x, y) of level l of the tree: own cells at level `top` (drawn as the 2020 model's, with
-// topDraw), every cell below one of the four blocks of its parent: one dictionary level lower, on
-// each axis the distribution itself or its split as the cell's position in its parent says (or,
-// with hashedBlocks, a symmetry of that hashed from the parent); below dictionary level 0 the
-// children keep their parent's single lobe. Every cell is the mean of its children; all of an own
-// cell's descendants share its rotation.
-double treeCellP22(const TreeDictionary& tree, const GlintParameters& p, int top, const kernel::GlintLevelDraw& topDraw,
-                   int x, int y, int l, bool hashedBlocks) {
-  const kernel::GlintDictionaryView dict = tree.view;
-  const int n = dict.numDistributions;
-  const int depth = top - l;
-  const kernel::GlintCell cell = kernel::glintCell(dict, p, topDraw, x >> depth, y >> depth, top);
-  if (!cell.readsDictionary) return cellP22(dict, p, cell);
-  glm::ivec2 distributions = kernel::glintCellDistributions(dict, cell.hash);
-  int dictionaryLevel = cell.dictionaryLevel;
-  for (int step = depth - 1; step >= 0 && dictionaryLevel >= 1; --step) {
-    int splitX = (x >> step) & 1, splitY = (y >> step) & 1;
-    if (hashedBlocks) {
-      // Which child takes which block, one of the 2 x 2 square's 8 symmetries, hashed from the
-      // parent: otherwise a column of cells shares its x marginal all the way down.
-      const uint32_t h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(x >> (step + 1)),
-                                                       static_cast<uint32_t>(y >> (step + 1)),
-                                                       static_cast<uint32_t>(l + step + 1), p.patternSeed)).x;
-      if (h & 4u) std::swap(splitX, splitY);
-      splitX ^= static_cast<int>(h & 1u);
-      splitY ^= static_cast<int>((h >> 1) & 1u);
-    }
-    if (splitX) distributions.x = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.x];
-    if (splitY) distributions.y = tree.split[static_cast<std::size_t>(dictionaryLevel) * n + distributions.y];
-    --dictionaryLevel;
-  }
-  const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
-  return static_cast<double>(kernel::glintCellMarginals(dict, dictionaryLevel, distributions, glm::ivec2(0),
-                                                        kernel::glintCellRotation(cell.hash), unscaled)) *
-         kernel::glintScalingJacobian(dict, p);
-}
-
-double treeP22(const TreeDictionary& tree, const GlintParameters& p, int top, glm::vec2 uv, float size, bool hashedBlocks) {
-  std::optional<kernel::GlintLevelDraw> topDraw;  // the same for every cell of the footprint
-  return walkedP22(tree.view, p, uv, size, [&](int x, int y, int l, float logDensity) {
-    if (l > top) std::abort();  // the own level must lie above every footprint
-    if (!topDraw) topDraw = kernel::glintLevelDraw(tree.view, p, logDensity, top);
-    return treeCellP22(tree, p, top, *topDraw, x, y, l, hashedBlocks);
-  });
-}
-
-// --check: what the tree's figures rest on. Every level's mean marginal (over the distributions) is
-// level 0's, texel by texel, within 1e-5 of level 0's largest texel (float sums of halves); and
-// every cell is the mean of its four children within 1e-5 of the smooth target's P22 (10,000
-// random cells, levels 1 to 10, both child orders, two pattern seeds, the dense and the sparse
-// layer). Prints what it found; exit 1 on a failure.
-int checkTree(const TreeDictionary& tree) {
-  const kernel::GlintDictionaryView dict = tree.view;
-  const int n = dict.numDistributions, r = dict.texelsPerDistribution;
-  int failures = 0;
-  double largestLevel0 = 0.0, worstMean = 0.0;
-  std::vector<double> level0(static_cast<std::size_t>(r), 0.0);
-  for (int level = 0; level < dict.numLevels; ++level) {
-    std::vector<double> mean(static_cast<std::size_t>(r), 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int t = 0; t < r; ++t) mean[static_cast<std::size_t>(t)] += tree.texels[(static_cast<std::size_t>(level) * n + i) * r + t] / n;
-    }
-    if (level == 0) {
-      level0 = mean;
-      largestLevel0 = *std::max_element(level0.begin(), level0.end());
-    }
-    for (int t = 0; t < r; ++t) {
-      worstMean = std::max(worstMean, std::abs(mean[static_cast<std::size_t>(t)] - level0[static_cast<std::size_t>(t)]) / largestLevel0);
-    }
-  }
-  std::printf("every level's mean marginal against level 0's: at most %.2e of its largest texel\n", worstMean);
-  failures += worstMean > 1e-5;
-  double worstCell = 0.0;
-  int cells = 0;
-  for (float logDensity : {14.4f, 12.6f}) {
-    for (unsigned seed : {0u, 1u}) {
-      GlintParameters p = defaultGlintParameters();
-      p.logDensity = logDensity;
-      p.patternSeed = seed;
-      constexpr int kTop = 10;
-      const kernel::GlintLevelDraw topDraw = kernel::glintLevelDraw(dict, p, p.logDensity, kTop);
-      const double target = kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
-      for (int c = 0; c < 1250; ++c) {
-        const glm::uvec4 h = kernel::glintPcg4d(glm::uvec4(static_cast<uint32_t>(c), seed, 99u, 0u));
-        const int l = 1 + static_cast<int>(h.z % kTop);
-        const int side = 1 << (dict.numLevels - 1 - l);  // cells across the pattern at level l
-        const int x = static_cast<int>(h.x % static_cast<uint32_t>(side)), y = static_cast<int>(h.y % static_cast<uint32_t>(side));
-        for (bool hashed : {false, true}) {
-          double children = 0.0;
-          for (int j = 0; j < 2; ++j) {
-            for (int i = 0; i < 2; ++i) children += 0.25 * treeCellP22(tree, p, kTop, topDraw, 2 * x + i, 2 * y + j, l - 1, hashed);
-          }
-          const double parent = treeCellP22(tree, p, kTop, topDraw, x, y, l, hashed);
-          worstCell = std::max(worstCell, std::abs(parent - children) / target);
-          ++cells;
-        }
-      }
-    }
-  }
-  std::printf("%d cells against the mean of their four children: at most %.2e of the smooth target's P22\n", cells,
-              worstCell);
-  failures += worstCell > 1e-5;
-  return failures == 0 ? 0 : 1;
-}
-
 // The levels a sequence spans: the base below its finest footprint, the own level above its coarsest.
 struct Span {
   int base;
   int top;
 };
 
-double modelP22(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p,
-                const std::string& mode, Span span, glm::vec2 uv, float size) {
+double modelP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const std::string& mode, Span span,
+                glm::vec2 uv, float size) {
   if (mode == "oracle") return oracleP22(dict, p, span.base, uv, size);
-  if (mode == "tree" || mode == "tree-hashed") return treeP22(tree, p, span.top, uv, size, mode == "tree-hashed");
   GlintParameters q = p;
-  q.lod = mode == "consistent" ? kernel::GLINT_LOD_CONSISTENT : kernel::GLINT_LOD_PAPER;
+  q.lod = lodFromName("mode", mode, true);
   return kernel::glintP22(dict, q, uv, glm::vec2(size, 0.0f), glm::vec2(0.0f, size), kSlope);
 }
 
 using Frame = std::vector<double>;
 
 // Frame t's P22, at one sample a pixel or the reference's 4 x 4.
-Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const GlintParameters& p,
-             const std::string& mode, Span span, const Setup& setup, int t, bool reference) {
+Frame render(kernel::GlintDictionaryView dict, const GlintParameters& p, const std::string& mode, Span span,
+             const Setup& setup, int t, bool reference) {
   const float pixel = static_cast<float>(setup.pixelMid * growth(t));
   const glm::vec2 centre(0.37f, 0.61f);
   Frame frame(static_cast<std::size_t>(kSize) * kSize);
@@ -293,12 +138,12 @@ Frame render(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
         const glm::vec2 at = centre + pixel * glm::vec2(x + 0.5f - 0.5f * kSize, y + 0.5f - 0.5f * kSize);
         double value = 0.0;
         if (!reference) {
-          value = modelP22(dict, tree, p, mode, span, at, pixel);
+          value = modelP22(dict, p, mode, span, at, pixel);
         } else {
           for (int j = 0; j < referenceSamples; ++j) {
             for (int i = 0; i < referenceSamples; ++i) {
               const glm::vec2 sample = at + pixel * ((glm::vec2(i, j) + 0.5f) / float(referenceSamples) - 0.5f);
-              value += modelP22(dict, tree, p, mode, span, sample, pixel / referenceSamples);
+              value += modelP22(dict, p, mode, span, sample, pixel / referenceSamples);
             }
           }
           value /= referenceSamples * referenceSamples;
@@ -334,14 +179,14 @@ double warped(const Frame& next, int t, int x, int y) {
   return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) + ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
 }
 
-// The share of the tree's own cells whose dictionary level reaches log2 N, from which a
-// distribution's 2^level lobes must repeat some of the N single ones (4,096 own cells).
-double ownCellsWithRepeatedLobes(kernel::GlintDictionaryView dict, const GlintParameters& p, int top) {
-  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, top);
+// The share of the tree's own cells whose marginals repeat some of level 0's N single lobes: those
+// whose dictionary level k has 2^k > N (4,096 own cells).
+double ownCellsWithRepeatedLobes(kernel::GlintDictionaryView dict, const GlintParameters& p, int own) {
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, own);
   int repeated = 0;
   for (int i = 0; i < 4096; ++i) {
-    const kernel::GlintCell cell = kernel::glintCell(dict, p, draw, i % 64, i / 64, top);
-    repeated += cell.readsDictionary && std::exp2(static_cast<double>(cell.dictionaryLevel)) >= dict.numDistributions;
+    const kernel::GlintCell cell = kernel::glintCell(dict, p, draw, i % 64, i / 64, own);
+    repeated += cell.readsDictionary && std::exp2(static_cast<double>(cell.dictionaryLevel)) > dict.numDistributions;
   }
   return repeated / 4096.0;
 }
@@ -426,13 +271,12 @@ void figureRow(const std::vector<Frame>& p22s, const GlintParameters& p) {
   figure = taller;
 }
 
-void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const Setup& setup, const std::string& mode,
-             unsigned seed) {
+void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::string& mode, unsigned seed) {
   GlintParameters p = defaultGlintParameters();
   p.logDensity = setup.logDensity;
   p.patternSeed = seed;
-  // The base below the reference's finest footprint (the first frame's, N times smaller), the own
-  // level above the coarsest level walked (the last frame's floor(lod) + 1).
+  // The base below the reference's finest footprint (the first frame's, N times smaller), the
+  // coarsest level walked (the last frame's floor(lod) + 1), which the tree's own level must reach.
   const float finest = static_cast<float>(setup.pixelMid * growth(0)) / referenceSamples;
   const float coarsest = static_cast<float>(setup.pixelMid * growth(kFrames - 1));
   const Span span{static_cast<int>(std::floor(dict.numLevels - 1 + std::log2(finest))),
@@ -449,8 +293,8 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   }
   std::vector<Frame> modelP22s, referenceP22s, model, reference;
   for (int t = 0; t < kFrames; ++t) {
-    modelP22s.push_back(render(dict, tree, p, mode, span, setup, t, false));
-    referenceP22s.push_back(render(dict, tree, p, mode, span, setup, t, true));
+    modelP22s.push_back(render(dict, p, mode, span, setup, t, false));
+    referenceP22s.push_back(render(dict, p, mode, span, setup, t, true));
     model.push_back(glints(modelP22s.back(), p));
     reference.push_back(glints(referenceP22s.back(), p));
   }
@@ -523,10 +367,15 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
   const double coarseFine = correlation(views.coarse, views.averagedFine);
   std::string level = "-";
   if (mode == "oracle") level = "base " + std::to_string(span.base);
-  if (mode == "tree" || mode == "tree-hashed") {
-    char own[64];
-    std::snprintf(own, sizeof own, "own %d, %.0f%% at log2 N+", span.top, 100.0 * ownCellsWithRepeatedLobes(dict, p, span.top));
-    level = own;
+  if (mode == "tree") {
+    const int own = kernel::glintTreeOwnLevel(dict, p.logDensity);
+    if (own < span.top) {
+      std::fprintf(stderr, "glint_lod_oracle: the tree's own level %d is below the sequence's coarsest, %d\n", own, span.top);
+      std::exit(1);
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "own %d, %.0f%% above N lobes", own, 100.0 * ownCellsWithRepeatedLobes(dict, p, own));
+    level = text;
   }
   std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f | %.3f | %.3f, %.2f |\n",
               setup.name, seed, mode.c_str(), level.c_str(), overlap / energy, referenceOverlap / referenceEnergy,
@@ -538,13 +387,12 @@ void measure(kernel::GlintDictionaryView dict, const TreeDictionary& tree, const
 
 }  // namespace
 
-// Usage: glint_lod_oracle [--check] [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
-// paper consistent oracle tree tree-hashed). Two pattern seeds of a dense layer (about 180 microfacets a pixel
+// Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
+// paper consistent oracle tree). Two pattern seeds of a dense layer (about 180 microfacets a pixel
 // at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
 // on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
   std::vector<std::string> modes;
-  bool check = false;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--reference-samples") {
@@ -553,8 +401,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "glint_lod_oracle: --reference-samples takes 1 to 64 (samples across a pixel)\n");
         return 1;
       }
-    } else if (arg == "--check") {
-      check = true;
     } else if (arg == "--figure") {
       if (a + 1 >= argc) {
         std::fprintf(stderr, "glint_lod_oracle: --figure takes a PNG path\n");
@@ -565,25 +411,22 @@ int main(int argc, char** argv) {
       modes.push_back(arg);
     }
   }
-  if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree", "tree-hashed"};
+  if (modes.empty()) modes = {"paper", "consistent", "oracle", "tree"};
   for (const std::string& mode : modes) {
-    if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree" && mode != "tree-hashed") {
-      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle, tree or tree-hashed)\n",
-                   mode.c_str());
+    if (mode != "paper" && mode != "consistent" && mode != "oracle" && mode != "tree") {
+      std::fprintf(stderr, "glint_lod_oracle: unknown mode '%s' (paper, consistent, oracle or tree)\n", mode.c_str());
       return 1;
     }
   }
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
-  const TreeDictionary tree = treeDictionary(dict);
-  if (check) return checkTree(tree);
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
   std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
     for (unsigned seed : {0u, 1u}) {
-      for (const std::string& mode : modes) measure(dict, tree, setup, mode, seed);
+      for (const std::string& mode : modes) measure(dict, setup, mode, seed);
     }
   }
   if (figurePath && figure) {

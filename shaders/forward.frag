@@ -30,9 +30,10 @@
 #define GLINT_MASKING 0
 #endif
 // The glint layer's LOD construction (glint_brdf.h, glintLodCell), compiled in likewise: the
-// paper's unless the host defines GLINT_CONSISTENT_LOD 1.
-#ifndef GLINT_CONSISTENT_LOD
-#define GLINT_CONSISTENT_LOD 0
+// paper's unless the host defines GLINT_LOD_CONSTRUCTION as another (GLINT_LOD_CONSISTENT 1,
+// GLINT_LOD_TREE 2).
+#ifndef GLINT_LOD_CONSTRUCTION
+#define GLINT_LOD_CONSTRUCTION 0
 #endif
 #include "glint_brdf.h"
 #include "glint_material_block.glsl"
@@ -186,7 +187,7 @@ void main() {
   material.ndf = GLINT_NDF;
   material.masking = GLINT_MASKING;
   material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
-  material.lod = GLINT_CONSISTENT_LOD != 0 ? GLINT_LOD_CONSISTENT : GLINT_LOD_PAPER;
+  material.lod = GLINT_LOD_CONSTRUCTION;
   GlintFootprintPolicy footprintPolicy;
   footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
   footprintPolicy.maxCells = uGlintFootprintPolicy.y;

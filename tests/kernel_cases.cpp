@@ -91,7 +91,7 @@ std::vector<KernelCase> randomKernelCases(int count) {
   // the targets existed.
   Pcg32 targets(4242, 10);
   Pcg32 policies(4242, 11);  // the footprint policies, a stream of their own for the same reason
-  Pcg32 lods(4242, 12);      // the LOD constructions, likewise: half the cases each
+  Pcg32 lods(4242, 12);      // the LOD constructions, likewise: a third of the cases each
   std::vector<KernelCase> cases;
   for (int i = 0; i < count; ++i) {
     KernelCase c;
@@ -105,7 +105,7 @@ std::vector<KernelCase> randomKernelCases(int count) {
     c.parameters.masking = static_cast<int>(targets.nextBelow(2));
     c.parameters.multipleScattering = targets.nextBelow(2) == 0;
     c.parameters.footprintPolicy = randomFootprintPolicy(policies);
-    c.parameters.lod = static_cast<int>(lods.nextBelow(2));
+    c.parameters.lod = static_cast<int>(lods.nextBelow(3));
     c.footprint = randomFootprint(rng, 1e-5f, 3e-2f);
     c.footprint.uv = c.footprint.uv * 3.0f - 1.0f;  // negative and beyond one period too
     c.wo = directionAt(uniform(rng, 0.0f, 1.55f), uniform(rng, 0.0f, 6.2832f));

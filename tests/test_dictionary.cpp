@@ -1,5 +1,6 @@
 // The dictionary: the paper's properties (normalisation, limit, nesting), our stratification,
 // determinism, the file format and its failure modes, and the authors' EXR dictionary.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -139,14 +140,105 @@ TEST(Dictionary, TexelConventionAndInterpolation) {
   EXPECT_EQ(d.marginal(7, 3, d.parameters().slopeDomain()), 0.0f);
 }
 
+// The tree levels that the tree LOD construction reads (kernel glintTreeTableLevel, method.md 2.8).
+// Each level's partners are a permutation, for any N: every distribution of the level below is
+// some distribution's partner once; and tree level k of i holds level 0's distributions i to
+// i + 2^k - 1 (mod N), each once while 2^k <= N and each floor(2^k / N) or one more times beyond
+// (followed down the partners, as the tables are built).
+TEST(Dictionary, TreePartnersArePermutationsAndLevelsAreWindows) {
+  for (int n : {1, 2, 3, 7, 64, 192, 1000, 3001, 4096}) {
+    kernel::GlintDictionaryView dict{};
+    dict.numDistributions = n;
+    for (int k = 1; k < 16; ++k) {
+      std::vector<int> seen(static_cast<std::size_t>(n), 0);
+      for (int i = 0; i < n; ++i) {
+        const int partner = kernel::glintTreePartner(dict, k, i);
+        ASSERT_TRUE(partner >= 0 && partner < n) << n << " " << k << " " << i;
+        ++seen[static_cast<std::size_t>(partner)];
+      }
+      EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), n) << "N " << n << " level " << k;
+    }
+    for (int k : {0, 3, 7, 8, 12, 15}) {
+      for (int i : {0, n / 2, n - 1}) {
+        // The level-0 distributions under (k, i), with multiplicity: the partners' tree, leaf by leaf.
+        std::vector<int> count(static_cast<std::size_t>(n), 0);
+        std::vector<std::pair<int, int>> stack{{k, i}};
+        while (!stack.empty()) {
+          const auto [level, distribution] = stack.back();
+          stack.pop_back();
+          if (level == 0) {
+            ++count[static_cast<std::size_t>(distribution)];
+            continue;
+          }
+          stack.push_back({level - 1, distribution});
+          stack.push_back({level - 1, kernel::glintTreePartner(dict, level, distribution)});
+        }
+        const long long lobes = 1LL << k;
+        for (int m = 0; m < n; ++m) {
+          const long long offset = ((m - i) % n + n) % n;  // m's place in the window from i
+          const long long expected = lobes / n + (offset < lobes % n ? 1 : 0);
+          ASSERT_EQ(count[static_cast<std::size_t>(m)], expected) << "N " << n << " level " << k << " i " << i << " m " << m;
+        }
+      }
+    }
+  }
+}
+
+// Tree level k of i is the mean of tree level k - 1 of i and of its partner, to the binary16
+// rounding of the stored table (half an ulp, at most 2^-11 of the value); so every tree level's mean
+// marginal over the distributions is level 0's, within that rounding accumulated over the levels
+// (2^-11 a level, of the largest texel); and every table integrates to the mean of its halves'
+// integrals within that rounding (2^-11), so to 1 within 1e-3 (level 0's are within 2e-4).
+TEST(Dictionary, TreeLevelsAreMeansOfPairsWithLevelZerosMean) {
+  const Dictionary& d = defaultDictionary();
+  const kernel::GlintDictionaryView dict = d.view();
+  const int n = dict.numDistributions, r = dict.texelsPerDistribution;
+  ASSERT_EQ(d.numTables(), 2 * dict.numLevels - 1);
+  ASSERT_EQ(d.texels().size(), static_cast<std::size_t>(d.numTables()) * n * r);
+  std::vector<double> levelZeroMean(static_cast<std::size_t>(r), 0.0);
+  double largest = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int t = 0; t < r; ++t) {
+      levelZeroMean[static_cast<std::size_t>(t)] += d.texel(0, i, t) / n;
+      largest = std::max(largest, static_cast<double>(d.texel(0, i, t)));
+    }
+  }
+  const double spacing = d.parameters().texelSpacing();
+  const auto integral = [&](int table, int i) {
+    double sum = 0.0;
+    for (int t = 0; t < r; ++t) sum += (t == 0 ? 1.0 : 2.0) * d.texel(table, i, t) * spacing;
+    return sum;
+  };
+  for (int k = 1; k < dict.numLevels; ++k) {
+    const int table = kernel::glintTreeTableLevel(dict, k), below = kernel::glintTreeTableLevel(dict, k - 1);
+    ASSERT_EQ(table, dict.numLevels - 1 + k);
+    std::vector<double> mean(static_cast<std::size_t>(r), 0.0);
+    for (int i = 0; i < n; ++i) {
+      const int partner = kernel::glintTreePartner(dict, k, i);
+      for (int t = 0; t < r; ++t) {
+        const double expected = 0.5 * (d.texel(below, i, t) + d.texel(below, partner, t));
+        ASSERT_NEAR(d.texel(table, i, t), expected, std::ldexp(expected, -11) + 1e-7) << k << " " << i << " " << t;
+        mean[static_cast<std::size_t>(t)] += d.texel(table, i, t) / n;
+      }
+      const double halves = 0.5 * (integral(below, i) + integral(below, partner));
+      ASSERT_NEAR(integral(table, i), halves, std::ldexp(halves, -11)) << "tree level " << k << " distribution " << i;
+      ASSERT_NEAR(integral(table, i), 1.0, 1e-3) << "tree level " << k << " distribution " << i;
+    }
+    for (int t = 0; t < r; ++t) {
+      ASSERT_NEAR(mean[static_cast<std::size_t>(t)], levelZeroMean[static_cast<std::size_t>(t)], k * std::ldexp(largest, -11))
+          << "tree level " << k << " texel " << t;
+    }
+  }
+}
+
 // The GPU's pair buffer: texel k of a distribution is (p[k], p[k+1]), the last one (p[R - 1], 0),
 // the texels of the right level and distribution, as texel() reads them.
 TEST(Dictionary, TexelPairsHoldEachTexelAndItsNeighbour) {
   const Dictionary& d = defaultDictionary();
   const DictionaryParameters& p = d.parameters();
   const std::vector<std::uint16_t> pairs = d.halfTexelPairs();
-  ASSERT_EQ(pairs.size(), 2u * static_cast<std::size_t>(p.numLevels * p.numDistributions * p.texelsPerDistribution));
-  for (int level : {0, 7, p.numLevels - 1}) {
+  ASSERT_EQ(pairs.size(), 2u * static_cast<std::size_t>(d.numTables() * p.numDistributions * p.texelsPerDistribution));
+  for (int level : {0, 7, p.numLevels - 1, p.numLevels, d.numTables() - 1}) {  // the tree levels too
     for (int distribution : {0, 3, p.numDistributions - 1}) {
       for (int k = 0; k < p.texelsPerDistribution; ++k) {
         const std::size_t texel = static_cast<std::size_t>((level * p.numDistributions + distribution) * p.texelsPerDistribution + k);

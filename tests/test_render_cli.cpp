@@ -296,6 +296,8 @@ TEST(ExportCli, ErrorsGiveOneLineAndNoFile) {
   expectExportFails("sphere", "sphere.obj", "sphere.obj: a glTF file must end in .glb or .gltf");
   expectExportFails("sphere --glint-material Nope", "sphere.glb", "no material 'Nope'");
   expectExportFails("sphere --relative-area 2", "sphere.glb", "relative_area");
+  // The tree LOD construction is glint's own option, which EXT_materials_glint cannot carry.
+  expectExportFails("sphere --lod tree", "sphere.glb", "lod \"tree\" is glint's own option, not EXT_materials_glint's");
   std::filesystem::create_directory(folder / "taken.glb");  // a folder where the file would go
   expectOneLineError(runGlint(folder, "export sphere -o taken.glb"), "taken.glb: cannot write");
   EXPECT_TRUE(std::filesystem::is_empty(folder / "taken.glb"));
@@ -419,7 +421,7 @@ TEST(RenderCli, BrokenScenesGiveOneLineErrorsAndNoImage) {
   expectRenderFails(folder, "sphere --size 0x10", "--size");
   expectRenderFails(folder, "sphere --log-density nan", "log_density");
   expectRenderFails(folder, "sphere --relative-area 2", "relative_area");
-  expectRenderFails(folder, "sphere --lod fast", "--lod must be \"paper\" or \"consistent\", got \"fast\"");
+  expectRenderFails(folder, "sphere --lod fast", "--lod must be \"paper\", \"consistent\" or \"tree\", got \"fast\"");
   expectRenderFails(folder, "sphere --dict missing.gdict", "missing.gdict: cannot open");
   expectRenderFails(folder, "sphere --shadows maybe", "--shadows must be on or off, got 'maybe'");
   expectRenderFails(folder, "sphere --shadow-cascades 0", "--shadow-cascades must be from 1 to 4, got 0");

@@ -560,22 +560,33 @@ std::vector<SamplingCase> chiSquareCases() {
   // The consistent LOD construction: the sampler draws a block's complement marginal
   // (sampleDictionaryMarginal) and the parent's rotation, as the P-SDF reads them. Sparse (dictionary
   // levels near 0 and 1, where own cells at level 0 have no blocks), moderate, dense, GGX, masked
-  // cells, a footprint policy, the dielectric.
-  struct Consistent {
+  // cells, a footprint policy, the dielectric. The tree LOD construction: the sampler draws the tree
+  // table and the distributions that the cell's descent from its own cell chose, with the own cell's
+  // rotation (method.md 2.8). At log density 15 and 21 the case footprint's levels (4 and 5) lie
+  // below the own level (10 and 6), so its cells are blocks; at 32 the own level is 0 and every cell
+  // is own.
+  struct Construction {
     const char* name;
     SamplingCase::Kind kind;
     float alpha, logDensity, theta, relativeArea;
     int ndf;
     const char* policy;
+    int lod;
   };
-  for (const Consistent& q : {
-           Consistent{"Mixture_consistent_alpha0p25_density15_theta45", SamplingCase::Kind::Glint, 0.25f, 15.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
-           Consistent{"Mixture_consistent_alpha0p1_density21_theta5", SamplingCase::Kind::Glint, 0.1f, 21.0f, 5.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
-           Consistent{"Mixture_consistent_alpha0p6_density32_theta75", SamplingCase::Kind::Glint, 0.6f, 32.0f, 75.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
-           Consistent{"Mixture_consistent_ggx_alpha0p25_density21_theta45", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_GGX, ""},
-           Consistent{"Mixture_consistent_relativeArea0p5", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 0.5f, kernel::GLINT_NDF_BECKMANN, ""},
-           Consistent{"Mixture_consistent_cells12_alpha0p25_density21_theta30", SamplingCase::Kind::Glint, 0.25f, 21.0f, 30.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "cells=12"},
-           Consistent{"Dielectric_consistent_alpha0p25_outside45", SamplingCase::Kind::Dielectric, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, ""},
+  constexpr int kConsistent = kernel::GLINT_LOD_CONSISTENT, kTree = kernel::GLINT_LOD_TREE;
+  for (const Construction& q : {
+           Construction{"Mixture_consistent_alpha0p25_density15_theta45", SamplingCase::Kind::Glint, 0.25f, 15.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kConsistent},
+           Construction{"Mixture_consistent_alpha0p1_density21_theta5", SamplingCase::Kind::Glint, 0.1f, 21.0f, 5.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kConsistent},
+           Construction{"Mixture_consistent_alpha0p6_density32_theta75", SamplingCase::Kind::Glint, 0.6f, 32.0f, 75.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kConsistent},
+           Construction{"Mixture_consistent_ggx_alpha0p25_density21_theta45", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_GGX, "", kConsistent},
+           Construction{"Mixture_consistent_relativeArea0p5", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 0.5f, kernel::GLINT_NDF_BECKMANN, "", kConsistent},
+           Construction{"Mixture_consistent_cells12_alpha0p25_density21_theta30", SamplingCase::Kind::Glint, 0.25f, 21.0f, 30.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "cells=12", kConsistent},
+           Construction{"Dielectric_consistent_alpha0p25_outside45", SamplingCase::Kind::Dielectric, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kConsistent},
+           Construction{"Mixture_tree_alpha0p25_density15_theta45", SamplingCase::Kind::Glint, 0.25f, 15.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
+           Construction{"Mixture_tree_alpha0p1_density21_theta5", SamplingCase::Kind::Glint, 0.1f, 21.0f, 5.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
+           Construction{"Mixture_tree_alpha0p6_density32_theta75", SamplingCase::Kind::Glint, 0.6f, 32.0f, 75.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
+           Construction{"Mixture_tree_ggx_alpha0p25_density21_theta45", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_GGX, "", kTree},
+           Construction{"Dielectric_tree_alpha0p25_outside45", SamplingCase::Kind::Dielectric, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
        }) {
     SamplingCase c;
     c.name = q.name;
@@ -586,7 +597,7 @@ std::vector<SamplingCase> chiSquareCases() {
     c.relativeArea = q.relativeArea;
     c.ndf = q.ndf;
     if (*q.policy) c.footprintPolicy = footprintPolicyFromString(q.policy);
-    c.lod = kernel::GLINT_LOD_CONSISTENT;
+    c.lod = q.lod;
     cases.push_back(c);
   }
   return cases;

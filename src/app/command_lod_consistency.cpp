@@ -346,12 +346,12 @@ double alignment(const Dictionary& dictionary, GlintParameters params, int windo
     const int x0 = static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(across))) & ~(window - 1);
     const int y0 = static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(across))) & ~(window - 1);
     const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, params.logDensity, level);
-    const kernel::GlintLevelDraw parentDraw = kernel::glintNextLevelDraw(dict, params, params.logDensity, level, draw);
+    const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, params, params.logDensity, level, draw);
     glm::dvec2 resultant(0.0);
     int cells = 0;
     for (int y = y0; y < y0 + window; ++y) {
       for (int x = x0; x < x0 + window; ++x) {
-        const kernel::GlintCell cell = kernel::glintLodCell(dict, params, draw, parentDraw, x, y, level);
+        const kernel::GlintCell cell = kernel::glintLodCell(dict, params, draws, x, y, level);
         if (!cell.readsDictionary) continue;
         const glm::vec2 r = kernel::glintCellRotation(cell.hash);  // (cos t, sin t)
         resultant += glm::dvec2(r.x * r.x - r.y * r.y, 2.0 * r.x * r.y);  // (cos 2t, sin 2t)
@@ -402,7 +402,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   for (const std::string& lodMode : options.lodModes) {
     // Every glint layer takes the construction, the reference's frames too: each is measured
     // against the supersampled image of its own glints.
-    for (scene::Material& material : renderer.materials()) material.glint.lod = lodFromName("--lod", lodMode);
+    for (scene::Material& material : renderer.materials()) material.glint.lod = lodFromName("--lod", lodMode, true);
     Sequence mode, reference;
     for (int t = 0; t < options.frames; ++t) {
       frame.camera = dolly.views[static_cast<std::size_t>(t)].camera;
@@ -436,7 +436,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     const Figures f = measureMode(dolly, mode, reference, width, height, options.block);
     std::optional<GlintParameters> layer = firstGlintLayer(scene);
     if (!layer) throw Error("scene '" + scene.name + "' has no glint layer");
-    layer->lod = lodFromName("--lod", lodMode);
+    layer->lod = lodFromName("--lod", lodMode, true);
     entry["modes"][lodMode] = {{"alignment_2x2", alignment(dictionary, *layer, 2)},
                                {"alignment_4x4", alignment(dictionary, *layer, 4)},
                                {"persistence", f.persistence},
@@ -465,8 +465,8 @@ void runLodConsistency(LodConsistencyOptions options) {
     throw Error("--doublings is too large for a zoom");
   }
   gl::antiAliasingFromString(options.antiAliasing);  // throws naming the choices
-  if (options.lodModes.empty()) options.lodModes = {"paper", "consistent"};
-  for (const std::string& lodMode : options.lodModes) lodFromName("--lod", lodMode);  // throws naming the choices
+  if (options.lodModes.empty()) options.lodModes = {"paper", "consistent", "tree"};
+  for (const std::string& lodMode : options.lodModes) lodFromName("--lod", lodMode, true);  // throws naming the choices
   const std::vector<std::string> names = options.scenes.empty() ? kDefaultScenes : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
@@ -539,8 +539,8 @@ void registerLodConsistencyCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--aa", options->antiAliasing, "Anti-aliasing of the measured frames")->capture_default_str();
   command->add_option("--lod", options->lodModes,
-                      "LOD constructions to measure, each on the same frames (repeatable): paper, consistent "
-                      "(default: both)");
+                      "LOD constructions to measure, each on the same frames (repeatable): paper, consistent, "
+                      "tree (default: all three)");
   command->add_option("--camera", options->camera, "Camera preset the dolly starts around")->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
   command->add_option("--pattern-seed", options->patternSeed,

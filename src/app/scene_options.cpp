@@ -132,7 +132,7 @@ scene::Scene SceneOptions::loadScene() const {
     if (logDensity) m.glint.logDensity = *logDensity;
     if (relativeArea) m.glint.relativeArea = *relativeArea;
     if (patternSeed) m.glint.patternSeed = static_cast<std::uint32_t>(*patternSeed);
-    if (lod) m.glint.lod = lodFromName("--lod", *lod);
+    if (lod) m.glint.lod = lodFromName("--lod", *lod, true);
     try {
       scene::validateGlintLayer(m.glint, s.textures.size());
     } catch (const Error& e) {

@@ -216,9 +216,9 @@ struct ForwardVariant {
   // glintPixelFootprint), compiled in so that each policy pays for its own words only and exact for
   // none; their values come from uGlintFootprintPolicy.
   int footprintWords;
-  // GLINT_CONSISTENT_LOD: the material's glint layer takes the consistent LOD construction
-  // (kernel/glint_brdf.h, glintLodCell), compiled in so that the paper's pays nothing for it.
-  bool consistentLod;
+  // GLINT_LOD_CONSTRUCTION: the LOD construction of the material's glint layer (kernel/glint_brdf.h,
+  // glintLodCell), compiled in so that the paper's pays nothing for the others.
+  int lodConstruction;
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -246,7 +246,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"SHADOW_CASCADE_MARGIN", std::to_string(kCascadeMarginTexels)},
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
                         {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)},
-                        {"GLINT_CONSISTENT_LOD", variant.consistentLod ? "1" : "0"}});
+                        {"GLINT_LOD_CONSTRUCTION", std::to_string(variant.lodConstruction)}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -294,7 +294,7 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
                         model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
-                        model == BrdfModel::Glint && material.glint.lod == kernel::GLINT_LOD_CONSISTENT};
+                        model == BrdfModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER};
 }
 
 // The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),

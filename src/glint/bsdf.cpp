@@ -136,13 +136,17 @@ int maskingFromName(const std::string& field, const std::string& name) {
   throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
 }
 
-int lodFromName(const std::string& field, const std::string& name) {
+int lodFromName(const std::string& field, const std::string& name, bool withTree) {
   if (name == "paper") return kernel::GLINT_LOD_PAPER;
   if (name == "consistent") return kernel::GLINT_LOD_CONSISTENT;
-  throw Error(field + " must be \"paper\" or \"consistent\", got \"" + name + "\"");
+  if (withTree && name == "tree") return kernel::GLINT_LOD_TREE;
+  throw Error(field + (withTree ? " must be \"paper\", \"consistent\" or \"tree\"" : " must be \"paper\" or \"consistent\"") +
+              ", got \"" + name + "\"");
 }
 
-const char* lodName(int lod) { return lod == kernel::GLINT_LOD_CONSISTENT ? "consistent" : "paper"; }
+const char* lodName(int lod) {
+  return lod == kernel::GLINT_LOD_CONSISTENT ? "consistent" : lod == kernel::GLINT_LOD_TREE ? "tree" : "paper";
+}
 
 const char* ndfName(int ndf) { return ndf == kernel::GLINT_NDF_GGX ? "ggx" : "beckmann"; }
 const char* maskingName(int masking) { return masking == kernel::GLINT_MASKING_SMITH ? "smith" : "v-cavity"; }
@@ -182,8 +186,8 @@ void validateGlintParameters(const GlintParameters& p) {
   requireRange("density_randomisation", p.densityRandomisation, 0.0f, 10.0f);
   requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
   validateTarget(microfacetTarget(p));
-  if (p.lod != kernel::GLINT_LOD_PAPER && p.lod != kernel::GLINT_LOD_CONSISTENT) {
-    throw Error("lod must be paper (0) or consistent (1), got " + std::to_string(p.lod));
+  if (p.lod != kernel::GLINT_LOD_PAPER && p.lod != kernel::GLINT_LOD_CONSISTENT && p.lod != kernel::GLINT_LOD_TREE) {
+    throw Error("lod must be paper (0), consistent (1) or tree (2), got " + std::to_string(p.lod));
   }
   validateFootprintPolicy(p.footprintPolicy);
 }

@@ -120,7 +120,36 @@ Dictionary::Dictionary(const DictionaryParameters& parameters, std::span<const f
     values_[i] = halfToFloat(halves_[i]);
   }
   checkNormalised();
+  appendTreeLevels();
   buildMipChain();
+}
+
+// Tree level k >= 1 of distribution i is the mean of tree level k - 1 of i and of its partner
+// (kernel glintTreePartner; tree level 0 is level 0), stored after the L levels at table level
+// L - 1 + k (glintTreeTableLevel) and rounded to binary16 as the GPU holds them. Only the tree LOD
+// construction reads them (docs/method.md 2.8).
+void Dictionary::appendTreeLevels() {
+  const std::size_t n = static_cast<std::size_t>(parameters_.numDistributions);
+  const std::size_t r = static_cast<std::size_t>(parameters_.texelsPerDistribution);
+  const int levels = parameters_.numLevels;
+  const std::size_t tables = static_cast<std::size_t>(2 * levels - 1);
+  halves_.resize(tables * n * r);
+  values_.resize(tables * n * r);
+  const kernel::GlintDictionaryView dict = view();
+  for (int k = 1; k < levels; ++k) {
+    const std::size_t below = static_cast<std::size_t>(kernel::glintTreeTableLevel(dict, k - 1));
+    const std::size_t at = static_cast<std::size_t>(kernel::glintTreeTableLevel(dict, k));
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t partner = static_cast<std::size_t>(kernel::glintTreePartner(dict, k, static_cast<int>(i)));
+      const float* a = values_.data() + (below * n + i) * r;
+      const float* b = values_.data() + (below * n + partner) * r;
+      for (std::size_t t = 0; t < r; ++t) {
+        const std::size_t out = (at * n + i) * r + t;
+        halves_[out] = floatToHalf(0.5f * (a[t] + b[t]));
+        values_[out] = halfToFloat(halves_[out]);
+      }
+    }
+  }
 }
 
 // Every marginal is a density: under the texel convention (docs/dictionary.md) it integrates to
@@ -156,7 +185,7 @@ void Dictionary::buildMipChain() {
   const int texels = parameters_.texelsPerDistribution;
   numMips_ = 1 + std::countr_zero(static_cast<unsigned>(texels));
   mipRowLength_ = kernel::glintMipOffset(texels, numMips_);
-  const std::size_t rows = static_cast<std::size_t>(parameters_.numLevels) * parameters_.numDistributions;
+  const std::size_t rows = values_.size() / static_cast<std::size_t>(texels);  // the tree levels' too
   std::vector<std::vector<double>> mips(static_cast<std::size_t>(numMips_));
   filteredHalves_.assign(rows * static_cast<std::size_t>(mipRowLength_) * 4, 0);
   filteredValues_.assign(filteredHalves_.size(), 0.0f);
@@ -254,12 +283,13 @@ float Dictionary::marginal(int level, int distribution, float slope) const {
 }
 
 std::vector<std::byte> Dictionary::serialise() const {
-  const std::size_t payloadBytes = halves_.size() * 2;
+  const std::span<const std::uint16_t> levels = halfTexels();  // the tree levels are derived, not stored
+  const std::size_t payloadBytes = levels.size() * 2;
   std::vector<std::byte> bytes(kHeaderBytes + payloadBytes);
   std::byte* payload = bytes.data() + kHeaderBytes;
-  for (std::size_t i = 0; i < halves_.size(); ++i) {
-    payload[2 * i] = static_cast<std::byte>(halves_[i] & 0xFFu);
-    payload[2 * i + 1] = static_cast<std::byte>(halves_[i] >> 8);
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    payload[2 * i] = static_cast<std::byte>(levels[i] & 0xFFu);
+    payload[2 * i + 1] = static_cast<std::byte>(levels[i] >> 8);
   }
   std::byte* header = bytes.data();
   std::memcpy(header, kMagic, sizeof kMagic);

@@ -51,7 +51,15 @@ class Dictionary {
   // The marginal density at any slope, with the kernel's interpolation; 0 outside the domain.
   float marginal(int level, int distribution, float slope) const;
 
-  std::span<const std::uint16_t> halfTexels() const { return halves_; }  // for GPU upload
+  // The L levels' texels, as the file holds them (the tree levels after them are derived).
+  std::span<const std::uint16_t> halfTexels() const {
+    return std::span<const std::uint16_t>(halves_).first(static_cast<std::size_t>(parameters_.numLevels) *
+                                                         parameters_.numDistributions * parameters_.texelsPerDistribution);
+  }
+  // Every table the kernel reads: the L levels, then the L - 1 tree levels that the tree LOD
+  // construction reads (kernel glintTreeTableLevel, docs/method.md 2.8), built from level 0 at
+  // construction, rounded to binary16 like the rest. texel() and marginal() take table levels.
+  int numTables() const { return 2 * parameters_.numLevels - 1; }
   // The texels as the GPU's dictionary buffer holds them (glintDictionaryTexelPair in the shaders):
   // texel k of a distribution is the pair (p[k], p[k+1]), with p[R] = 0 (the marginal falls to 0 at
   // 4 sigma_d), so that an interpolation costs one fetch instead of two; two binary16 values a texel.
@@ -85,6 +93,7 @@ class Dictionary {
   std::vector<float> filteredValues_;  // filteredHalves_ converted back
 
   void checkNormalised() const;
+  void appendTreeLevels();
   void buildMipChain();
 };
 

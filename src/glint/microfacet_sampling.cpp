@@ -171,14 +171,14 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, cons
   // The cell's random properties, drawn by the kernel exactly as the P-SDF draws them (a block of
   // its parent's under the consistent LOD construction).
   const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, footprint.logDensity, level);
-  const kernel::GlintLevelDraw parentDraw = kernel::glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
-  const kernel::GlintCell drawn = kernel::glintLodCell(dict, params, draw, parentDraw, cell.x, cell.y, level);
+  const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, params, footprint.logDensity, level, draw);
+  const kernel::GlintCell drawn = kernel::glintLodCell(dict, params, draws, cell.x, cell.y, level);
   if (drawn.smoothLimit) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
   if (drawn.ggxTail) return sampleGgxTailSlope(params.alpha, params.rho, u);
   if (!drawn.readsDictionary) return std::nullopt;
   const glm::uvec4 hash = drawn.hash;
   const int dictLevel = drawn.dictionaryLevel;
-  const glm::ivec2 distributions = kernel::glintCellDistributions(dict, hash);
+  const glm::ivec2 distributions = drawn.distributions;
   // Tensor product: x' and y' independent, each from its marginal (method.md 2.5).
   const float x = sampleDictionaryMarginal(dict, dictLevel, distributions.x, drawn.complement.x, u.x);
   const float y = sampleDictionaryMarginal(dict, dictLevel, distributions.y, drawn.complement.y, u.y);

@@ -60,13 +60,13 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
   int level = glintLodLevel(footprint);
   GlintCellGrid grid = glintCellGrid(footprint, glintWrapUv(uv, dict.numLevels), dict.numLevels, level);
   GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
-  GlintLevelDraw parentDraw = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
+  GlintLodDraws draws = glintLodDraws(dict, params, footprint.logDensity, level, draw);
   GlintCellWalk walk = glintWalkStart(grid);
   float weights = 0.0f;
   while (glintWalkGoing(grid, walk)) {
     ivec2 index = glintCellAt(grid, walk.s, walk.t);
     float weight = glintWalkWeight(grid, walk);
-    GlintCell cell = glintLodCell(dict, params, draw, parentDraw, index.x, index.y, level);
+    GlintCell cell = glintLodCell(dict, params, draws, index.x, index.y, level);
     weights += cell.readsDictionary ? weight * glintCellRotation(cell.hash).x * float(1 + cell.complement.x) : weight;
     walk = glintWalkStep(grid, walk);
   }

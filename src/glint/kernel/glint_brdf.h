@@ -37,19 +37,24 @@ struct GlintFootprintPolicy {
 // How the cells of neighbouring levels of detail relate (method.md 2.7): GLINT_LOD_PAPER, each cell
 // draws its own glints (the 2020 model; a cell shares its first child's draws through the coherent
 // index only); GLINT_LOD_CONSISTENT, a cell's four children share out its lobes, so that its P-SDF
-// is the mean of theirs wherever the nested dictionary can split it.
+// is the mean of theirs wherever the nested dictionary can split it; GLINT_LOD_TREE, every cell
+// below a level set by the density is the mean of its four children, read from the dictionary's
+// tree levels (method.md 2.8).
 GLINT_CONST int GLINT_LOD_PAPER = 0;
 GLINT_CONST int GLINT_LOD_CONSISTENT = 1;
+GLINT_CONST int GLINT_LOD_TREE = 2;
 
-// Whether the consistent construction is compiled in. A GLSL program is compiled for the
-// constructions its materials use (GLINT_CONSISTENT_LOD 0: the paper's only, which then pays
-// nothing for the other, as llvmpipe runs both sides of a branch; 1: the material's `lod` chooses);
-// C++ and programs that leave it undefined compile both, and the paper's values are the same bit
-// for bit either way.
-#if defined(__cplusplus) || !defined(GLINT_CONSISTENT_LOD)
+// Which constructions are compiled in. A GLSL program is compiled for the construction its
+// material uses (GLINT_LOD_CONSTRUCTION 0, the paper's, pays nothing for the others, as llvmpipe
+// runs both sides of a branch; 1 or 2 compiles that one in beside it, and the material's `lod`
+// chooses); C++ and programs that leave it undefined compile all, and the paper's values are the
+// same bit for bit either way.
+#if defined(__cplusplus) || !defined(GLINT_LOD_CONSTRUCTION)
 #define GLINT_CONSISTENT_LOD_COMPILED 1
+#define GLINT_TREE_LOD_COMPILED 1
 #else
-#define GLINT_CONSISTENT_LOD_COMPILED GLINT_CONSISTENT_LOD
+#define GLINT_CONSISTENT_LOD_COMPILED (GLINT_LOD_CONSTRUCTION == 1)
+#define GLINT_TREE_LOD_COMPILED (GLINT_LOD_CONSTRUCTION == 2)
 #endif
 
 // The material inputs of the model (method.md section 2), validated by the host.
@@ -64,7 +69,7 @@ struct GlintParameters {
   bool colouredCells;          // each cell reflects a random colour (car paint's coloured flakes)
   int ndf;                     // the smooth target: GLINT_NDF_BECKMANN (the paper's) or GLINT_NDF_GGX (microfacet_targets.h)
   int masking;                 // GLINT_MASKING_VCAVITY (the paper's) or GLINT_MASKING_SMITH
-  int lod;                     // GLINT_LOD_PAPER or GLINT_LOD_CONSISTENT (method.md 2.7)
+  int lod;                     // GLINT_LOD_PAPER, GLINT_LOD_CONSISTENT or GLINT_LOD_TREE (method.md 2.7, 2.8)
   // Adds the smooth target's multiple-scattering compensation lobe (multiple_scattering.h); the
   // BRDF's users add it (the host's BSDFs, the renderer), the P-SDF does not see it.
   bool multipleScattering;
@@ -337,10 +342,13 @@ struct GlintCell {
   bool readsDictionary;
   bool smoothLimit;
   bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
-  int dictionaryLevel;  // when it reads the dictionary
+  int dictionaryLevel;  // when it reads the dictionary: the level of the tables it reads (glintTreeTableLevel)
+  // Its two distributions (i, j): glintCellDistributions of its hash, but under the tree LOD
+  // construction those its descent from its own cell chose (glintLodCell).
+  ivec2 distributions;
   // Consistent LOD (glintLodCell): 1 on an axis whose marginal is the lobes that dictionary level
   // dictionaryLevel + 1 adds to level dictionaryLevel (glintBlockMarginal), 0 where it is the level
-  // itself. Always 0 under GLINT_LOD_PAPER.
+  // itself. Always 0 under GLINT_LOD_PAPER and GLINT_LOD_TREE.
   ivec2 complement;
   // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
   // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
@@ -356,6 +364,7 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   cell.smoothLimit = false;
   cell.ggxTail = false;
   cell.dictionaryLevel = 0;
+  cell.distributions = glintCellDistributions(dict, cell.hash);
   cell.complement = ivec2(0, 0);
   cell.scalePrecision = 1.0f;
   cell.unscale = 1.0f;
@@ -402,20 +411,152 @@ GLINT_FN bool glintCellIsBlock(int cellX, int cellY, int level, int numLevels) {
   return level < numLevels - 1 && notFirstChild && parentOwn;
 }
 
-// The cell (cellX, cellY) of `level` under the material's LOD construction; parentDraw is the level
-// draw of level + 1 (glintNextLevelDraw), read only by the consistent construction. A block takes
-// its parent's draws (relative area, dictionary level, distributions, rotation, GGX scale, colour),
-// one dictionary level lower, with the complement on each axis where its position in the parent
-// is odd; so the mean of the four children's P22 is the parent's, to float rounding. A parent
-// without microfacets or in the GGX tail gives its children its own (empty or smooth) P22, the same
-// mean. A parent at dictionary level 0 (one lobe) or in the smooth limit (level L) has no blocks:
-// its children draw their own, as in the paper.
-GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw draw,
-                                GlintLevelDraw parentDraw, int cellX, int cellY, int level) {
-  GlintCell cell = glintCell(dict, params, draw, cellX, cellY, level);
+// Tree LOD (method.md 2.8). The dictionary's tree levels: tree level 0 is dictionary level 0; tree
+// level k >= 1 of distribution i, stored after the L levels (table level L - 1 + k), is the mean of
+// tree level k - 1 of i and of its partner glintTreePartner(k, i). The host builds them from level 0
+// (glint::Dictionary), so that tree level k of i holds the single lobes of level 0's distributions
+// i, i + 1, ..., i + 2^k - 1 (mod N): distinct while 2^k <= N, and beyond, each of the N as often
+// as the others within one.
+GLINT_FN int glintTreeTableLevel(GlintDictionaryView dict, int treeLevel) {
+  return treeLevel == 0 ? 0 : dict.numLevels - 1 + treeLevel;
+}
+
+// The partner of distribution i at tree level k >= 1: i + 2^(k - 1) (mod N), the window of the level
+// below that follows i's. Each level's pairing is a permutation, so every distribution of the level
+// below is some distribution's partner exactly once and every tree level's mean marginal is level
+// 0's, whose lobes stratify the target (partners drawn at random would weigh some lobes three times
+// and others not at all, and the levels' means would drift from the target). Level 0's lobes are
+// dealt to the distributions at random (dictionary_generator.cpp), so a window of them is a random
+// draw without repetition. Where N divides 2^(k - 1) the partner is i itself: the level
+// below already holds every distribution equally often.
+// In float, without integer division, which llvmpipe does one lane at a time: every value is an
+// integer below 2^24, so exact, and the quotient's rounding is undone by the correction.
+GLINT_FN int glintTreePartner(GlintDictionaryView dict, int treeLevel, int distribution) {
+  float n = float(dict.numDistributions);
+  float shift = exp2(float(treeLevel - 1));
+  shift -= n * floor(shift / n);
+  shift += shift < 0.0f ? n : (shift >= n ? -n : 0.0f);
+  float partner = float(distribution) + shift;
+  return int(partner >= n ? partner - n : partner);
+}
+
+// The footprint level of the tree's own cells: the level at which a cell's dictionary level,
+// round(log4(n)), n = e^D 4^(level - (L - 1)) (glintLevelThreshold), is expected to be
+// floor(log2 N) - 1, so that an own cell's marginals (2^k of level 0's N lobes) rarely repeat a
+// lobe, and a subtree that shares its own cell's rotation holds about N^2 / 4 microfacets.
+GLINT_FN int glintTreeOwnLevel(GlintDictionaryView dict, float logDensity) {
+  float ownDictionaryLevel = floor(log2(float(dict.numDistributions))) - 1.0f;
+  float level = floor(ownDictionaryLevel + float(dict.numLevels - 1) - logDensity * GLINT_INV_LN4 + 0.5f);
+  return int(clamp(level, 0.0f, float(dict.numLevels - 1)));
+}
+
+// The level draws a footprint level's cells need under the material's LOD construction.
+struct GlintLodDraws {
+  GlintLevelDraw draw;     // the footprint level's own (glintLevelDraw)
+  GlintLevelDraw related;  // consistent: the parent level's; tree: the own level's; paper: unused
+  int relatedLevel;        // the level `related` draws for
+};
+
+GLINT_FN GlintLodDraws glintLodDraws(GlintDictionaryView dict, GlintParameters params, float logDensity, int level,
+                                     GlintLevelDraw draw) {
+  GlintLodDraws draws;
+  draws.draw = draw;
+  draws.related = draw;
+  draws.relatedLevel = level;
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (params.lod == GLINT_LOD_CONSISTENT) {
+    draws.related = glintNextLevelDraw(dict, params, logDensity, level, draw);
+    draws.relatedLevel = level + 1;
+  }
+#endif
+#if GLINT_TREE_LOD_COMPILED
+  if (params.lod == GLINT_LOD_TREE) {
+    draws.relatedLevel = glintTreeOwnLevel(dict, logDensity);
+    // The own level's thresholds, one level at a time: one glintNormalCdf a level instead of L
+    // (glintNextLevelDraw is glintLevelDraw of the next level bit for bit).
+    for (int k = level; k < draws.relatedLevel; ++k) {
+      draws.related = glintNextLevelDraw(dict, params, logDensity, k, draws.related);
+    }
+  }
+#endif
+  return draws;
+}
+
+// Tree LOD: the cell (cellX, cellY) of `level`, below the own level, is a block of its parent, down
+// from its ancestor at the own level: that own cell's draws (microfacets, rotation, GGX scale,
+// colour) with, at each step down, one tree level less and on each axis the distribution or its
+// partner as the child's position in its parent says, so that every cell is the mean of its four
+// children. Which child takes which block is one of the 2 x 2 square's eight symmetries, hashed from
+// the parent: with the position alone a column of cells would share its x marginal all the way
+// down and the glints would line up in rows and columns. Below tree level 0 a child keeps its
+// parent's single lobe; an own cell without microfacets, in the smooth limit or in the GGX tail
+// gives its whole subtree its own P22.
+GLINT_FN GlintCell glintTreeBlockCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw ownDraw,
+                                      int ownLevel, int cellX, int cellY, int level) {
+  int depth = ownLevel - level;
+  GlintCell cell = glintCell(dict, params, ownDraw, cellX >> depth, cellY >> depth, ownLevel);
+  if (cell.readsDictionary) {
+    int treeLevel = cell.dictionaryLevel;
+    ivec2 distributions = cell.distributions;
+    for (int step = depth - 1; step >= 0; --step) {
+      if (treeLevel >= 1) {
+        // The parent at this step by its coherent index (so that the symmetry repeats with the
+        // pattern's period), one 32-bit word, collision-free (glintCellHash), hashed with a mask
+        // of the pattern seed and its level (a parent and its first child share the index).
+        int parentLevel = level + step + 1;
+        uint s = (uint(cellX >> (step + 1)) << uint(parentLevel)) & GLINT_CELL_INDEX_MASK;
+        uint t = (uint(cellY >> (step + 1)) << uint(parentLevel)) & GLINT_CELL_INDEX_MASK;
+        uint h = glintPcg((s | (t << 16u)) ^ glintPcg(params.patternSeed + uint(parentLevel) * 2654435769u));
+        int childX = (cellX >> step) & 1;
+        int childY = (cellY >> step) & 1;
+        bool swapAxes = (h & 4u) != 0u;
+        int blockX = (swapAxes ? childY : childX) ^ int(h & 1u);
+        int blockY = (swapAxes ? childX : childY) ^ int((h >> 1u) & 1u);
+        if (blockX != 0) {
+          distributions.x = glintTreePartner(dict, treeLevel, distributions.x);
+        }
+        if (blockY != 0) {
+          distributions.y = glintTreePartner(dict, treeLevel, distributions.y);
+        }
+        treeLevel -= 1;
+      }
+    }
+    cell.distributions = distributions;
+    cell.dictionaryLevel = glintTreeTableLevel(dict, treeLevel);
+  }
+  return cell;
+}
+
+// The cell (cellX, cellY) of `level` under the material's LOD construction, with the level draws
+// of glintLodDraws. Consistent: a block takes its parent's draws (relative area, dictionary level,
+// distributions, rotation, GGX scale, colour), one dictionary level lower, with the complement on
+// each axis where its position in the parent is odd; so the mean of the four children's P22 is the
+// parent's, to float rounding. A parent without microfacets or in the GGX tail gives its children
+// its own (empty or smooth) P22, the same mean. A parent at dictionary level 0 (one lobe) or in the
+// smooth limit (level L) has no blocks: its children draw their own, as in the paper. Tree: below
+// the own level a block of its own ancestor (glintTreeBlockCell); at the own level, when there are
+// blocks below it, an own cell that reads the tree levels, so that it is the mean of its blocks;
+// above it, or at level 0, a cell of the paper's, reading the dictionary's own levels (whose
+// lobes stay distinct at every level: the tree's hold at most N, which would ripple the dense
+// layers' P-SDF about the smooth target).
+GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params, GlintLodDraws draws, int cellX,
+                                int cellY, int level) {
+#if GLINT_TREE_LOD_COMPILED
+  if (params.lod == GLINT_LOD_TREE) {
+    if (draws.relatedLevel > level) {
+      return glintTreeBlockCell(dict, params, draws.related, draws.relatedLevel, cellX, cellY, level);
+    }
+    GlintCell own = glintCell(dict, params, draws.draw, cellX, cellY, level);
+    if (own.readsDictionary && level == draws.relatedLevel && level > 0) {
+      own.dictionaryLevel = glintTreeTableLevel(dict, own.dictionaryLevel);
+    }
+    return own;
+  }
+#endif
+  GlintCell cell = glintCell(dict, params, draws.draw, cellX, cellY, level);
 #if GLINT_CONSISTENT_LOD_COMPILED
   if (params.lod == GLINT_LOD_CONSISTENT && glintCellIsBlock(cellX, cellY, level, dict.numLevels)) {
-    GlintCell parent = glintCell(dict, params, parentDraw, cellX >> 1, cellY >> 1, level + 1);
+    GlintCell parent = glintCell(dict, params, draws.related, cellX >> 1, cellY >> 1, level + 1);
     bool sameForEveryChild = !parent.readsDictionary && !parent.smoothLimit;  // empty, or the GGX tail
     if (sameForEveryChild) {
       cell = parent;
@@ -693,13 +834,8 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
-  // The draws of the parent level, for the consistent construction's blocks (glintLodCell).
-  GlintLevelDraw parentDraw = draw;
-#if GLINT_CONSISTENT_LOD_COMPILED
-  if (params.lod == GLINT_LOD_CONSISTENT) {
-    parentDraw = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
-  }
-#endif
+  // The draws of the parent or own level, for the consistent and tree constructions (glintLodCell).
+  GlintLodDraws draws = glintLodDraws(dict, params, footprint.logDensity, level, draw);
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
   float tailWeightSum = 0.0f;
@@ -717,12 +853,12 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     walk = glintWalkStep(grid, walk);
     if (weight > 0.0f) {
       weightSum += weight;
-      GlintCell cell = glintLodCell(dict, params, draw, parentDraw, index.x, index.y, level);
+      GlintCell cell = glintLodCell(dict, params, draws, index.x, index.y, level);
       smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
       tailWeightSum += cell.ggxTail ? weight : 0.0f;
       if (cell.readsDictionary && anyInSupport) {
         vec2 rotation = glintCellRotation(cell.hash);
-        ivec2 distributions = glintCellDistributions(dict, cell.hash);
+        ivec2 distributions = cell.distributions;
         vec2 chroma = params.colouredCells ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
         for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
           float p = 0.0f;

@@ -24,6 +24,14 @@ GLINT_FN uvec4 glintPcg4d(uvec4 v) {
   return v;
 }
 
+// The same paper's one-lane hash (their "pcg", PCG's RXS-M-XS output on one LCG step), a bijection
+// of uint: for a single word, where glintPcg4d's four lanes would cost four times as much.
+GLINT_FN uint glintPcg(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
 // A uniform float in (0, 1] from the top 24 bits k of a hash, identical on CPU and GPU:
 // (k + 1/2) / 2^24, which float rounds to a multiple of 2^-24 once k >= 2^23 (24-bit mantissa), so
 // the top value is exactly 1 (a 2^-24 chance, which every caller tolerates). Never 0: erfinv(2u - 1)

@@ -51,7 +51,7 @@ function kernelDefines(variant) {
     `#define GLINT_LAYER_MASKING ${variant.masking === 'v-cavity' ? 'GLINT_MASKING_VCAVITY' : 'GLINT_MASKING_SMITH'}`,
     `#define GLINT_LAYER_COLOURED_CELLS ${variant.colouredCells ? 1 : 0}`,
     `#define GLINT_LAYER_SMOOTH ${variant.smooth ? 1 : 0}`,
-    `#define GLINT_CONSISTENT_LOD ${variant.consistentLod ? 1 : 0}`,
+    `#define GLINT_LOD_CONSTRUCTION ${variant.consistentLod ? 1 : 0}`,
   ].join('\n');
 }
 
@@ -111,7 +111,7 @@ void glintBeginFragment() {
   material.masking = GLINT_LAYER_MASKING;
   material.colouredCells = uint(GLINT_LAYER_COLOURED_CELLS);
   material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
-  material.lod = GLINT_CONSISTENT_LOD != 0 ? GLINT_LOD_CONSISTENT : GLINT_LOD_PAPER;
+  material.lod = GLINT_LOD_CONSTRUCTION;
   GlintFootprintPolicy exact;  // the paper's footprint
   exact.maxAnisotropy = 0.0;
   exact.maxCells = 0.0;
