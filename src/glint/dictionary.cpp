@@ -132,7 +132,7 @@ void Dictionary::appendTreeLevels() {
   const std::size_t n = static_cast<std::size_t>(parameters_.numDistributions);
   const std::size_t r = static_cast<std::size_t>(parameters_.texelsPerDistribution);
   const int levels = parameters_.numLevels;
-  const std::size_t tables = static_cast<std::size_t>(2 * levels - 1);
+  const std::size_t tables = static_cast<std::size_t>(numTables());
   halves_.resize(tables * n * r);
   values_.resize(tables * n * r);
   const kernel::GlintDictionaryView dict = view();

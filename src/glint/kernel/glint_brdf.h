@@ -364,12 +364,13 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   cell.smoothLimit = false;
   cell.ggxTail = false;
   cell.dictionaryLevel = 0;
-  cell.distributions = glintCellDistributions(dict, cell.hash);
+  cell.distributions = ivec2(0, 0);
   cell.complement = ivec2(0, 0);
   cell.scalePrecision = 1.0f;
   cell.unscale = 1.0f;
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
+    cell.distributions = glintCellDistributions(dict, cell.hash);  // read only where it reads the dictionary
     // So many microfacets that the smooth limit holds: their colours average out to white too.
     cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
     cell.readsDictionary = !cell.smoothLimit;
