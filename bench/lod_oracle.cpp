@@ -51,16 +51,18 @@ int referenceSamples = 4;  // the reference's samples across a pixel (--referenc
 // --figure: one row a construction, of the dense layer's first seed (figureRow).
 std::optional<ImageRgbF> figure;
 const char* figurePath = nullptr;
+const char* directionsPath = nullptr;  // --directions (directionsFigure)
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
 
 double growth(int t) { return std::exp2(2.0 * (static_cast<double>(t) / (kFrames - 1) - 0.5)); }
 
-// One cell's P22 at the slope, as glintLevelP22 sums it.
-double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const kernel::GlintCell& cell) {
-  if (cell.smoothLimit) return kernel::glintTargetP22(p.ndf, kSlope, p.alpha, p.rho);
+// One cell's P22 at a slope (the sequence's, kSlope, unless said), as glintLevelP22 sums it.
+double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const kernel::GlintCell& cell,
+               glm::vec2 slope = kSlope) {
+  if (cell.smoothLimit) return kernel::glintTargetP22(p.ndf, slope, p.alpha, p.rho);
   if (!cell.readsDictionary) return 0.0;
-  const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, kSlope);
+  const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, slope);
   return static_cast<double>(kernel::glintCellMarginals(dict, cell.dictionaryLevel,
                                                         cell.distributions, cell.complement,
                                                         kernel::glintCellRotation(cell.hash), unscaled)) *
@@ -385,10 +387,95 @@ void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::st
   std::fflush(stdout);
 }
 
+// --directions: where the glints of one small area point. For a construction, the cells whose mean
+// P22 is an area's: the 4 x 4 cells two levels below the dense layer's own level
+// (glintTreeOwnLevel) that make up own cell `ownCell`. The paper's 16 are drawn independently (16
+// rotations); the tree's are blocks of their own cell, so their lobes lie on its one rotated grid;
+// the oracle's are the means of independent base cells two levels lower still, what consistent
+// levels without a shared rotation would give (so its list holds those 256 base cells).
+struct Area {
+  GlintParameters params;
+  std::vector<kernel::GlintCell> cells;
+};
+
+Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell) {
+  Area area{defaultGlintParameters(), {}};
+  area.params.logDensity = 14.4f;  // the dense layer's
+  const bool oracle = mode == "oracle";
+  area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode, true);
+  const int level = kernel::glintTreeOwnLevel(dict, area.params.logDensity) - 2;
+  const int cellLevel = oracle ? level - 2 : level;
+  const int side = 4 << (level - cellLevel);
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, area.params, area.params.logDensity, cellLevel);
+  const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, area.params, area.params.logDensity, cellLevel, draw);
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      area.cells.push_back(kernel::glintLodCell(dict, area.params, draws, ownCell.x * side + x, ownCell.y * side + y, cellLevel));
+    }
+  }
+  return area;
+}
+
+double areaP22(kernel::GlintDictionaryView dict, const Area& area, glm::vec2 slope) {
+  double sum = 0.0;
+  for (const kernel::GlintCell& cell : area.cells) sum += cellP22(dict, area.params, cell, slope);
+  return sum / static_cast<double>(area.cells.size());
+}
+
+// How unevenly an area glints over directions: the coefficient of variation of its P22 over the
+// slopes within one roughness of the normal (a 48 x 48 grid, the disc's), averaged over 16 own cells'
+// areas. Independent lobes spread evenly; lobes on one grid glint in rows and columns.
+double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode) {
+  double sum = 0.0;
+  for (int k = 0; k < 16; ++k) {
+    // Sixteen distinct own cells of the 32 x 32 at the dense layer's own level (11).
+    const Area area = areaCells(dict, mode, glm::ivec2((3 + 5 * k) % 32, (7 + 3 * k) % 32));
+    double mean = 0.0, square = 0.0;
+    int slopes = 0;
+    for (int j = 0; j < 48; ++j) {
+      for (int i = 0; i < 48; ++i) {
+        const glm::vec2 unit((i + 0.5f) / 24.0f - 1.0f, (j + 0.5f) / 24.0f - 1.0f);
+        if (glm::dot(unit, unit) > 1.0f) continue;
+        const double value = areaP22(dict, area, unit * area.params.alpha);
+        mean += value;
+        square += value * value;
+        ++slopes;
+      }
+    }
+    mean /= slopes;
+    sum += std::sqrt(std::max(0.0, square / slopes - mean * mean)) / mean;
+  }
+  return sum / 16.0;
+}
+
+// The figure: one panel a construction, left to right, each the area of own cell (5, 3) over the
+// slopes within 1.5 roughnesses on one brightness scale: each dark dot a lobe, a direction in which
+// the area glints.
+ImageRgbF directionsFigure(kernel::GlintDictionaryView dict, const std::vector<std::string>& modes) {
+  constexpr int kPanel = 160;
+  constexpr int kGap = 4;
+  ImageRgbF out = ImageRgbF::filled(static_cast<int>(modes.size()) * (kPanel + kGap) - kGap, kPanel, glm::vec3(1.0f));
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    const Area area = areaCells(dict, modes[m], glm::ivec2(5, 3));
+    const double reach = 1.5 * area.params.alpha.x;
+    const double scale = kernel::glintTargetP22(area.params.ndf, glm::vec2(0.0f), area.params.alpha, area.params.rho);
+    for (int py = 0; py < kPanel; ++py) {
+      for (int px = 0; px < kPanel; ++px) {
+        const glm::vec2 slope(static_cast<float>(reach * (2.0 * (px + 0.5) / kPanel - 1.0)),
+                              static_cast<float>(reach * (1.0 - 2.0 * (py + 0.5) / kPanel)));
+        const float ink = static_cast<float>(1.0 - std::exp(-areaP22(dict, area, slope) / scale));
+        out.at(static_cast<int>(m) * (kPanel + kGap) + px, py) = glm::vec3(1.0f - ink);
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
-// Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [MODE...] (defaults: 4 samples across a pixel;
-// paper consistent oracle tree). Two pattern seeds of a dense layer (about 180 microfacets a pixel
+// Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [--directions PNG] [MODE...] (defaults: 4
+// samples across a pixel; paper consistent oracle tree). --directions draws directionsFigure, prints
+// directionsVariation's table and stops (a second). Two pattern seeds of a dense layer (about 180 microfacets a pixel
 // at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
 // on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
@@ -407,6 +494,12 @@ int main(int argc, char** argv) {
         return 1;
       }
       figurePath = argv[++a];
+    } else if (arg == "--directions") {
+      if (a + 1 >= argc) {
+        std::fprintf(stderr, "glint_lod_oracle: --directions takes a PNG path\n");
+        return 1;
+      }
+      directionsPath = argv[++a];
     } else {
       modes.push_back(arg);
     }
@@ -421,6 +514,18 @@ int main(int argc, char** argv) {
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
+  if (directionsPath) {
+    try {
+      writePngSrgb(directionsPath, directionsFigure(dict, modes));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "glint_lod_oracle: %s\n", e.what());
+      return 1;
+    }
+    std::printf("wrote %s: where one own cell's area glints, a panel a construction\n", directionsPath);
+    std::printf("| lod | variation over directions |\n|---|---|\n");
+    for (const std::string& mode : modes) std::printf("| %s | %.2f |\n", mode.c_str(), directionsVariation(dict, mode));
+    return 0;
+  }
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
   std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
