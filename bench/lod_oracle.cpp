@@ -398,9 +398,10 @@ struct Area {
   std::vector<kernel::GlintCell> cells;
 };
 
-Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell) {
+Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell, unsigned realisation = 0) {
   Area area{defaultGlintParameters(), {}};
   area.params.logDensity = 14.4f;  // the dense layer's
+  area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
   area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode, true);
   const int level = kernel::glintTreeOwnLevel(dict, area.params.logDensity) - 2;
@@ -424,19 +425,24 @@ double areaP22(kernel::GlintDictionaryView dict, const Area& area, glm::vec2 slo
 
 // How unevenly an area glints over directions: the coefficient of variation of its P22 over the
 // slopes within one roughness of the normal (a 48 x 48 grid, the disc's), averaged over 16 own cells'
-// areas. Independent lobes spread evenly; lobes on one grid glint in rows and columns.
-double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode) {
+// areas. Independent lobes spread evenly; lobes on one grid glint in rows and columns. With
+// `products` > 1 the area is the mean of that many independent realisations of the construction
+// (pattern seeds), as a cell made of that many tensor products at their own rotations would be.
+double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode, unsigned products = 1) {
   double sum = 0.0;
   for (int k = 0; k < 16; ++k) {
     // Sixteen distinct own cells of the 32 x 32 at the dense layer's own level (11).
-    const Area area = areaCells(dict, mode, glm::ivec2((3 + 5 * k) % 32, (7 + 3 * k) % 32));
+    const glm::ivec2 ownCell((3 + 5 * k) % 32, (7 + 3 * k) % 32);
+    std::vector<Area> areas;
+    for (unsigned r = 0; r < products; ++r) areas.push_back(areaCells(dict, mode, ownCell, r));
     double mean = 0.0, square = 0.0;
     int slopes = 0;
     for (int j = 0; j < 48; ++j) {
       for (int i = 0; i < 48; ++i) {
         const glm::vec2 unit((i + 0.5f) / 24.0f - 1.0f, (j + 0.5f) / 24.0f - 1.0f);
         if (glm::dot(unit, unit) > 1.0f) continue;
-        const double value = areaP22(dict, area, unit * area.params.alpha);
+        double value = 0.0;
+        for (const Area& area : areas) value += areaP22(dict, area, unit * area.params.alpha) / products;
         mean += value;
         square += value * value;
         ++slopes;
@@ -524,6 +530,13 @@ int main(int argc, char** argv) {
     std::printf("wrote %s: where one own cell's area glints, a panel a construction\n", directionsPath);
     std::printf("| lod | variation over directions |\n|---|---|\n");
     for (const std::string& mode : modes) std::printf("| %s | %.2f |\n", mode.c_str(), directionsVariation(dict, mode));
+    // A cell of two or four tensor products, each at its own rotation and each split into blocks as
+    // the tree splits one: the mean of its children still, and its area more even over directions.
+    for (unsigned products : {2u, 4u}) {
+      for (const char* mode : {"paper", "tree"}) {
+        std::printf("| %s, %u products a cell | %.2f |\n", mode, products, directionsVariation(dict, mode, products));
+      }
+    }
     return 0;
   }
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
