@@ -388,25 +388,28 @@ void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::st
 }
 
 // --directions: where the glints of one small area point. For a construction, the cells whose mean
-// P22 is an area's: the 4 x 4 cells two levels below the dense layer's own level
-// (glintTreeOwnLevel) that make up own cell `ownCell`. The paper's 16 are drawn independently (16
-// rotations); the tree's are blocks of their own cell, so their lobes lie on its one rotated grid;
-// the oracle's are the means of independent base cells two levels lower still, what consistent
-// levels without a shared rotation would give (so its list holds those 256 base cells).
+// P22 is an area's: the area of own cell `ownCell` at the dense layer's own level
+// (glintTreeOwnLevel), as the cells `levelsBelow` levels below it (a nearer view) make it up. Two
+// levels below, the paper's 16 cells are drawn independently (16 rotations); the tree's are blocks
+// of their own cell, so their lobes lie on its one rotated grid; the oracle's, at any level, are the
+// means of independent base cells four levels below the own level, what consistent levels without
+// a shared rotation would give (so its list holds those 256 base cells). `realisation` offsets the
+// pattern seed.
 struct Area {
   GlintParameters params;
   std::vector<kernel::GlintCell> cells;
 };
 
-Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell, unsigned realisation = 0) {
+Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell, int levelsBelow,
+               unsigned realisation = 0) {
   Area area{defaultGlintParameters(), {}};
   area.params.logDensity = 14.4f;  // the dense layer's
   area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
   area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode, true);
-  const int level = kernel::glintTreeOwnLevel(dict, area.params.logDensity) - 2;
-  const int cellLevel = oracle ? level - 2 : level;
-  const int side = 4 << (level - cellLevel);
+  const int own = kernel::glintTreeOwnLevel(dict, area.params.logDensity);
+  const int cellLevel = oracle ? own - 4 : own - levelsBelow;  // the oracle's base is fixed
+  const int side = 1 << (own - cellLevel);
   const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, area.params, area.params.logDensity, cellLevel);
   const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, area.params, area.params.logDensity, cellLevel, draw);
   for (int y = 0; y < side; ++y) {
@@ -428,13 +431,14 @@ double areaP22(kernel::GlintDictionaryView dict, const Area& area, glm::vec2 slo
 // areas. Independent lobes spread evenly; lobes on one grid glint in rows and columns. With
 // `products` > 1 the area is the mean of that many independent realisations of the construction
 // (pattern seeds), as a cell made of that many tensor products at their own rotations would be.
-double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode, unsigned products = 1) {
+double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode, int levelsBelow,
+                           unsigned products = 1) {
   double sum = 0.0;
   for (int k = 0; k < 16; ++k) {
     // Sixteen distinct own cells of the 32 x 32 at the dense layer's own level (11).
     const glm::ivec2 ownCell((3 + 5 * k) % 32, (7 + 3 * k) % 32);
     std::vector<Area> areas;
-    for (unsigned r = 0; r < products; ++r) areas.push_back(areaCells(dict, mode, ownCell, r));
+    for (unsigned r = 0; r < products; ++r) areas.push_back(areaCells(dict, mode, ownCell, levelsBelow, r));
     double mean = 0.0, square = 0.0;
     int slopes = 0;
     for (int j = 0; j < 48; ++j) {
@@ -454,15 +458,21 @@ double directionsVariation(kernel::GlintDictionaryView dict, const std::string& 
   return sum / 16.0;
 }
 
-// The figure: one panel a construction, left to right, each the area of own cell (5, 3) over the
-// slopes within 1.5 roughnesses on one brightness scale: each dark dot a lobe, a direction in which
-// the area glints.
+// The figure: one panel a construction, left to right, each the area of own cell (5, 3) seen from
+// near (4 x 4 cells) over the slopes within 1.5 roughnesses on one brightness scale, each dark dot
+// a lobe, a direction in which the area glints; after the paper's, the paper's view of the same
+// area from 4 times farther (its one cell there).
 ImageRgbF directionsFigure(kernel::GlintDictionaryView dict, const std::vector<std::string>& modes) {
   constexpr int kPanel = 160;
   constexpr int kGap = 4;
-  ImageRgbF out = ImageRgbF::filled(static_cast<int>(modes.size()) * (kPanel + kGap) - kGap, kPanel, glm::vec3(1.0f));
-  for (std::size_t m = 0; m < modes.size(); ++m) {
-    const Area area = areaCells(dict, modes[m], glm::ivec2(5, 3));
+  std::vector<Area> panels;
+  for (const std::string& mode : modes) {
+    panels.push_back(areaCells(dict, mode, glm::ivec2(5, 3), 2));
+    if (mode == "paper") panels.push_back(areaCells(dict, mode, glm::ivec2(5, 3), 0));
+  }
+  ImageRgbF out = ImageRgbF::filled(static_cast<int>(panels.size()) * (kPanel + kGap) - kGap, kPanel, glm::vec3(1.0f));
+  for (std::size_t m = 0; m < panels.size(); ++m) {
+    const Area& area = panels[m];
     const double reach = 1.5 * area.params.alpha.x;
     const double scale = kernel::glintTargetP22(area.params.ndf, glm::vec2(0.0f), area.params.alpha, area.params.rho);
     for (int py = 0; py < kPanel; ++py) {
@@ -528,13 +538,15 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::printf("wrote %s: where one own cell's area glints, a panel a construction\n", directionsPath);
-    std::printf("| lod | variation over directions |\n|---|---|\n");
-    for (const std::string& mode : modes) std::printf("| %s | %.2f |\n", mode.c_str(), directionsVariation(dict, mode));
+    std::printf("| lod | variation over directions, the area as 4 x 4 cells | as one cell (a view 4 times farther) |\n|---|---|---|\n");
+    for (const std::string& mode : modes) {
+      std::printf("| %s | %.2f | %.2f |\n", mode.c_str(), directionsVariation(dict, mode, 2), directionsVariation(dict, mode, 0));
+    }
     // A cell of two or four tensor products, each at its own rotation and each split into blocks as
     // the tree splits one: the mean of its children still, and its area more even over directions.
     for (unsigned products : {2u, 4u}) {
       for (const char* mode : {"paper", "tree"}) {
-        std::printf("| %s, %u products a cell | %.2f |\n", mode, products, directionsVariation(dict, mode, products));
+        std::printf("| %s, %u products a cell | %.2f | |\n", mode, products, directionsVariation(dict, mode, 2, products));
       }
     }
     return 0;
