@@ -122,7 +122,7 @@ double modelP22(kernel::GlintDictionaryView dict, const GlintParameters& p, cons
                 glm::vec2 uv, float size) {
   if (mode == "oracle") return oracleP22(dict, p, span.base, uv, size);
   GlintParameters q = p;
-  q.lod = lodFromName("mode", mode, true);
+  q.lod = lodFromName("mode", mode);
   return kernel::glintP22(dict, q, uv, glm::vec2(size, 0.0f), glm::vec2(0.0f, size), kSlope);
 }
 
@@ -406,7 +406,7 @@ Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::i
   area.params.logDensity = 14.4f;  // the dense layer's
   area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
-  area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode, true);
+  area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode);
   const int own = kernel::glintTreeOwnLevel(dict, area.params.logDensity);
   const int cellLevel = oracle ? own - 4 : own - levelsBelow;  // the oracle's base is fixed
   const int side = 1 << (own - cellLevel);

@@ -222,6 +222,7 @@ TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
   layer.relativeAreaTexture = 3;
   original.materials[0].specular = {kernel::GLINT_NDF_BECKMANN, kernel::GLINT_MASKING_VCAVITY, false};
   original.materials[1].glint.enabled = true;
+  original.materials[1].glint.lod = kernel::GLINT_LOD_TREE;  // the third construction, on the other layer
   original.materials[1].specular = kGltfSpecular;
   const fs::path folder = test::temporaryFolder("gltf_writer_glint_fields");
   for (const char* file : {"fields.glb", "fields.gltf"}) {
@@ -252,6 +253,7 @@ TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
   EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["ndf"], "ggx");
   EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["masking"], "smith");
   EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["multipleScattering"], true);
+  EXPECT_EQ(document["materials"][1]["extensions"]["EXT_materials_glint"]["lod"], "tree");
   for (const json& material : document["materials"]) EXPECT_FALSE(material.contains("extras")) << material.dump();
 }
 

@@ -296,8 +296,6 @@ TEST(ExportCli, ErrorsGiveOneLineAndNoFile) {
   expectExportFails("sphere", "sphere.obj", "sphere.obj: a glTF file must end in .glb or .gltf");
   expectExportFails("sphere --glint-material Nope", "sphere.glb", "no material 'Nope'");
   expectExportFails("sphere --relative-area 2", "sphere.glb", "relative_area");
-  // The tree LOD construction is glint's own option, which EXT_materials_glint cannot carry.
-  expectExportFails("sphere --lod tree", "sphere.glb", "lod \"tree\" is glint's own option, not EXT_materials_glint's");
   std::filesystem::create_directory(folder / "taken.glb");  // a folder where the file would go
   expectOneLineError(runGlint(folder, "export sphere -o taken.glb"), "taken.glb: cannot write");
   EXPECT_TRUE(std::filesystem::is_empty(folder / "taken.glb"));

@@ -1350,9 +1350,9 @@ TEST(GltfErrors, BadGlintExtras) {
   withGlint({{"random_colours", 0.5}});
   expectLoadError(path, "extras.glint: random_colours must be true or false (or 0 or 1), got 0.5");
   withGlint({{"lod", 1}});
-  expectLoadError(path, "extras.glint: lod must be \"paper\" or \"consistent\"");
+  expectLoadError(path, "extras.glint: lod must be \"paper\", \"consistent\" or \"tree\"");
   withGlint({{"lod", "fast"}});
-  expectLoadError(path, "extras.glint: lod must be \"paper\" or \"consistent\", got \"fast\"");
+  expectLoadError(path, "extras.glint: lod must be \"paper\", \"consistent\" or \"tree\", got \"fast\"");
   withGlint({{"rho", 1.0}});
   expectLoadError(path, "material 0 'textured': extras.glint: rho must be in [-0.99, 0.99], got 1");
   withGlint({{"rho", "0.5"}});
@@ -1393,8 +1393,8 @@ TEST(GltfErrors, BadGlintExtension) {
       {{{"logDensityRange", {10, 200}}}, "logDensityRange[1] must be in [0, 100], got 200"},
       {{{"ndf", "gxx"}}, "ndf must be \"beckmann\" or \"ggx\", got \"gxx\""},
       {{{"masking", 1}}, "masking must be \"v-cavity\" or \"smith\""},
-      {{{"lod", 1}}, "lod must be \"paper\" or \"consistent\""},
-      {{{"lod", "fast"}}, "lod must be \"paper\" or \"consistent\", got \"fast\""},
+      {{{"lod", 1}}, "lod must be \"paper\", \"consistent\" or \"tree\""},
+      {{{"lod", "fast"}}, "lod must be \"paper\", \"consistent\" or \"tree\", got \"fast\""},
       {{{"roughnessTexture", 1}}, "roughnessTexture must be a textureInfo object with an index, got 1"},
       {{{"roughnessTexture", {{"index", 7}}}}, "roughnessTexture.index must be an integer in [0, 4], got 7"},
       {{{"logDensityTexture", {{"index", 1}, {"texCoord", -1}}}}, "logDensityTexture.texCoord must be an integer"},

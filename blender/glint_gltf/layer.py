@@ -80,7 +80,8 @@ FIELDS = [
     Field("lod", "lod", "choice", "Level of Detail",
           "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell, or a "
           "coarse cell's glints shared out among its children so that fewer glints pop as the surface recedes",
-          default="paper", choices=[("paper", "PAPER", "Paper"), ("consistent", "CONSISTENT", "Consistent")]),
+          default="paper", choices=[("paper", "PAPER", "Paper"), ("consistent", "CONSISTENT", "Consistent"),
+                                   ("tree", "TREE", "Tree")]),
     Field("ndf", "ndf", "choice", "NDF",
           "The distribution the glints converge to",
           default="ggx", choices=[("ggx", "GGX", "GGX"), ("beckmann", "BECKMANN", "Beckmann")]),

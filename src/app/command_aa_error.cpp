@@ -319,7 +319,7 @@ void registerAaErrorCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
   command->add_option("--lod", options->lod,
-                      "The level-of-detail construction of every glint layer, reference included: paper or consistent");
+                      "The level-of-detail construction of every glint layer, reference included: paper, consistent or tree");
   options->footprint.addTo(*command, true);
   command->add_option("--reference-footprint", options->referenceFootprint,
                       "Footprint of the reference: paper (the paper's, for every policy) or same (each policy's own)")

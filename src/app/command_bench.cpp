@@ -310,7 +310,7 @@ void registerBenchCommand(CLI::App& app) {
                       "model is timed too (glint-none), for the filter's cost")
       ->capture_default_str();
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
-  command->add_option("--lod", options->lod, "The level-of-detail construction of every glint layer: paper or consistent");
+  command->add_option("--lod", options->lod, "The level-of-detail construction of every glint layer: paper, consistent or tree");
   command->add_flag("--gltf-target", options->gltfTarget,
                     "Also time glint with glTF's specular lobe on every material: GGX, Smith masking and the "
                     "multiple-scattering compensation (glint-gltf)");

@@ -402,7 +402,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   for (const std::string& lodMode : options.lodModes) {
     // Every glint layer takes the construction, the reference's frames too: each is measured
     // against the supersampled image of its own glints.
-    for (scene::Material& material : renderer.materials()) material.glint.lod = lodFromName("--lod", lodMode, true);
+    for (scene::Material& material : renderer.materials()) material.glint.lod = lodFromName("--lod", lodMode);
     Sequence mode, reference;
     for (int t = 0; t < options.frames; ++t) {
       frame.camera = dolly.views[static_cast<std::size_t>(t)].camera;
@@ -436,7 +436,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     const Figures f = measureMode(dolly, mode, reference, width, height, options.block);
     std::optional<GlintParameters> layer = firstGlintLayer(scene);
     if (!layer) throw Error("scene '" + scene.name + "' has no glint layer");
-    layer->lod = lodFromName("--lod", lodMode, true);
+    layer->lod = lodFromName("--lod", lodMode);
     entry["modes"][lodMode] = {{"alignment_2x2", alignment(dictionary, *layer, 2)},
                                {"alignment_4x4", alignment(dictionary, *layer, 4)},
                                {"persistence", f.persistence},
@@ -466,7 +466,7 @@ void runLodConsistency(LodConsistencyOptions options) {
   }
   gl::antiAliasingFromString(options.antiAliasing);  // throws naming the choices
   if (options.lodModes.empty()) options.lodModes = {"paper", "consistent", "tree"};
-  for (const std::string& lodMode : options.lodModes) lodFromName("--lod", lodMode, true);  // throws naming the choices
+  for (const std::string& lodMode : options.lodModes) lodFromName("--lod", lodMode);  // throws naming the choices
   const std::vector<std::string> names = options.scenes.empty() ? kDefaultScenes : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;

@@ -83,8 +83,9 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("--multiple-scattering", multipleScattering,
                      "Compensate the energy lost to multiple scattering on every material: true or false");
   command.add_option("--lod", lod,
-                     "The level-of-detail construction of every glint layer: paper (each cell its own glints) or "
-                     "consistent (a cell's glints shared out among its children)");
+                     "The level-of-detail construction of every glint layer: paper (each cell its own glints), "
+                     "consistent (a cell's glints shared out among its children) or tree (every cell below a level set "
+                     "by the density the mean of its four children)");
 }
 
 std::string describeDefaultGlintDensity(const scene::Scene& scene, const std::vector<std::size_t>& layered) {
@@ -132,7 +133,7 @@ scene::Scene SceneOptions::loadScene() const {
     if (logDensity) m.glint.logDensity = *logDensity;
     if (relativeArea) m.glint.relativeArea = *relativeArea;
     if (patternSeed) m.glint.patternSeed = static_cast<std::uint32_t>(*patternSeed);
-    if (lod) m.glint.lod = lodFromName("--lod", *lod, true);
+    if (lod) m.glint.lod = lodFromName("--lod", *lod);
     try {
       scene::validateGlintLayer(m.glint, s.textures.size());
     } catch (const Error& e) {

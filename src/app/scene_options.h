@@ -53,7 +53,7 @@ struct SceneOptions {
   std::optional<std::string> ndf;
   std::optional<std::string> masking;
   std::optional<bool> multipleScattering;
-  // The LOD construction of every glint layer (GlintLayer::lod): paper or consistent.
+  // The LOD construction of every glint layer (GlintLayer::lod): paper, consistent or tree.
   std::optional<std::string> lod;
 
   // All of the options below (render, view, trace).

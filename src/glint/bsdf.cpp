@@ -136,12 +136,11 @@ int maskingFromName(const std::string& field, const std::string& name) {
   throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
 }
 
-int lodFromName(const std::string& field, const std::string& name, bool withTree) {
+int lodFromName(const std::string& field, const std::string& name) {
   if (name == "paper") return kernel::GLINT_LOD_PAPER;
   if (name == "consistent") return kernel::GLINT_LOD_CONSISTENT;
-  if (withTree && name == "tree") return kernel::GLINT_LOD_TREE;
-  throw Error(field + (withTree ? " must be \"paper\", \"consistent\" or \"tree\"" : " must be \"paper\" or \"consistent\"") +
-              ", got \"" + name + "\"");
+  if (name == "tree") return kernel::GLINT_LOD_TREE;
+  throw Error(field + " must be \"paper\", \"consistent\" or \"tree\", got \"" + name + "\"");
 }
 
 const char* lodName(int lod) {

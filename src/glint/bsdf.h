@@ -111,10 +111,10 @@ int ndfFromName(const std::string& field, const std::string& name);
 int maskingFromName(const std::string& field, const std::string& name);
 const char* ndfName(int ndf);
 const char* maskingName(int masking);
-// The glint layer's LOD construction (kernel GlintParameters::lod; docs/method.md 2.7), as
-// extras.glint's "lod" and --lod spell it: "paper" | "consistent", and with `withTree` (the
-// command line's, not EXT_materials_glint's) "tree" (docs/method.md 2.8).
-int lodFromName(const std::string& field, const std::string& name, bool withTree);
+// The glint layer's LOD construction (kernel GlintParameters::lod), as EXT_materials_glint's and
+// extras.glint's "lod" and --lod spell it: "paper" | "consistent" (docs/method.md 2.7) | "tree"
+// (2.8).
+int lodFromName(const std::string& field, const std::string& name);
 const char* lodName(int lod);
 
 // Cook-Torrance with the target's NDF (roughness alpha, slope correlation rho) and masking:

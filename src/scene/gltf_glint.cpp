@@ -269,8 +269,8 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
   }
   if (reader.has(GlintField::Lod)) {
     const json& lod = reader.at(GlintField::Lod);
-    if (!lod.is_string()) throw Error(std::string(reader.name(GlintField::Lod)) + " must be \"paper\" or \"consistent\"");
-    layer.lod = lodFromName(reader.name(GlintField::Lod), lod.get<std::string>(), false);
+    if (!lod.is_string()) throw Error(std::string(reader.name(GlintField::Lod)) + " must be \"paper\", \"consistent\" or \"tree\"");
+    layer.lod = lodFromName(reader.name(GlintField::Lod), lod.get<std::string>());
   }
   if (reader.has(GlintField::LogDensityRange)) {
     const std::string name = reader.name(GlintField::LogDensityRange);

@@ -66,9 +66,6 @@ tinygltf::Value glintExtension(const GlintLayer& layer, const MicrofacetTarget& 
                                             : tinygltf::Value(static_cast<double>(layer.patternSeed));
   glint[name(GlintField::UvScale)] = number(layer.uvScale);
   glint[name(GlintField::RandomColors)] = tinygltf::Value(layer.randomColours);
-  if (layer.lod == kernel::GLINT_LOD_TREE) {
-    throw Error("lod \"tree\" is glint's own option, not EXT_materials_glint's: export with --lod paper or consistent");
-  }
   glint[name(GlintField::Lod)] = tinygltf::Value(std::string(lodName(layer.lod)));
   glint[name(GlintField::LogDensityRange)] = pair(layer.logDensityRange);
   const std::pair<GlintField, int> textures[] = {{GlintField::RoughnessTexture, layer.roughnessTexture},

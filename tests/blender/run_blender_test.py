@@ -137,9 +137,9 @@ def check(condition, message):
         raise Failure(message)
 
 
-# Export options per scene: the car paint takes the consistent LOD construction, so that a layer
-# whose lod is not the default goes through Blender too.
-ROUNDTRIP_EXPORT_OPTIONS = {"carpaint": ["--lod", "consistent"]}
+# Export options per scene: the car paint takes the consistent LOD construction and the parquet the
+# tree, so that every lod value goes through Blender.
+ROUNDTRIP_EXPORT_OPTIONS = {"carpaint": ["--lod", "consistent"], "parquet": ["--lod", "tree"]}
 
 
 def lod_values(document):

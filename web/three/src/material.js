@@ -23,7 +23,7 @@ export class GlintLayer {
     this.masking = 'smith';                // or 'v-cavity'
     this.colouredCells = false;            // EXT_materials_glint's randomColors
     this.multipleScattering = true;
-    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7)
+    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7); 'tree' is drawn as 'paper'
     this.roughnessTexture = null;          // three Textures, their R channel read as data
     this.logDensityTexture = null;
     this.relativeAreaTexture = null;

@@ -36,7 +36,7 @@ const BOOLEANS = [
 const NAMES = [
   ['ndf', 'ndf', ['ggx', 'beckmann']],
   ['masking', 'masking', ['smith', 'v-cavity']],
-  ['lod', 'lod', ['paper', 'consistent']],
+  ['lod', 'lod', ['paper', 'consistent', 'tree']],
 ];
 const TEXTURES = [
   ['roughnessTexture', 'roughnessTexture'],
@@ -87,6 +87,13 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
     if (extension[name] === undefined) continue;
     if (!allowed.includes(extension[name])) fail(`${name} must be ${allowed.map((a) => `"${a}"`).join(' or ')}, got ${JSON.stringify(extension[name])}`);
     layer[field] = extension[name];
+  }
+  if (layer.lod === 'tree') {
+    // The tree construction reads tree levels built from the dictionary's level 0 (glint's
+    // Dictionary::appendTreeLevels), which this package does not build: the extension lets a
+    // renderer without a construction draw it as the paper's.
+    console.warn(`${where}: ${EXTENSION_NAME}.lod "tree" is drawn as "paper" (the three.js material has no tree levels)`);
+    layer.lod = 'paper';
   }
   if (extension.patternSeed !== undefined) {
     const seed = extension.patternSeed;

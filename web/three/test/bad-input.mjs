@@ -72,6 +72,20 @@ try {
   expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
   expectRefused('a misspelt property', layer({ logDenisty: 14 }), 'EXT_materials_glint.logDenisty is not a property');
   expectRefused('patternSeed -1', layer({ patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
+  // lod "tree" is the extension's, drawn as "paper" with one warning line naming the material.
+  const warnings = [];
+  const warn = console.warn;
+  console.warn = (line) => warnings.push(String(line));
+  let tree = null;
+  try {
+    tree = glintLayerFromExtension({ lod: 'tree' }, 0.5, where);
+  } finally {
+    console.warn = warn;
+  }
+  const treeOk = tree.lod === 'paper' && warnings.length === 1 && warnings[0].startsWith(`${where}: EXT_materials_glint.lod "tree" is drawn as "paper"`);
+  if (!treeOk) ++failures;
+  console.log(`${treeOk ? 'ok' : 'FAILED'}: lod "tree" read as "paper" with one warning (${warnings.join(' | ')})`);
+  expectRefused('lod "fast"', layer({ lod: 'fast' }), 'EXT_materials_glint.lod must be "paper" or "consistent" or "tree", got "fast"');
   const defaults = glintLayerFromExtension({ randomColors: 1 }, 0.5, where);
   const defaultsOk = defaults.alpha.x === 0.25 && defaults.alpha.y === 0.25 && defaults.colouredCells === true &&
                      defaults.logDensity === 27 && defaults.ndf === 'ggx' && defaults.masking === 'smith';
