@@ -403,7 +403,7 @@ struct Area {
 Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell, int levelsBelow,
                unsigned realisation = 0) {
   Area area{defaultGlintParameters(), {}};
-  area.params.logDensity = 14.4f;  // the dense layer's
+  area.params.logDensity = 14.4f;  // the dense layer's (directionsVariation's own cells assume it)
   area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
   area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode);
@@ -433,10 +433,12 @@ double areaP22(kernel::GlintDictionaryView dict, const Area& area, glm::vec2 slo
 // (pattern seeds), as a cell made of that many tensor products at their own rotations would be.
 double directionsVariation(kernel::GlintDictionaryView dict, const std::string& mode, int levelsBelow,
                            unsigned products = 1) {
+  // Sixteen distinct own cells of those across the pattern at the dense layer's own level (32 for
+  // the default dictionary), on a diagonal-ish walk.
+  const int across = 1 << (dict.numLevels - kernel::glintTreeOwnLevel(dict, 14.4f));
   double sum = 0.0;
   for (int k = 0; k < 16; ++k) {
-    // Sixteen distinct own cells of the 32 x 32 at the dense layer's own level (11).
-    const glm::ivec2 ownCell((3 + 5 * k) % 32, (7 + 3 * k) % 32);
+    const glm::ivec2 ownCell((3 + 5 * k) % across, (7 + 3 * k) % across);
     std::vector<Area> areas;
     for (unsigned r = 0; r < products; ++r) areas.push_back(areaCells(dict, mode, ownCell, levelsBelow, r));
     double mean = 0.0, square = 0.0;
@@ -491,7 +493,8 @@ ImageRgbF directionsFigure(kernel::GlintDictionaryView dict, const std::vector<s
 
 // Usage: glint_lod_oracle [--reference-samples N] [--figure PNG] [--directions PNG] [MODE...] (defaults: 4
 // samples across a pixel; paper consistent oracle tree). --directions draws directionsFigure, prints
-// directionsVariation's table and stops (a second). Two pattern seeds of a dense layer (about 180 microfacets a pixel
+// directionsVariation's table and stops (a second), without the zoom (--figure and
+// --reference-samples have nothing to do then). Two pattern seeds of a dense layer (about 180 microfacets a pixel
 // at the middle frame) and a sparse one (about 30), with pixels of 0.005 to 0.02 uv; about a minute
 // on two cores at 4 samples (the oracle's cost grows as the samples' square).
 int main(int argc, char** argv) {
@@ -529,7 +532,6 @@ int main(int argc, char** argv) {
   }
   const Dictionary dictionary = generateDictionary(DictionaryParameters{});
   const kernel::GlintDictionaryView dict = dictionary.view();
-  // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   if (directionsPath) {
     try {
       writePngSrgb(directionsPath, directionsFigure(dict, modes));
@@ -545,12 +547,14 @@ int main(int argc, char** argv) {
     // A cell of two or four tensor products, each at its own rotation and each split into blocks as
     // the tree splits one: the mean of its children still, and its area more even over directions.
     for (unsigned products : {2u, 4u}) {
-      for (const char* mode : {"paper", "tree"}) {
-        std::printf("| %s, %u products a cell | %.2f | |\n", mode, products, directionsVariation(dict, mode, 2, products));
+      for (const std::string& mode : modes) {
+        if (mode != "paper" && mode != "tree") continue;
+        std::printf("| %s, %u products a cell | %.2f | |\n", mode.c_str(), products, directionsVariation(dict, mode, 2, products));
       }
     }
     return 0;
   }
+  // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
   const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
   std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");

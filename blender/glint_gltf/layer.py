@@ -78,8 +78,10 @@ FIELDS = [
     Field("random_colors", "randomColors", "boolean", "Random Colors",
           "Each cell's glints get a random colour (the flakes of a car paint)", default=False),
     Field("lod", "lod", "choice", "Level of Detail",
-          "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell, or a "
-          "coarse cell's glints shared out among its children so that fewer glints pop as the surface recedes",
+          "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell; a coarse "
+          "cell's glints shared out among its children so that fewer glints pop as the surface recedes "
+          "(Consistent); or every cell below a level set by the density the mean of its four children, so "
+          "that glints stay put (Tree)",
           default="paper", choices=[("paper", "PAPER", "Paper"), ("consistent", "CONSISTENT", "Consistent"),
                                    ("tree", "TREE", "Tree")]),
     Field("ndf", "ndf", "choice", "NDF",

@@ -88,17 +88,18 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
     if (!allowed.includes(extension[name])) fail(`${name} must be ${allowed.map((a) => `"${a}"`).join(' or ')}, got ${JSON.stringify(extension[name])}`);
     layer[field] = extension[name];
   }
+  if (extension.patternSeed !== undefined) {
+    const seed = extension.patternSeed;
+    if (!Number.isInteger(seed) || seed < 0 || seed > 4294967295) fail(`patternSeed must be an integer in [0, 4294967295], got ${JSON.stringify(seed)}`);
+    layer.patternSeed = seed;
+  }
+  // Last, so that a file refused for another value gets no warning first.
   if (layer.lod === 'tree') {
     // The tree construction reads tree levels built from the dictionary's level 0 (glint's
     // Dictionary::appendTreeLevels), which this package does not build: the extension lets a
     // renderer without a construction draw it as the paper's.
     console.warn(`${where}: ${EXTENSION_NAME}.lod "tree" is drawn as "paper" (the three.js material has no tree levels)`);
     layer.lod = 'paper';
-  }
-  if (extension.patternSeed !== undefined) {
-    const seed = extension.patternSeed;
-    if (!Number.isInteger(seed) || seed < 0 || seed > 4294967295) fail(`patternSeed must be an integer in [0, 4294967295], got ${JSON.stringify(seed)}`);
-    layer.patternSeed = seed;
   }
   return layer;
 }

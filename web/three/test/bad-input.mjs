@@ -79,12 +79,14 @@ try {
   let tree = null;
   try {
     tree = glintLayerFromExtension({ lod: 'tree' }, 0.5, where);
+    // A layer refused for another value gets its error alone, no warning before it.
+    expectRefused('lod "tree" with patternSeed -1', layer({ lod: 'tree', patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
   } finally {
     console.warn = warn;
   }
   const treeOk = tree.lod === 'paper' && warnings.length === 1 && warnings[0].startsWith(`${where}: EXT_materials_glint.lod "tree" is drawn as "paper"`);
   if (!treeOk) ++failures;
-  console.log(`${treeOk ? 'ok' : 'FAILED'}: lod "tree" read as "paper" with one warning (${warnings.join(' | ')})`);
+  console.log(`${treeOk ? 'ok' : 'FAILED'}: lod "tree" read as "paper" with one warning, none for a refused layer (${warnings.join(' | ')})`);
   expectRefused('lod "fast"', layer({ lod: 'fast' }), 'EXT_materials_glint.lod must be "paper" or "consistent" or "tree", got "fast"');
   const defaults = glintLayerFromExtension({ randomColors: 1 }, 0.5, where);
   const defaultsOk = defaults.alpha.x === 0.25 && defaults.alpha.y === 0.25 && defaults.colouredCells === true &&
