@@ -54,6 +54,9 @@ const char* figurePath = nullptr;
 const char* directionsPath = nullptr;  // --directions (directionsFigure)
 constexpr int kBlock = 4;
 const glm::vec2 kSlope(0.2f, 0.1f);
+// The dense layer's log density, ln(microfacets a pixel / pixel area) at 0.01 uv: the zoom's first
+// setup and the area --directions looks at.
+constexpr float kDenseLogDensity = 14.4f;
 
 double growth(int t) { return std::exp2(2.0 * (static_cast<double>(t) / (kFrames - 1) - 0.5)); }
 
@@ -403,7 +406,7 @@ struct Area {
 Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::ivec2 ownCell, int levelsBelow,
                unsigned realisation = 0) {
   Area area{defaultGlintParameters(), {}};
-  area.params.logDensity = 14.4f;  // the dense layer's (directionsVariation's own cells assume it)
+  area.params.logDensity = kDenseLogDensity;
   area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
   area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode);
@@ -435,7 +438,7 @@ double directionsVariation(kernel::GlintDictionaryView dict, const std::string& 
                            unsigned products = 1) {
   // Sixteen distinct own cells of those across the pattern at the dense layer's own level (32 for
   // the default dictionary), on a diagonal-ish walk.
-  const int across = 1 << (dict.numLevels - kernel::glintTreeOwnLevel(dict, 14.4f));
+  const int across = 1 << (dict.numLevels - kernel::glintTreeOwnLevel(dict, kDenseLogDensity));
   double sum = 0.0;
   for (int k = 0; k < 16; ++k) {
     const glm::ivec2 ownCell((3 + 5 * k) % across, (7 + 3 * k) % across);
@@ -555,7 +558,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   // log density ln(microfacets a pixel / pixel area): 14.4 and 12.6 at 0.01 uv.
-  const std::vector<Setup> setups = {{"dense", 14.4f, 0.01f}, {"sparse", 12.6f, 0.01f}};
+  const std::vector<Setup> setups = {{"dense", kDenseLogDensity, 0.01f}, {"sparse", 12.6f, 0.01f}};
   std::printf("| layer | seed | lod | levels | persistence (reference) | gap | change (reference) | popping | RMSE | correlation | coarse, fine | mean / target, CV |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Setup& setup : setups) {
