@@ -63,13 +63,13 @@ double growth(int t) { return std::exp2(2.0 * (static_cast<double>(t) / (kFrames
 // One cell's P22 at a slope (the sequence's, kSlope, unless said), as glintLevelP22 sums it.
 double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const kernel::GlintCell& cell,
                glm::vec2 slope = kSlope) {
-  if (cell.smoothLimit) return kernel::glintTargetP22(p.ndf, slope, p.alpha, p.rho);
+  if (cell.smoothLimit) return cell.coverage * kernel::glintTargetP22(p.ndf, slope, p.alpha, p.rho);
   if (!cell.readsDictionary) return 0.0;
   const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, slope);
   return static_cast<double>(kernel::glintCellMarginals(dict, cell.dictionaryLevel,
                                                         cell.distributions, cell.complement,
                                                         kernel::glintCellRotation(cell.hash), unscaled)) *
-         kernel::glintScalingJacobian(dict, p);
+         cell.coverage * kernel::glintScalingJacobian(dict, p);
 }
 
 // The P-SDF with the 2020 model's footprint, levels and EWA weights and its own cells' values.

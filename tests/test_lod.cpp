@@ -20,14 +20,16 @@ using namespace glint::test;
 // One cell's P22 at a slope: what glintLevelP22 adds for it, by the kernel's per-cell functions.
 double cellP22(kernel::GlintDictionaryView dict, const GlintParameters& p, const kernel::GlintCell& cell,
                glm::vec2 slope) {
-  if (cell.smoothLimit) return kernel::glintTargetP22(p.ndf, slope, p.alpha, p.rho);
-  if (cell.ggxTail) return kernel::glintStudentTailSlopeP22(slope, kernel::glintBeckmannSlopeCovariance(p.alpha, p.rho));
+  if (cell.smoothLimit) return cell.coverage * kernel::glintTargetP22(p.ndf, slope, p.alpha, p.rho);
+  if (cell.ggxTail) {
+    return cell.coverage * kernel::glintStudentTailSlopeP22(slope, kernel::glintBeckmannSlopeCovariance(p.alpha, p.rho));
+  }
   if (!cell.readsDictionary) return 0.0;
   const glm::vec2 unscaled = kernel::glintUnscaledSlope(dict, p, slope) * cell.unscale;
   return static_cast<double>(kernel::glintCellMarginals(dict, cell.dictionaryLevel,
                                                         cell.distributions, cell.complement,
                                                         kernel::glintCellRotation(cell.hash), unscaled)) *
-         cell.scalePrecision * kernel::glintScalingJacobian(dict, p);
+         cell.coverage * cell.scalePrecision * kernel::glintScalingJacobian(dict, p);
 }
 
 // The sum of a dictionary cell's two marginals at a slope, times what cellP22 multiplies their
@@ -41,7 +43,7 @@ double marginalWeight(kernel::GlintDictionaryView dict, const GlintParameters& p
   if (!(std::abs(local.x) < domain && std::abs(local.y) < domain)) return 0.0;
   return (static_cast<double>(kernel::glintMarginal(dict, cell.dictionaryLevel, cell.distributions.x, std::abs(local.x))) +
           kernel::glintMarginal(dict, cell.dictionaryLevel, cell.distributions.y, std::abs(local.y))) *
-         cell.scalePrecision * kernel::glintScalingJacobian(dict, p);
+         cell.coverage * cell.scalePrecision * kernel::glintScalingJacobian(dict, p);
 }
 
 // The cell (x, y) of `level` as the P-SDF's walk draws it.
@@ -177,7 +179,7 @@ TEST(TreeLod, EveryCellBelowTheOwnLevelIsTheMeanOfItsFourChildren) {
   double worst = 0.0;
   for (int i = 0; i < 20000 && compared < 4000; ++i) {
     const GlintParameters p = randomCellParameters(rng, kernel::GLINT_LOD_TREE, 27.0f);
-    const int own = kernel::glintTreeOwnLevel(dict, p.logDensity);
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintTreeLogDensity(p, p.logDensity));
     ASSERT_GE(own, 1);
     const int level = 1 + static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(own)));
     const int across = 1 << (16 - level);  // the level's cells in one period
@@ -220,6 +222,63 @@ TEST(TreeLod, OwnLevelFollowsTheDensity) {
       EXPECT_NEAR(expectedLevel, 6.0, 0.5 + 1e-5) << logDensity;
     } else {
       EXPECT_TRUE(own == 0 ? expectedLevel >= 5.5 - 1e-5 : expectedLevel <= 6.5 + 1e-5) << logDensity << " " << own;
+    }
+  }
+}
+
+TEST(TreeLod, RelativeAreaIsCarriedDownAsCoverage) {
+  // Under the tree construction the relative area is not drawn at the own level, which left three
+  // own cells in four of the arctic's snow dark with their whole subtree (method.md 2.8): every own
+  // cell holds microfacets (at the density e^D MRA, so the own level is 13 or 14 here) and covers
+  // the relative area of itself; below, blocks keep that coverage
+  // until a cell is a single lobe, whose four children then share 4 f of cell area, each as much as
+  // it holds. Checked over whole subtrees of own cells, nine levels down (an own cell's lobes are
+  // single after about six at density randomisation 0, so at least three sharing steps): the cells'
+  // coverages sum to the relative area times their number (float rounding, 1e-5), the share of
+  // fully lit cells is the relative area to within the cells still partly lit, those are at most
+  // one in 4^3 of a single lobe's descendants, and a quarter is shared out exactly: one lit cell in
+  // four, the others dark.
+  const kernel::GlintDictionaryView dict = defaultDictionary().view();
+  constexpr int kDepth = 9;
+  for (float relativeArea : {0.25f, 0.3f, 0.05f}) {
+    GlintParameters p = defaultGlintParameters();
+    p.lod = kernel::GLINT_LOD_TREE;
+    p.logDensity = 12.5f;
+    p.densityRandomisation = 0.0f;
+    p.relativeArea = relativeArea;
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintTreeLogDensity(p, p.logDensity));
+    ASSERT_GE(own, kDepth);
+    for (int ownX = 3; ownX < 5; ++ownX) {
+      const int ownY = 7;
+      const kernel::GlintCell ownCell = drawnCell(dict, p, ownX, ownY, own);
+      ASSERT_TRUE(ownCell.readsDictionary) << "relative area " << relativeArea << " own cell " << ownX;
+      EXPECT_EQ(ownCell.coverage, relativeArea);
+      const int level = own - kDepth;
+      const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, level);
+      const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, p, p.logDensity, level, draw);
+      double coverageSum = 0.0;
+      int lit = 0, partlyLit = 0, dark = 0;
+      constexpr int kAcross = 1 << kDepth;
+      for (int y = 0; y < kAcross; ++y) {
+        for (int x = 0; x < kAcross; ++x) {
+          const kernel::GlintCell cell = kernel::glintLodCell(dict, p, draws, ownX * kAcross + x, ownY * kAcross + y, level);
+          coverageSum += cell.readsDictionary ? cell.coverage : 0.0;
+          lit += cell.readsDictionary && cell.coverage == 1.0f;
+          partlyLit += cell.readsDictionary && cell.coverage < 1.0f;
+          dark += !cell.readsDictionary;
+          ASSERT_EQ(cell.readsDictionary, cell.coverage > 0.0f);
+        }
+      }
+      const double cells = static_cast<double>(kAcross) * kAcross;
+      std::printf("relative area %.2f, own cell %d: coverage %.6f of the cells', %.4f fully lit, %.4f partly, %.4f dark\n",
+                  relativeArea, ownX, coverageSum / cells, lit / cells, partlyLit / cells, dark / cells);
+      EXPECT_NEAR(coverageSum / cells, relativeArea, 1e-5 * relativeArea);
+      EXPECT_LE(partlyLit / cells, 1.0 / 64.0);
+      EXPECT_NEAR(lit / cells, relativeArea, partlyLit / cells + 1e-9);
+      if (relativeArea == 0.25f) {
+        EXPECT_EQ(partlyLit, 0);
+        EXPECT_EQ(lit * 4, kAcross * kAcross);
+      }
     }
   }
 }

@@ -564,7 +564,8 @@ std::vector<SamplingCase> chiSquareCases() {
   // table and the distributions that the cell's descent from its own cell chose, with the own cell's
   // rotation (method.md 2.8). At log density 15 and 21 the case footprint's levels (4 and 5) lie
   // below the own level (10 and 6), so its cells are blocks; at 32 the own level is 0 and every cell
-  // is own.
+  // is own; at 12, with relative area 0.3, the cells lie about nine levels below the own level
+  // (13), where single lobes share out their coverage and sample() misses in the dark ones.
   struct Construction {
     const char* name;
     SamplingCase::Kind kind;
@@ -587,6 +588,7 @@ std::vector<SamplingCase> chiSquareCases() {
            Construction{"Mixture_tree_alpha0p6_density32_theta75", SamplingCase::Kind::Glint, 0.6f, 32.0f, 75.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
            Construction{"Mixture_tree_ggx_alpha0p25_density21_theta45", SamplingCase::Kind::Glint, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_GGX, "", kTree},
            Construction{"Dielectric_tree_alpha0p25_outside45", SamplingCase::Kind::Dielectric, 0.25f, 21.0f, 45.0f, 1.0f, kernel::GLINT_NDF_BECKMANN, "", kTree},
+           Construction{"Mixture_tree_relativeArea0p3_density12", SamplingCase::Kind::Glint, 0.25f, 12.0f, 45.0f, 0.3f, kernel::GLINT_NDF_BECKMANN, "", kTree},
        }) {
     SamplingCase c;
     c.name = q.name;
@@ -817,27 +819,39 @@ TEST(Sampling, MaskedCellsTakeAwayExactlyTheirMass) {
   // then the cell), so sweeping uChoice over 2^16 stratified values measures the missing mass to
   // about the number of cells / 2^16; viewed from the normal with alpha 0.1 nothing can reflect
   // below the horizon. It must equal 1 - integral of P22_P (slope quadrature, error under 2e-4).
+  // Under the tree construction a cell's microfacets cover a share of it (its coverage, method.md
+  // 2.8), which sample() takes by uChoice too: at log density 15 the footprint's cells lie about
+  // seven levels below the own level (11), where single lobes share out relative area 0.3 unevenly.
   GlintParameters parameters = defaultGlintParameters();
   parameters.alpha = glm::vec2(0.1f);
-  parameters.logDensity = 21.0f;
   const glm::vec3 wo(0.0f, 0.0f, 1.0f);
   constexpr int kSweep = 1 << 16;
-  for (int position = 0; position < 4; ++position) {
-    const SurfaceFootprint footprint = caseFootprint(300 + position);
-    for (float relativeArea : {0.5f, 1.0f}) {
-      parameters.relativeArea = relativeArea;
-      const GlintBsdf bsdf(defaultDictionary(), parameters, footprint);
-      int missing = 0;
-      for (int i = 0; i < kSweep; ++i) {
-        missing += !bsdf.sample(wo, (i + 0.5f) / kSweep, glm::vec2(0.3f, 0.7f)).has_value();
+  struct Layer {
+    int lod;
+    float logDensity;
+    std::vector<float> relativeAreas;
+  };
+  for (const Layer& layer : {Layer{kernel::GLINT_LOD_PAPER, 21.0f, {0.5f, 1.0f}},
+                             Layer{kernel::GLINT_LOD_TREE, 15.0f, {0.3f, 1.0f}}}) {
+    parameters.lod = layer.lod;
+    parameters.logDensity = layer.logDensity;
+    for (int position = 0; position < 4; ++position) {
+      const SurfaceFootprint footprint = caseFootprint(300 + position);
+      for (float relativeArea : layer.relativeAreas) {
+        parameters.relativeArea = relativeArea;
+        const GlintBsdf bsdf(defaultDictionary(), parameters, footprint);
+        int missing = 0;
+        for (int i = 0; i < kSweep; ++i) {
+          missing += !bsdf.sample(wo, (i + 0.5f) / kSweep, glm::vec2(0.3f, 0.7f)).has_value();
+        }
+        const double mass = integrateOverSlopes([&](glm::vec2 s) { return static_cast<double>(bsdf.p22(s)); },
+                                                glintSlopeExtent(defaultDictionary(), parameters.alpha), 400);
+        const double missingFraction = static_cast<double>(missing) / kSweep;
+        std::printf("lod %d, position %d, relative area %.1f: missing %.5f, 1 - integral of P22 %.5f\n", layer.lod,
+                    position, relativeArea, missingFraction, 1.0 - mass);
+        EXPECT_NEAR(missingFraction, 1.0 - mass, 1e-3);
+        if (relativeArea == 1.0f) EXPECT_EQ(missing, 0);
       }
-      const double mass = integrateOverSlopes([&](glm::vec2 s) { return static_cast<double>(bsdf.p22(s)); },
-                                              glintSlopeExtent(defaultDictionary(), parameters.alpha), 400);
-      const double missingFraction = static_cast<double>(missing) / kSweep;
-      std::printf("position %d, relative area %.1f: missing %.5f, 1 - integral of P22 %.5f\n", position, relativeArea,
-                  missingFraction, 1.0 - mass);
-      EXPECT_NEAR(missingFraction, 1.0 - mass, 1e-3);
-      if (relativeArea == 1.0f) EXPECT_EQ(missing, 0);
     }
   }
 }

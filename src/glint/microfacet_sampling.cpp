@@ -173,6 +173,11 @@ std::optional<glm::vec2> sampleGlintSlope(kernel::GlintDictionaryView dict, cons
   const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, footprint.logDensity, level);
   const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, params, footprint.logDensity, level, draw);
   const kernel::GlintCell drawn = kernel::glintLodCell(dict, params, draws, cell.x, cell.y, level);
+  // Its P22 integrates to its coverage (1 but under the tree construction): no slope beyond it.
+  if (drawn.coverage < 1.0f) {
+    if (!(uChoice < drawn.coverage)) return std::nullopt;
+    uChoice = remapUniform(uChoice, 0.0f, drawn.coverage);
+  }
   if (drawn.smoothLimit) return sampleTargetSlope(params.ndf, params.alpha, params.rho, u);
   if (drawn.ggxTail) return sampleGgxTailSlope(params.alpha, params.rho, u);
   if (!drawn.readsDictionary) return std::nullopt;

@@ -67,7 +67,8 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
     ivec2 index = glintCellAt(grid, walk.s, walk.t);
     float weight = glintWalkWeight(grid, walk);
     GlintCell cell = glintLodCell(dict, params, draws, index.x, index.y, level);
-    weights += cell.readsDictionary ? weight * glintCellRotation(cell.hash).x * float(1 + cell.complement.x) : weight;
+    weights += (cell.readsDictionary ? weight * glintCellRotation(cell.hash).x * float(1 + cell.complement.x) : weight) *
+               cell.coverage;
     walk = glintWalkStep(grid, walk);
   }
   vec2 scaled = glintScaledSlope(dict, params, glintUnscaledSlope(dict, params, slope));

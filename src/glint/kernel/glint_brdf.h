@@ -354,6 +354,10 @@ struct GlintCell {
   // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
   float scalePrecision;
   float unscale;
+  // The share of the cell's area its microfacets cover, which multiplies its P22 (so its P-NDF
+  // integrates to it): 1 but under the tree LOD construction, which carries the relative area
+  // down an own cell's subtree as coverage instead of drawing it (glintTreeOwnCell).
+  float coverage;
 };
 
 GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
@@ -368,6 +372,7 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   cell.complement = ivec2(0, 0);
   cell.scalePrecision = 1.0f;
   cell.unscale = 1.0f;
+  cell.coverage = 1.0f;
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
     cell.distributions = glintCellDistributions(dict, cell.hash);  // read only where it reads the dictionary
@@ -451,10 +456,17 @@ GLINT_FN int glintTreeOwnLevel(GlintDictionaryView dict, float logDensity) {
   return int(clamp(level, 0.0f, float(dict.numLevels - 1)));
 }
 
+// The log density at which the tree's own cells draw their microfacets (glintTreeOwnCell): the
+// layer's times its relative area, e^D MRA, so that the microfacets the paper puts in a share MRA of
+// the cells are spread over all of them, as many a unit area and each as bright.
+GLINT_FN float glintTreeLogDensity(GlintParameters params, float logDensity) {
+  return logDensity + log(params.relativeArea);
+}
+
 // The level draws a footprint level's cells need under the material's LOD construction.
 struct GlintLodDraws {
   GlintLevelDraw draw;     // the footprint level's own (glintLevelDraw)
-  GlintLevelDraw related;  // consistent: the parent level's; tree: the own level's; paper: unused
+  GlintLevelDraw related;  // consistent: the parent level's; tree: the own level's (glintTreeLogDensity); paper: unused
   int relatedLevel;        // the level `related` draws for
 };
 
@@ -472,15 +484,28 @@ GLINT_FN GlintLodDraws glintLodDraws(GlintDictionaryView dict, GlintParameters p
 #endif
 #if GLINT_TREE_LOD_COMPILED
   if (params.lod == GLINT_LOD_TREE) {
-    draws.relatedLevel = glintTreeOwnLevel(dict, logDensity);
-    // The own level's thresholds, one level at a time: one glintNormalCdf a level instead of L
-    // (glintNextLevelDraw is glintLevelDraw of the next level bit for bit).
-    for (int k = level; k < draws.relatedLevel; ++k) {
-      draws.related = glintNextLevelDraw(dict, params, logDensity, k, draws.related);
-    }
+    float treeLogDensity = glintTreeLogDensity(params, logDensity);
+    draws.relatedLevel = glintTreeOwnLevel(dict, treeLogDensity);
+    draws.related = glintLevelDraw(dict, params, treeLogDensity, draws.relatedLevel);
   }
 #endif
   return draws;
+}
+
+// Tree LOD: an own cell (method.md 2.8) always holds microfacets, drawn at the density
+// glintTreeLogDensity (with `ownDraw`), and they cover the relative area of it: the relative area
+// is not drawn at the own level, where a cell without microfacets would leave its whole subtree
+// dark and one with them would share all of them out (the snow of a layer of relative area 1/4
+// sparkling in squares, three in four dark), but carried down as coverage and drawn only below a
+// single lobe (glintTreeBlockCell), so that every cell stays the mean of its children and the
+// finest cells are lit as often as the relative area says.
+GLINT_FN GlintCell glintTreeOwnCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw ownDraw, int cellX,
+                                    int cellY, int ownLevel) {
+  GlintParameters covered = params;
+  covered.relativeArea = 1.0f;
+  GlintCell cell = glintCell(dict, covered, ownDraw, cellX, cellY, ownLevel);
+  cell.coverage = params.relativeArea;
+  return cell;
 }
 
 // Tree LOD: the cell (cellX, cellY) of `level`, below the own level, is a block of its parent, down
@@ -490,17 +515,22 @@ GLINT_FN GlintLodDraws glintLodDraws(GlintDictionaryView dict, GlintParameters p
 // children. Which child takes which block is one of the 2 x 2 square's eight symmetries, hashed from
 // the parent: with the position alone a column of cells would share its x marginal all the way
 // down and the glints would line up in rows and columns. Below tree level 0 a child keeps its
-// parent's single lobe; an own cell without microfacets, in the smooth limit or in the GGX tail
-// gives its whole subtree its own P22.
+// parent's single lobe, and the four share out its coverage f: 4 f of cell area, each child taking
+// as much as it can hold (min(1, 4 f - r) for the child of rank r in an order hashed from the
+// parent), so that a lobe covering a quarter of its cell is one lit child of four, and one
+// covering all of it four lit children; the lobe is the same, so the mean stays exact. An own
+// cell in the smooth limit or in the GGX tail gives its whole subtree its own P22 and coverage.
 GLINT_FN GlintCell glintTreeBlockCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw ownDraw,
                                       int ownLevel, int cellX, int cellY, int level) {
   int depth = ownLevel - level;
-  GlintCell cell = glintCell(dict, params, ownDraw, cellX >> depth, cellY >> depth, ownLevel);
+  GlintCell cell = glintTreeOwnCell(dict, params, ownDraw, cellX >> depth, cellY >> depth, ownLevel);
   if (cell.readsDictionary) {
     int treeLevel = cell.dictionaryLevel;
     ivec2 distributions = cell.distributions;
+    float coverage = cell.coverage;
     for (int step = depth - 1; step >= 0; --step) {
-      if (treeLevel >= 1) {
+      bool sharesCoverage = treeLevel == 0 && coverage > 0.0f && coverage < 1.0f;
+      if (treeLevel >= 1 || sharesCoverage) {
         // The parent at this step by its coherent index (so that the symmetry repeats with the
         // pattern's period), one 32-bit word, collision-free (glintCellHash), hashed with a mask
         // of the pattern seed and its level (a parent and its first child share the index).
@@ -510,20 +540,29 @@ GLINT_FN GlintCell glintTreeBlockCell(GlintDictionaryView dict, GlintParameters 
         uint h = glintPcg((s | (t << 16u)) ^ glintPcg(params.patternSeed + uint(parentLevel) * 2654435769u));
         int childX = (cellX >> step) & 1;
         int childY = (cellY >> step) & 1;
-        bool swapAxes = (h & 4u) != 0u;
-        int blockX = (swapAxes ? childY : childX) ^ int(h & 1u);
-        int blockY = (swapAxes ? childX : childY) ^ int((h >> 1u) & 1u);
-        if (blockX != 0) {
-          distributions.x = glintTreePartner(dict, treeLevel, distributions.x);
+        if (treeLevel >= 1) {
+          bool swapAxes = (h & 4u) != 0u;
+          int blockX = (swapAxes ? childY : childX) ^ int(h & 1u);
+          int blockY = (swapAxes ? childX : childY) ^ int((h >> 1u) & 1u);
+          if (blockX != 0) {
+            distributions.x = glintTreePartner(dict, treeLevel, distributions.x);
+          }
+          if (blockY != 0) {
+            distributions.y = glintTreePartner(dict, treeLevel, distributions.y);
+          }
+          treeLevel -= 1;
+        } else {
+          // The child's rank: its index through an xor and a rotation hashed from the parent, a
+          // permutation of the four that puts the lit ones side by side or across the diagonal.
+          int rank = (((childX + 2 * childY) ^ int((h >> 3u) & 3u)) + int((h >> 5u) & 3u)) & 3;
+          coverage = clamp(4.0f * coverage - float(rank), 0.0f, 1.0f);
         }
-        if (blockY != 0) {
-          distributions.y = glintTreePartner(dict, treeLevel, distributions.y);
-        }
-        treeLevel -= 1;
       }
     }
     cell.distributions = distributions;
     cell.dictionaryLevel = glintTreeTableLevel(dict, treeLevel);
+    cell.coverage = coverage;
+    cell.readsDictionary = coverage > 0.0f;
   }
   return cell;
 }
@@ -547,11 +586,14 @@ GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params
     if (draws.relatedLevel > level) {
       return glintTreeBlockCell(dict, params, draws.related, draws.relatedLevel, cellX, cellY, level);
     }
-    GlintCell own = glintCell(dict, params, draws.draw, cellX, cellY, level);
-    if (own.readsDictionary && level == draws.relatedLevel && level > 0) {
-      own.dictionaryLevel = glintTreeTableLevel(dict, own.dictionaryLevel);
+    if (level == draws.relatedLevel && level > 0) {
+      GlintCell own = glintTreeOwnCell(dict, params, draws.related, cellX, cellY, level);
+      if (own.readsDictionary) {
+        own.dictionaryLevel = glintTreeTableLevel(dict, own.dictionaryLevel);
+      }
+      return own;
     }
-    return own;
+    return glintCell(dict, params, draws.draw, cellX, cellY, level);
   }
 #endif
   GlintCell cell = glintCell(dict, params, draws.draw, cellX, cellY, level);
@@ -855,8 +897,9 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     if (weight > 0.0f) {
       weightSum += weight;
       GlintCell cell = glintLodCell(dict, params, draws, index.x, index.y, level);
-      smoothWeightSum += cell.smoothLimit ? weight : 0.0f;
-      tailWeightSum += cell.ggxTail ? weight : 0.0f;
+      float covered = weight * cell.coverage;  // weight itself but under the tree construction
+      smoothWeightSum += cell.smoothLimit ? covered : 0.0f;
+      tailWeightSum += cell.ggxTail ? covered : 0.0f;
       if (cell.readsDictionary && anyInSupport) {
         vec2 rotation = glintCellRotation(cell.hash);
         ivec2 distributions = cell.distributions;
@@ -875,7 +918,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
                                                cellUnscaled);
             p *= cell.scalePrecision;
           }
-          float weighted = weight * p;
+          float weighted = covered * p;
           dictionarySum[k] += weighted;
           if (params.colouredCells) {
             chromaSum[k] += weighted * chroma;
