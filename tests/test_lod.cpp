@@ -48,8 +48,9 @@ double marginalWeight(kernel::GlintDictionaryView dict, const GlintParameters& p
 
 // The cell (x, y) of `level` as the P-SDF's walk draws it.
 kernel::GlintCell drawnCell(kernel::GlintDictionaryView dict, const GlintParameters& p, int x, int y, int level) {
-  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, level);
-  return kernel::glintLodCell(dict, p, kernel::glintLodDraws(dict, p, p.logDensity, level, draw), x, y, level);
+  const float logDensity = kernel::glintLayerLogDensity(p);
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, logDensity, level);
+  return kernel::glintLodCell(dict, p, kernel::glintLodDraws(dict, p, logDensity, level, draw), x, y, level);
 }
 
 // A slope where a dictionary cell reflects: one of its own, drawn from its marginals (the
@@ -179,7 +180,7 @@ TEST(TreeLod, EveryCellBelowTheOwnLevelIsTheMeanOfItsFourChildren) {
   double worst = 0.0;
   for (int i = 0; i < 20000 && compared < 4000; ++i) {
     const GlintParameters p = randomCellParameters(rng, kernel::GLINT_LOD_TREE, 27.0f);
-    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintTreeLogDensity(p, p.logDensity));
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintLayerLogDensity(p));
     ASSERT_GE(own, 1);
     const int level = 1 + static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(own)));
     const int across = 1 << (16 - level);  // the level's cells in one period
@@ -246,7 +247,7 @@ TEST(TreeLod, RelativeAreaIsCarriedDownAsCoverage) {
     p.logDensity = 12.5f;
     p.densityRandomisation = 0.0f;
     p.relativeArea = relativeArea;
-    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintTreeLogDensity(p, p.logDensity));
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintLayerLogDensity(p));
     ASSERT_GE(own, kDepth);
     for (int ownX = 3; ownX < 5; ++ownX) {
       const int ownY = 7;
@@ -254,8 +255,9 @@ TEST(TreeLod, RelativeAreaIsCarriedDownAsCoverage) {
       ASSERT_TRUE(ownCell.readsDictionary) << "relative area " << relativeArea << " own cell " << ownX;
       EXPECT_EQ(ownCell.coverage, relativeArea);
       const int level = own - kDepth;
-      const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, level);
-      const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, p, p.logDensity, level, draw);
+      const float logDensity = kernel::glintLayerLogDensity(p);
+      const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, logDensity, level);
+      const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, p, logDensity, level, draw);
       double coverageSum = 0.0;
       int lit = 0, partlyLit = 0, dark = 0;
       constexpr int kAcross = 1 << kDepth;

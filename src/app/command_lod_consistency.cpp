@@ -345,8 +345,9 @@ double alignment(const Dictionary& dictionary, GlintParameters params, int windo
     const int across = 1 << (16 - level);
     const int x0 = static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(across))) & ~(window - 1);
     const int y0 = static_cast<int>(rng.nextBelow(static_cast<std::uint32_t>(across))) & ~(window - 1);
-    const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, params.logDensity, level);
-    const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, params, params.logDensity, level, draw);
+    const float logDensity = kernel::glintLayerLogDensity(params);
+    const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, params, logDensity, level);
+    const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, params, logDensity, level, draw);
     glm::dvec2 resultant(0.0);
     int cells = 0;
     for (int y = y0; y < y0 + window; ++y) {

@@ -446,6 +446,18 @@ GLINT_FN int glintTreePartner(GlintDictionaryView dict, int treeLevel, int distr
   return int(partner >= n ? partner - n : partner);
 }
 
+// The log density the layer's cells draw their microfacets at: D, but under the tree LOD
+// construction D + ln MRA, so that the microfacets the paper puts in a share MRA of the cells are
+// spread over all of them, as many a unit area and each as bright (glintTreeOwnCell).
+GLINT_FN float glintLayerLogDensity(GlintParameters params) {
+#if GLINT_TREE_LOD_COMPILED
+  if (params.lod == GLINT_LOD_TREE) {
+    return params.logDensity + log(params.relativeArea);
+  }
+#endif
+  return params.logDensity;
+}
+
 // The footprint level of the tree's own cells: the level at which a cell's dictionary level,
 // round(log4(n)), n = e^D 4^(level - (L - 1)) (glintLevelThreshold), is expected to be
 // floor(log2 N) - 1, so that an own cell's marginals (2^k of level 0's N lobes) rarely repeat a
@@ -456,17 +468,10 @@ GLINT_FN int glintTreeOwnLevel(GlintDictionaryView dict, float logDensity) {
   return int(clamp(level, 0.0f, float(dict.numLevels - 1)));
 }
 
-// The log density at which the tree's own cells draw their microfacets (glintTreeOwnCell): the
-// layer's times its relative area, e^D MRA, so that the microfacets the paper puts in a share MRA of
-// the cells are spread over all of them, as many a unit area and each as bright.
-GLINT_FN float glintTreeLogDensity(GlintParameters params, float logDensity) {
-  return logDensity + log(params.relativeArea);
-}
-
 // The level draws a footprint level's cells need under the material's LOD construction.
 struct GlintLodDraws {
   GlintLevelDraw draw;     // the footprint level's own (glintLevelDraw)
-  GlintLevelDraw related;  // consistent: the parent level's; tree: the own level's (glintTreeLogDensity); paper: unused
+  GlintLevelDraw related;  // consistent: the parent level's; tree: the own level's; paper: unused
   int relatedLevel;        // the level `related` draws for
 };
 
@@ -484,21 +489,24 @@ GLINT_FN GlintLodDraws glintLodDraws(GlintDictionaryView dict, GlintParameters p
 #endif
 #if GLINT_TREE_LOD_COMPILED
   if (params.lod == GLINT_LOD_TREE) {
-    float treeLogDensity = glintTreeLogDensity(params, logDensity);
-    draws.relatedLevel = glintTreeOwnLevel(dict, treeLogDensity);
-    draws.related = glintLevelDraw(dict, params, treeLogDensity, draws.relatedLevel);
+    draws.relatedLevel = glintTreeOwnLevel(dict, logDensity);
+    // The own level's thresholds, one level at a time: one glintNormalCdf a level instead of L
+    // (glintNextLevelDraw is glintLevelDraw of the next level bit for bit).
+    for (int k = level; k < draws.relatedLevel; ++k) {
+      draws.related = glintNextLevelDraw(dict, params, logDensity, k, draws.related);
+    }
   }
 #endif
   return draws;
 }
 
-// Tree LOD: an own cell (method.md 2.8) always holds microfacets, drawn at the density
-// glintTreeLogDensity (with `ownDraw`), and they cover the relative area of it: the relative area
-// is not drawn at the own level, where a cell without microfacets would leave its whole subtree
-// dark and one with them would share all of them out (the snow of a layer of relative area 1/4
-// sparkling in squares, three in four dark), but carried down as coverage and drawn only below a
-// single lobe (glintTreeBlockCell), so that every cell stays the mean of its children and the
-// finest cells are lit as often as the relative area says.
+// Tree LOD: a cell at or above the own level (method.md 2.8) always holds microfacets, drawn at
+// the density e^D MRA (glintLayerLogDensity, with `ownDraw`), and they cover the relative area of
+// it: the relative area is not drawn per cell, which at the own level would leave an own cell's
+// whole subtree dark and share all of another's microfacets out (the snow of a layer of relative
+// area 1/4 sparkling in squares, three in four dark), but carried down as coverage and drawn only
+// below a single lobe (glintTreeBlockCell), so that every cell stays the mean of its children and
+// the finest cells are lit as often as the relative area says.
 GLINT_FN GlintCell glintTreeOwnCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw ownDraw, int cellX,
                                     int cellY, int ownLevel) {
   GlintParameters covered = params;
@@ -578,7 +586,8 @@ GLINT_FN GlintCell glintTreeBlockCell(GlintDictionaryView dict, GlintParameters 
 // blocks below it, an own cell that reads the tree levels, so that it is the mean of its blocks;
 // above it, or at level 0, a cell of the paper's, reading the dictionary's own levels (whose
 // lobes stay distinct at every level: the tree's hold at most N, which would ripple the dense
-// layers' P-SDF about the smooth target).
+// layers' P-SDF about the smooth target). At and above the own level a cell holds microfacets
+// at the relative area's coverage instead of drawing it (glintTreeOwnCell).
 GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params, GlintLodDraws draws, int cellX,
                                 int cellY, int level) {
 #if GLINT_TREE_LOD_COMPILED
@@ -586,14 +595,11 @@ GLINT_FN GlintCell glintLodCell(GlintDictionaryView dict, GlintParameters params
     if (draws.relatedLevel > level) {
       return glintTreeBlockCell(dict, params, draws.related, draws.relatedLevel, cellX, cellY, level);
     }
-    if (level == draws.relatedLevel && level > 0) {
-      GlintCell own = glintTreeOwnCell(dict, params, draws.related, cellX, cellY, level);
-      if (own.readsDictionary) {
-        own.dictionaryLevel = glintTreeTableLevel(dict, own.dictionaryLevel);
-      }
-      return own;
+    GlintCell own = glintTreeOwnCell(dict, params, draws.draw, cellX, cellY, level);
+    if (own.readsDictionary && level == draws.relatedLevel && level > 0) {
+      own.dictionaryLevel = glintTreeTableLevel(dict, own.dictionaryLevel);
     }
-    return glintCell(dict, params, draws.draw, cellX, cellY, level);
+    return own;
   }
 #endif
   GlintCell cell = glintCell(dict, params, draws.draw, cellX, cellY, level);
@@ -1029,7 +1035,7 @@ GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParamet
 #if (GLINT_FOOTPRINT_WORDS & 1) != 0
   maxAnisotropy = policy.maxAnisotropy > 0.0f ? min(params.maxAnisotropy, policy.maxAnisotropy) : maxAnisotropy;
 #endif
-  GlintFootprint footprint = glintFootprint(duvdx, duvdy, maxAnisotropy, params.logDensity, numLevels);
+  GlintFootprint footprint = glintFootprint(duvdx, duvdy, maxAnisotropy, glintLayerLogDensity(params), numLevels);
   if (footprint.degenerate) {
     return footprint;
   }
