@@ -62,7 +62,7 @@ struct GlintParameters {
   vec2 alpha;                  // roughness alpha_x, alpha_y of the target Beckmann distribution
   float rho;                   // its slope correlation, in (-1, 1) (glint_antialiasing.h)
   float logDensity;            // D = ln(microfacets per unit uv area)
-  float relativeArea;          // MRA, in (0, 1]: probability that a cell has microfacets
+  float relativeArea;          // MRA, in (0, 1]: probability that a cell has microfacets (tree LOD: its coverage)
   float densityRandomisation;  // zeta: std of the per-cell dictionary level around log4(n)
   float maxAnisotropy;         // footprint ellipses are widened to at most this ratio
   uint patternSeed;            // selects an independent glint pattern for the same uv
@@ -506,7 +506,8 @@ GLINT_FN GlintLodDraws glintLodDraws(GlintDictionaryView dict, GlintParameters p
 // whole subtree dark and share all of another's microfacets out (the snow of a layer of relative
 // area 1/4 sparkling in squares, three in four dark), but carried down as coverage and drawn only
 // below a single lobe (glintTreeBlockCell), so that every cell stays the mean of its children and
-// the finest cells are lit as often as the relative area says.
+// the cells a few levels below a single lobe are lit as often as the relative area says (above
+// them, as on a dense layer's footprints, the relative area scales every cell's P22 alike).
 GLINT_FN GlintCell glintTreeOwnCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw ownDraw, int cellX,
                                     int cellY, int ownLevel) {
   GlintParameters covered = params;
