@@ -452,5 +452,22 @@ TEST(LodConsistencyCli, MeasuresEveryConstructionOnTheSameFrames) {
   EXPECT_EQ(bad.err, "glint: error: --lod must be \"paper\", \"consistent\" or \"tree\", got \"fast\"\n");
 }
 
+// --without-normal-maps takes the arctic's snow field's normal map away: the report says so, and
+// the layer measured is another (its glints lie at the flat field's normals), so the error differs.
+TEST(LodConsistencyCli, WithoutNormalMapsMeasuresTheFlatSurface) {
+  const auto folder = temporaryFolder("lod_consistency_normal_maps");
+  const char* command = "lod-consistency arctic --size 32x32 --frames 3 --reference-frames 1 --lod tree --json";
+  const RunResult with = runGlint(folder, command);
+  const RunResult without = runGlint(folder, std::string(command) + " --without-normal-maps");
+  ASSERT_EQ(with.exitCode, 0) << with.err;
+  ASSERT_EQ(without.exitCode, 0) << without.err;
+  const nlohmann::json a = nlohmann::json::parse(with.out), b = nlohmann::json::parse(without.out);
+  EXPECT_TRUE(a["normal_maps"].get<bool>());
+  EXPECT_FALSE(b["normal_maps"].get<bool>());
+  const double rmseWith = a["scenes"][0]["modes"]["tree"]["relative_rmse"].get<double>();
+  const double rmseWithout = b["scenes"][0]["modes"]["tree"]["relative_rmse"].get<double>();
+  EXPECT_GT(std::abs(rmseWith - rmseWithout), 1e-3 * rmseWith) << rmseWith << " " << rmseWithout;
+}
+
 }  // namespace
 }  // namespace glint

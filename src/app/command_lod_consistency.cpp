@@ -43,6 +43,7 @@ struct LodConsistencyOptions {
   std::string antiAliasing = gl::toString(gl::AntiAliasing::Ggaa);
   std::vector<std::string> lodModes;
   std::optional<std::int64_t> patternSeed;  // another realisation of every glint layer (--pattern-seed)
+  bool withoutNormalMaps = false;
   bool json = false;
 };
 
@@ -473,7 +474,14 @@ void runLodConsistency(LodConsistencyOptions options) {
   sceneOptions.dictionary = options.dictionary;
   sceneOptions.patternSeed = options.patternSeed;
   sceneOptions.camera = options.camera;
-  const std::vector<scene::Scene> scenes = sceneOptions.loadScenes(names);
+  std::vector<scene::Scene> scenes = sceneOptions.loadScenes(names);
+  if (options.withoutNormalMaps) {
+    // The measured frames read a normal map at the footprint's mip level and the reference at its
+    // finest: under sharp glints that difference alone pops and errs, whatever the construction.
+    for (scene::Scene& scene : scenes) {
+      for (scene::Material& material : scene.materials) material.normalTexture = -1;
+    }
+  }
   const Dictionary dictionary = sceneOptions.loadDictionary();
   gl::HeadlessContext context;
   nlohmann::json report = {{"renderer", gl::currentContextInfo().renderer},
@@ -485,6 +493,7 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"reference_frames", options.referenceFrames},
                            {"block", options.block},
                            {"aa", options.antiAliasing},
+                           {"normal_maps", !options.withoutNormalMaps},
                            {"scenes", nlohmann::json::array()}};
   // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
   measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
@@ -495,10 +504,11 @@ void runLodConsistency(LodConsistencyOptions options) {
     return;
   }
   std::printf("%s of %d frames, footprint doubled %.3g times, %s at %s (%s); reference: the 2020 model at %dx%d "
-              "samples a pixel, %d jittered frames; glint energy over %dx%d-pixel blocks\n",
+              "samples a pixel, %d jittered frames; glint energy over %dx%d-pixel blocks%s\n",
               options.move.c_str(), options.frames, options.doublings, options.antiAliasing.c_str(), options.size.c_str(),
               report["renderer"].get<std::string>().c_str(), options.referenceScale, options.referenceScale,
-              options.referenceFrames, options.block, options.block);
+              options.referenceFrames, options.block, options.block,
+              options.withoutNormalMaps ? "; normal maps left out" : "");
   std::printf("%-16s %-12s %12s %12s %10s %10s %10s %12s %12s %10s %10s %10s\n", "scene", "lod", "persistence",
               "(reference)", "change", "(ref.)", "popping", "drift range", "(reference)", "RMSE", "align 2x2",
               "align 4x4");
@@ -546,6 +556,9 @@ void registerLodConsistencyCommand(CLI::App& app) {
   command->add_option("--dict", options->dictionary, "Dictionary file or the authors' EXR folder");
   command->add_option("--pattern-seed", options->patternSeed,
                       "Every glint layer's pattern seed, 0..4294967295: the figures of another realisation");
+  command->add_flag("--without-normal-maps", options->withoutNormalMaps,
+                   "Leave every material's normal map out, so that the figures measure the glint construction "
+                   "alone (the measured frames read a normal map filtered, the reference at its finest level)");
   command->add_flag("--json", options->json, "Print the measurements as JSON");
   command->callback([options] { runLodConsistency(*options); });
 }
