@@ -187,10 +187,10 @@ double warped(const Frame& next, int t, int x, int y) {
 // The share of the tree's own cells whose marginals repeat some of level 0's N single lobes: those
 // whose dictionary level k has 2^k > N (4,096 own cells).
 double ownCellsWithRepeatedLobes(kernel::GlintDictionaryView dict, const GlintParameters& p, int own) {
-  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, p.logDensity, own);
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, p, kernel::glintLayerLogDensity(p), own);
   int repeated = 0;
   for (int i = 0; i < 4096; ++i) {
-    const kernel::GlintCell cell = kernel::glintCell(dict, p, draw, i % 64, i / 64, own);
+    const kernel::GlintCell cell = kernel::glintTreeOwnCell(dict, p, draw, i % 64, i / 64, own);
     repeated += cell.readsDictionary && std::exp2(static_cast<double>(cell.dictionaryLevel)) > dict.numDistributions;
   }
   return repeated / 4096.0;
@@ -373,7 +373,7 @@ void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::st
   std::string level = "-";
   if (mode == "oracle") level = "base " + std::to_string(span.base);
   if (mode == "tree") {
-    const int own = kernel::glintTreeOwnLevel(dict, p.logDensity);
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintLayerLogDensity(p));
     if (own < span.top) {
       std::fprintf(stderr, "glint_lod_oracle: the tree's own level %d is below the sequence's coarsest, %d\n", own, span.top);
       std::exit(1);
@@ -410,11 +410,12 @@ Area areaCells(kernel::GlintDictionaryView dict, const std::string& mode, glm::i
   area.params.patternSeed += realisation;
   const bool oracle = mode == "oracle";
   area.params.lod = oracle ? kernel::GLINT_LOD_PAPER : lodFromName("mode", mode);
-  const int own = kernel::glintTreeOwnLevel(dict, area.params.logDensity);
+  const float logDensity = kernel::glintLayerLogDensity(area.params);
+  const int own = kernel::glintTreeOwnLevel(dict, logDensity);
   const int cellLevel = oracle ? own - 4 : own - levelsBelow;  // the oracle's base is fixed
   const int side = 1 << (own - cellLevel);
-  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, area.params, area.params.logDensity, cellLevel);
-  const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, area.params, area.params.logDensity, cellLevel, draw);
+  const kernel::GlintLevelDraw draw = kernel::glintLevelDraw(dict, area.params, logDensity, cellLevel);
+  const kernel::GlintLodDraws draws = kernel::glintLodDraws(dict, area.params, logDensity, cellLevel, draw);
   for (int y = 0; y < side; ++y) {
     for (int x = 0; x < side; ++x) {
       area.cells.push_back(kernel::glintLodCell(dict, area.params, draws, ownCell.x * side + x, ownCell.y * side + y, cellLevel));
