@@ -38,8 +38,8 @@ struct LodConsistencyOptions {
   std::string camera = "default";
   std::string dictionary;
   // Not ggaa+lean: its normal-map filtering widens the glint layer's roughness, which the
-  // Cook-Torrance frame the layer is taken against does not, so the layer would hold that
-  // difference too.
+  // Cook-Torrance frame does not, so its layer is taken against the glint model's smooth limit
+  // (renderSmoothLimit), which the other figures are not.
   std::string antiAliasing = gl::toString(gl::AntiAliasing::Ggaa);
   std::vector<std::string> lodModes;
   std::optional<std::int64_t> patternSeed;  // another realisation of every glint layer (--pattern-seed)
@@ -208,6 +208,25 @@ scene::Camera movedCamera(const scene::Camera& preset, const std::string& move, 
     camera.position = preset.target + static_cast<float>(growth) * offset;
   }
   return camera;
+}
+
+// The glint model's smooth limit, as a frame filters it: every glint layer covering all of its
+// cells at a density whose cells are all past the dictionary's last level (their P22 is the smooth
+// target's). Under ggaa+lean the smooth frame the glint layer is taken against: the normal map's
+// slope covariance widens the glint layer's roughness, which the Cook-Torrance program does not.
+std::vector<double> renderSmoothLimit(gl::Renderer& renderer, gl::FrameSettings frame) {
+  constexpr float kSmoothLimitLogDensity = 80.0f;  // e^80 4^-15 microfacets a finest cell: 4^42, past every level
+  const std::vector<scene::Material> drawn = renderer.materials();
+  for (scene::Material& material : renderer.materials()) {
+    material.glint.logDensity = kSmoothLimitLogDensity;
+    material.glint.logDensityTexture = -1;
+    material.glint.relativeArea = 1.0f;
+    material.glint.relativeAreaTexture = -1;
+  }
+  frame.brdf = gl::BrdfModel::Glint;
+  std::vector<double> smooth = renderLuminance(renderer, frame, 1);
+  renderer.materials() = drawn;
+  return smooth;
 }
 
 // The glint energy of frame t and of frame t + 1 warped back onto frame t's pixels, summed over
@@ -395,7 +414,8 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     dolly.referenceSmooth.push_back(renderLuminance(renderer, frame, options.referenceScale, options.referenceFrames));
     frame.antiAliasing = gl::antiAliasingFromString(options.antiAliasing);
     frame.normalMapFinestLevel = false;
-    dolly.smooth.push_back(renderLuminance(renderer, frame, 1));
+    dolly.smooth.push_back(frame.antiAliasing == gl::AntiAliasing::GgaaLean ? renderSmoothLimit(renderer, frame)
+                                                                             : renderLuminance(renderer, frame, 1));
     dolly.points.push_back(surfacePoints(renderer, dolly.views.back(), width, height));
   }
 
@@ -494,6 +514,9 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"block", options.block},
                            {"aa", options.antiAliasing},
                            {"normal_maps", !options.withoutNormalMaps},
+                           {"smooth_frame", gl::antiAliasingFromString(options.antiAliasing) == gl::AntiAliasing::GgaaLean
+                                                ? "glint smooth limit"
+                                                : "cook-torrance"},
                            {"scenes", nlohmann::json::array()}};
   // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
   measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
