@@ -373,13 +373,15 @@ void measure(kernel::GlintDictionaryView dict, const Setup& setup, const std::st
   std::string level = "-";
   if (mode == "oracle") level = "base " + std::to_string(span.base);
   if (mode == "tree") {
-    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintLayerLogDensity(p));
+    GlintParameters tree = p;
+    tree.lod = kernel::GLINT_LOD_TREE;
+    const int own = kernel::glintTreeOwnLevel(dict, kernel::glintLayerLogDensity(tree));
     if (own < span.top) {
       std::fprintf(stderr, "glint_lod_oracle: the tree's own level %d is below the sequence's coarsest, %d\n", own, span.top);
       std::exit(1);
     }
     char text[64];
-    std::snprintf(text, sizeof text, "own %d, %.0f%% above N lobes", own, 100.0 * ownCellsWithRepeatedLobes(dict, p, own));
+    std::snprintf(text, sizeof text, "own %d, %.0f%% above N lobes", own, 100.0 * ownCellsWithRepeatedLobes(dict, tree, own));
     level = text;
   }
   std::printf("| %s | %u | %s | %s | %.3f (%.3f) | %.3f | %.3f (%.3f) | %.3f | %.1f%% | %.3f | %.3f | %.3f, %.2f |\n",

@@ -37,9 +37,9 @@ struct LodConsistencyOptions {
   int block = 4;
   std::string camera = "default";
   std::string dictionary;
-  // Not ggaa+lean: its normal-map filtering widens the glint layer's roughness, which the
-  // Cook-Torrance frame does not, so its layer is taken against the glint model's smooth limit
-  // (renderSmoothLimit), which the other figures are not.
+  // ggaa, not ggaa+lean: under ggaa+lean the layer is taken against the glint model's smooth limit
+  // (layerAgainstSmoothLimit) instead of the Cook-Torrance frame, so its figures are not those of
+  // the other filters.
   std::string antiAliasing = gl::toString(gl::AntiAliasing::Ggaa);
   std::vector<std::string> lodModes;
   std::optional<std::int64_t> patternSeed;  // another realisation of every glint layer (--pattern-seed)
@@ -162,7 +162,7 @@ double sample(const std::vector<double>& image, const Warp& warp) {
   return value;
 }
 
-// A sequence's frames: the glint layer (glint frame minus the Cook-Torrance frame of the same view),
+// A sequence's frames: the glint layer (glint frame minus the smooth frame of the same view),
 // its positive part (the glints: where the layer is above the smooth lobe) and the glint frame, per
 // pixel, in luminance. The positive part is taken before any resampling: the positive part of an
 // interpolation between a glint and the dark around it would lose some of the glint.
@@ -178,14 +178,14 @@ struct Figures {
   double change = 0.0, referenceChange = 0.0;  // mean |layer(t) - layer(t+1) warped|, / mean |reference layer|
   double popping = 0.0;                        // the part of the change beyond the reference's, pixel by pixel
   double relativeRmse = 0.0;                   // the glint frames against the reference's, / reference's mean
-  std::vector<double> drift, referenceDrift;   // the patch's mean layer / its mean Cook-Torrance radiance, per frame
+  std::vector<double> drift, referenceDrift;   // the patch's mean layer / its mean smooth radiance, per frame
   double driftRange = 0.0, referenceDriftRange = 0.0;
 };
 
 struct Dolly {
   std::vector<View> views;
   std::vector<SurfacePoints> points;
-  std::vector<std::vector<double>> smooth;           // Cook-Torrance, scale 1
+  std::vector<std::vector<double>> smooth;           // the smooth frame (layerAgainstSmoothLimit), scale 1
   std::vector<std::vector<double>> referenceSmooth;  // Cook-Torrance, supersampled
   std::vector<std::vector<char>> patch;              // the fixed surface patch's pixels, per frame
 };
@@ -210,15 +210,25 @@ scene::Camera movedCamera(const scene::Camera& preset, const std::string& move, 
   return camera;
 }
 
+// Whether the glint layer is taken against the glint model's smooth limit drawn as the measured
+// frames are (renderSmoothLimit) rather than the Cook-Torrance frame: under ggaa+lean, whose
+// normal-map filtering widens the glint layer's roughness by the normal map's slope covariance,
+// which the Cook-Torrance program does not.
+bool layerAgainstSmoothLimit(const LodConsistencyOptions& options) {
+  return gl::antiAliasingFromString(options.antiAliasing) == gl::AntiAliasing::GgaaLean;
+}
+
 // The glint model's smooth limit, as a frame filters it: every glint layer covering all of its
 // cells at a density whose cells are all past the dictionary's last level (their P22 is the smooth
-// target's). Under ggaa+lean the smooth frame the glint layer is taken against: the normal map's
-// slope covariance widens the glint layer's roughness, which the Cook-Torrance program does not.
+// target's).
 std::vector<double> renderSmoothLimit(gl::Renderer& renderer, gl::FrameSettings frame) {
-  constexpr float kSmoothLimitLogDensity = 80.0f;  // e^80 4^-15 microfacets a finest cell: 4^42, past every level
+  // e^80 4^-15 = 4^42 microfacets in a finest cell of the largest dictionary (16 levels), and with
+  // no density randomisation every level's threshold is crossed exactly: all past the last level.
+  constexpr float kSmoothLimitLogDensity = 80.0f;
   const std::vector<scene::Material> drawn = renderer.materials();
   for (scene::Material& material : renderer.materials()) {
     material.glint.logDensity = kSmoothLimitLogDensity;
+    material.glint.densityRandomisation = 0.0f;
     material.glint.logDensityTexture = -1;
     material.glint.relativeArea = 1.0f;
     material.glint.relativeAreaTexture = -1;
@@ -307,8 +317,8 @@ Figures measureMode(const Dolly& dolly, const Sequence& mode, const Sequence& re
     }
     if (count > 0 && mean > 0.0) figures.relativeRmse += std::sqrt(squared / count) / (mean / count) / frames;
   }
-  // Drift: the mean glint layer over the fixed patch, relative to the patch's mean Cook-Torrance
-  // radiance, frame by frame.
+  // Drift: the mean glint layer over the fixed patch, relative to the patch's mean smooth radiance,
+  // frame by frame.
   for (int t = 0; t < frames; ++t) {
     double layer = 0.0, referenceLayer = 0.0, smooth = 0.0, referenceSmooth = 0.0;
     for (std::size_t p = 0; p < dolly.patch[static_cast<std::size_t>(t)].size(); ++p) {
@@ -403,7 +413,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   frame.height = height;
   const scene::Camera preset = scene.cameras.at(options.camera);
 
-  // The views, their surface points and their Cook-Torrance frames, shared by every mode.
+  // The views, their surface points and their smooth frames, shared by every mode.
   Dolly dolly;
   for (int t = 0; t < options.frames; ++t) {
     frame.camera = movedCamera(preset, options.move, t, options.frames, options.doublings);
@@ -414,8 +424,8 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     dolly.referenceSmooth.push_back(renderLuminance(renderer, frame, options.referenceScale, options.referenceFrames));
     frame.antiAliasing = gl::antiAliasingFromString(options.antiAliasing);
     frame.normalMapFinestLevel = false;
-    dolly.smooth.push_back(frame.antiAliasing == gl::AntiAliasing::GgaaLean ? renderSmoothLimit(renderer, frame)
-                                                                             : renderLuminance(renderer, frame, 1));
+    dolly.smooth.push_back(layerAgainstSmoothLimit(options) ? renderSmoothLimit(renderer, frame)
+                                                            : renderLuminance(renderer, frame, 1));
     dolly.points.push_back(surfacePoints(renderer, dolly.views.back(), width, height));
   }
 
@@ -514,9 +524,7 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"block", options.block},
                            {"aa", options.antiAliasing},
                            {"normal_maps", !options.withoutNormalMaps},
-                           {"smooth_frame", gl::antiAliasingFromString(options.antiAliasing) == gl::AntiAliasing::GgaaLean
-                                                ? "glint smooth limit"
-                                                : "cook-torrance"},
+                           {"smooth_frame", layerAgainstSmoothLimit(options) ? "glint-smooth-limit" : "cook-torrance"},
                            {"scenes", nlohmann::json::array()}};
   // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
   measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
@@ -527,10 +535,11 @@ void runLodConsistency(LodConsistencyOptions options) {
     return;
   }
   std::printf("%s of %d frames, footprint doubled %.3g times, %s at %s (%s); reference: the 2020 model at %dx%d "
-              "samples a pixel, %d jittered frames; glint energy over %dx%d-pixel blocks%s\n",
+              "samples a pixel, %d jittered frames; glint energy over %dx%d-pixel blocks, the layer against %s%s\n",
               options.move.c_str(), options.frames, options.doublings, options.antiAliasing.c_str(), options.size.c_str(),
               report["renderer"].get<std::string>().c_str(), options.referenceScale, options.referenceScale,
               options.referenceFrames, options.block, options.block,
+              layerAgainstSmoothLimit(options) ? "the glint smooth limit" : "Cook-Torrance",
               options.withoutNormalMaps ? "; normal maps left out" : "");
   std::printf("%-16s %-12s %12s %12s %10s %10s %10s %12s %12s %10s %10s %10s\n", "scene", "lod", "persistence",
               "(reference)", "change", "(ref.)", "popping", "drift range", "(reference)", "RMSE", "align 2x2",
