@@ -64,6 +64,29 @@ TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
   EXPECT_FALSE(one == slurp(folder / "other.gdict"));
 }
 
+TEST(DictCli, TreeLevelsAreWrittenOnlyWhenAskedAndReadBack) {
+  const auto folder = temporaryFolder("dict_tree_levels");
+  const RunResult written = runGlint(folder, "dict --tree-levels -o tree.gdict");
+  ASSERT_EQ(written.exitCode, 0) << written.err;
+  EXPECT_NE(written.err.find("744 KiB of binary16 texels, tree levels included"), std::string::npos) << written.err;
+  ASSERT_EQ(runGlint(folder, "dict -o plain.gdict").exitCode, 0);
+  const std::string tree = slurp(folder / "tree.gdict");
+  const std::string plain = slurp(folder / "plain.gdict");
+  EXPECT_EQ(tree.size(), 64u + 2u * 31u * 192u * 64u);  // 16 levels, 15 tree levels
+  EXPECT_EQ(tree.substr(64, plain.size() - 64), plain.substr(64));  // the levels as version 1 stores them
+  // Read back as the same dictionary: the same glint values.
+  const std::string query =
+      R"({"uv":[0.3,0.7],"duvdx":[0.001,0],"duvdy":[0,0.001],"wo":[0.2,0.1,1],"wi":[-0.1,0,1],"log_density":22})" "\n";
+  const RunResult fromTree = runGlint(folder, "eval --dict tree.gdict", query);
+  const RunResult fromPlain = runGlint(folder, "eval --dict plain.gdict", query);
+  ASSERT_EQ(fromTree.exitCode, 0) << fromTree.err;
+  EXPECT_EQ(fromTree.out, fromPlain.out);
+  const RunResult converted = runGlint(folder, "dict --from tree.gdict -o again.gdict");
+  ASSERT_EQ(converted.exitCode, 0) << converted.err;
+  EXPECT_TRUE(slurp(folder / "again.gdict") == plain);
+  expectOneLineError(runGlint(folder, "dict --tree-levels --stats"), "--tree-levels says what -o FILE holds");
+}
+
 TEST(DictCli, WritesAPlotAndStatistics) {
   const auto folder = temporaryFolder("dict_plot");
   const RunResult result = runGlint(folder, "dict --levels 8 --plot plot.png --plot-levels 0,3,7 --stats");

@@ -297,9 +297,62 @@ TEST(Dictionary, DamagedFilesAreRejectedWithTheirProblem) {
   longer.push_back(std::byte{0});
   expectRejected(longer, "trailing data");
   expectRejected(damaged(0, std::byte{'X'}), "bad magic");
-  expectRejected(damaged(8, std::byte{2}), "unsupported dictionary format version 2");
+  expectRejected(damaged(8, std::byte{3}), "unsupported dictionary format version 3");
   expectRejected(damaged(17, std::byte{1}), "corrupt header");
   expectRejected(damaged(1000, good[1000] ^ std::byte{0x10}), "corrupt payload");
+}
+
+// `glint dict --tree-levels` (format version 2): the L levels as version 1 stores them, then the
+// tree levels as the kernel reads them; loading gives the same dictionary, and a stored tree level
+// that is not the one level 0 makes is refused by name (a host uploading the file would draw it).
+TEST(Dictionary, TreeLevelFilesHoldTheTreeLevelsAndLoadBack) {
+  DictionaryParameters p;
+  p.numLevels = 4;
+  p.numDistributions = 8;
+  p.texelsPerDistribution = 16;
+  const Dictionary d = generateDictionary(p);
+  const std::vector<std::byte> levels = d.serialise();
+  const std::vector<std::byte> withTree = d.serialise(DictionaryFileTables::LevelsAndTreeLevels);
+  const std::size_t tableTexels = 8 * 16;
+  ASSERT_EQ(withTree.size(), 64u + 2u * 7u * tableTexels);  // 4 levels and 3 tree levels
+  EXPECT_EQ(withTree[8], std::byte{2});
+  EXPECT_EQ(levels[8], std::byte{1});
+  EXPECT_TRUE(std::equal(levels.begin() + 64, levels.end(), withTree.begin() + 64));
+  auto storedHalf = [&](std::size_t i) {
+    return static_cast<std::uint16_t>(static_cast<unsigned>(withTree[64 + 2 * i]) | static_cast<unsigned>(withTree[65 + 2 * i]) << 8);
+  };
+  for (int table = p.numLevels; table < d.numTables(); ++table) {
+    for (int distribution = 0; distribution < p.numDistributions; ++distribution) {
+      for (int k = 0; k < p.texelsPerDistribution; ++k) {
+        const std::size_t i = (static_cast<std::size_t>(table) * p.numDistributions + distribution) * p.texelsPerDistribution + k;
+        ASSERT_EQ(halfToFloat(storedHalf(i)), d.texel(table, distribution, k)) << table << " " << distribution << " " << k;
+      }
+    }
+  }
+  const Dictionary loaded = Dictionary::deserialise(withTree, "tree.gdict");
+  EXPECT_TRUE(loaded.serialise() == levels);
+  EXPECT_TRUE(loaded.serialise(DictionaryFileTables::LevelsAndTreeLevels) == withTree);
+
+  // Tree level 2 (table 5), distribution 3, texel 0 one binary16 step larger, the checksums remade.
+  std::vector<std::byte> tampered = withTree;
+  const std::size_t texel = 64 + 2 * ((5 * 8 + 3) * 16);
+  tampered[texel] = static_cast<std::byte>(static_cast<unsigned>(tampered[texel]) + 1);
+  auto putU32 = [&](std::size_t at, std::uint32_t value) {
+    for (int b = 0; b < 4; ++b) tampered[at + b] = static_cast<std::byte>(value >> (8 * b));
+  };
+  auto text = [&](std::size_t from, std::size_t to) {
+    return std::string_view(reinterpret_cast<const char*>(tampered.data()) + from, to - from);
+  };
+  putU32(56, crc32Ieee(text(64, tampered.size())));
+  putU32(60, crc32Ieee(text(0, 60)));
+  expectRejected(tampered, "tree level 2, distribution 3 is not the mean its level 0 makes");
+  // A version-2 header over a version-1 payload: the size says what is missing.
+  std::vector<std::byte> relabelled = levels;
+  relabelled[8] = std::byte{2};
+  for (int b = 0; b < 4; ++b) relabelled[60 + b] = std::byte{0};
+  tampered = relabelled;
+  putU32(60, crc32Ieee(text(0, 60)));
+  expectRejected(tampered, "payload bytes, the parameters need " + std::to_string(2 * 7 * tableTexels));
 }
 
 TEST(Dictionary, InvalidParametersAreRejectedByName) {

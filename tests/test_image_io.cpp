@@ -33,22 +33,13 @@ void writeBytes(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
-std::uint32_t crc32(const std::string& bytes) {
-  std::uint32_t crc = 0xFFFFFFFFu;
-  for (unsigned char byte : bytes) {
-    crc ^= byte;
-    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-  }
-  return ~crc;
-}
-
 std::string bigEndian32(std::uint32_t value) {
   return {static_cast<char>(value >> 24), static_cast<char>(value >> 16), static_cast<char>(value >> 8),
           static_cast<char>(value)};
 }
 
 std::string pngChunk(const std::string& type, const std::string& payload) {
-  return bigEndian32(static_cast<std::uint32_t>(payload.size())) + type + payload + bigEndian32(crc32(type + payload));
+  return bigEndian32(static_cast<std::uint32_t>(payload.size())) + type + payload + bigEndian32(crc32Ieee(type + payload));
 }
 
 // A minimal PNG encoder (stored deflate blocks, filter 0) so that the reader is tested against an

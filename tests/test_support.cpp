@@ -62,6 +62,15 @@ std::string slurp(const std::filesystem::path& path) {
   return buffer.str();
 }
 
+std::uint32_t crc32Ieee(std::string_view bytes) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
 RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText,
                    const std::string& environment) {
   std::ofstream(folder / "stdin.txt") << stdinText;

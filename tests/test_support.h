@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,8 @@ struct RunResult {
 };
 // A whole file's bytes ("" when it cannot be read).
 std::string slurp(const std::filesystem::path& path);
+// CRC-32 (IEEE 802.3, zlib's and PNG's), written bit by bit, for fixtures that carry checksums.
+std::uint32_t crc32Ieee(std::string_view bytes);
 // Runs `glint ARGS < stdinText` in `folder`.
 // `environment` (e.g. "PATH=/nonexistent") is set for glint alone.
 RunResult runGlint(const std::filesystem::path& folder, const std::string& arguments, const std::string& stdinText = "",

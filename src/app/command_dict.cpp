@@ -27,6 +27,7 @@ struct DictOptions {
   std::vector<int> plotDistributions = DictionaryPlotOptions{}.distributions;
   std::vector<int> plotLevels = DictionaryPlotOptions{}.levels;
   bool stats = false;
+  bool treeLevels = false;
 };
 
 void printStatistics(const Dictionary& dictionary) {
@@ -44,6 +45,9 @@ void printStatistics(const Dictionary& dictionary) {
 void runDict(const DictOptions& options, const CLI::App& command) {
   if (options.output.empty() && options.plot.empty() && !options.stats) {
     throw Error("glint dict: nothing to do; give -o FILE, --plot PNG or --stats");
+  }
+  if (options.treeLevels && options.output.empty()) {
+    throw Error("glint dict: --tree-levels says what -o FILE holds; give -o FILE");
   }
   std::optional<tbb::global_control> threadLimit;
   if (options.threads > 0) {
@@ -67,7 +71,9 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   // Outputs first, the report after: a failure prints its one error line and nothing else.
   std::optional<ImageRgb8> plot;  // drawn before anything is written: it validates its options
   if (!options.plot.empty()) plot = plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels});
-  if (!options.output.empty()) dictionary->save(options.output);
+  const DictionaryFileTables tables =
+      options.treeLevels ? DictionaryFileTables::LevelsAndTreeLevels : DictionaryFileTables::Levels;
+  if (!options.output.empty()) dictionary->save(options.output, tables);
   if (plot) writePng(options.plot, *plot);
   const DictionaryParameters& p = dictionary->parameters();
   std::fprintf(stderr, "glint: %s dictionary: %d levels x %d distributions x %d texels, alpha %g, lobe std %g, %s",
@@ -76,8 +82,10 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   if (p.placement != LobePlacement::Imported) std::fprintf(stderr, ", seed %llu", static_cast<unsigned long long>(p.seed));
   std::fprintf(stderr, " (%.2f s)\n", seconds);
   if (!options.output.empty()) {
-    std::fprintf(stderr, "glint: wrote %s (%zu KiB of binary16 texels)\n", options.output.c_str(),
-                 dictionary->halfTexels().size() * 2 / 1024);
+    std::fprintf(stderr, "glint: wrote %s (%zu KiB of binary16 texels%s)\n", options.output.c_str(),
+                 static_cast<std::size_t>(options.treeLevels ? dictionary->numTables() : p.numLevels) *
+                     p.numDistributions * p.texelsPerDistribution * 2 / 1024,
+                 options.treeLevels ? ", tree levels included" : "");
   }
   if (!options.plot.empty()) std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
   if (options.stats) printStatistics(*dictionary);
@@ -90,6 +98,9 @@ void registerDictCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "dict", "Generate a dictionary of multi-level slope distributions (or load one), write, plot, measure it");
   command->add_option("-o,--output", options->output, "Write the dictionary to this file (binary, docs/dictionary.md)");
+  command->add_flag("--tree-levels", options->treeLevels,
+                    "Write the tree levels too (format version 2), for hosts that upload the file as it is and "
+                    "draw the tree LOD construction (web/three); glint builds them itself when it loads a file");
   command->add_option("--from", options->from,
                       "Load instead of generating: a dictionary file, or the authors' EXR folder dict_L_N_R_alpha_s");
   DictionaryParameters& p = options->parameters;

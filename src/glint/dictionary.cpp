@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include <zlib.h>
@@ -17,7 +18,10 @@ namespace glint {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'D', 'I', 'C'};
-constexpr std::uint32_t kFormatVersion = 1;
+// Version 1 holds the L levels; version 2 the L levels, then the L - 1 tree levels (docs/dictionary.md,
+// "File format"), for hosts that upload the file as it is and cannot build the tree levels.
+constexpr std::uint32_t kFormatVersionLevels = 1;
+constexpr std::uint32_t kFormatVersionWithTreeLevels = 2;
 constexpr std::uint32_t kHeaderBytes = 64;
 constexpr std::uint32_t kTexelFormatBinary16 = 1;
 
@@ -282,8 +286,10 @@ float Dictionary::marginal(int level, int distribution, float slope) const {
   return kernel::glintMarginal(view(), level, distribution, absSlope);
 }
 
-std::vector<std::byte> Dictionary::serialise() const {
-  const std::span<const std::uint16_t> levels = halfTexels();  // the tree levels are derived, not stored
+std::vector<std::byte> Dictionary::serialise(DictionaryFileTables tables) const {
+  const bool withTree = tables == DictionaryFileTables::LevelsAndTreeLevels;
+  // The tree levels are derived from level 0: stored only where asked, for hosts that cannot build them.
+  const std::span<const std::uint16_t> levels = withTree ? std::span<const std::uint16_t>(halves_) : halfTexels();
   const std::size_t payloadBytes = levels.size() * 2;
   std::vector<std::byte> bytes(kHeaderBytes + payloadBytes);
   std::byte* payload = bytes.data() + kHeaderBytes;
@@ -293,7 +299,7 @@ std::vector<std::byte> Dictionary::serialise() const {
   }
   std::byte* header = bytes.data();
   std::memcpy(header, kMagic, sizeof kMagic);
-  putU32(header + 8, kFormatVersion);
+  putU32(header + 8, withTree ? kFormatVersionWithTreeLevels : kFormatVersionLevels);
   putU32(header + 12, kHeaderBytes);
   putU32(header + 16, static_cast<std::uint32_t>(parameters_.numLevels));
   putU32(header + 20, static_cast<std::uint32_t>(parameters_.numDistributions));
@@ -320,9 +326,9 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
     throw fail("not a glint dictionary (bad magic)");
   }
   const std::uint32_t version = getU32(header + 8);
-  if (version != kFormatVersion) {
+  if (version != kFormatVersionLevels && version != kFormatVersionWithTreeLevels) {
     throw fail("unsupported dictionary format version " + std::to_string(version) + " (this build reads " +
-               std::to_string(kFormatVersion) + ")");
+               std::to_string(kFormatVersionLevels) + " and " + std::to_string(kFormatVersionWithTreeLevels) + ")");
   }
   if (getU32(header + 60) != crc32Of({header, 60})) {
     throw fail("corrupt header (checksum mismatch)");
@@ -345,10 +351,12 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
   }
   const std::size_t count = static_cast<std::size_t>(parameters.numLevels) * parameters.numDistributions *
                             parameters.texelsPerDistribution;
+  const std::size_t tables = version == kFormatVersionWithTreeLevels ? 2 * parameters.numLevels - 1 : parameters.numLevels;
+  const std::size_t stored = count / parameters.numLevels * tables;
   const std::size_t payloadBytes = getU32(header + 52);
-  if (payloadBytes != 2 * count) {
+  if (payloadBytes != 2 * stored) {
     throw fail("header says " + std::to_string(payloadBytes) + " payload bytes, the parameters need " +
-               std::to_string(2 * count));
+               std::to_string(2 * stored));
   }
   if (bytes.size() != kHeaderBytes + payloadBytes) {
     throw fail((bytes.size() < kHeaderBytes + payloadBytes ? "truncated: " : "trailing data: ") +
@@ -358,20 +366,33 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
   if (getU32(header + 56) != crc32Of(payload)) {
     throw fail("corrupt payload (checksum mismatch)");
   }
+  auto storedHalf = [&](std::size_t i) {
+    return static_cast<std::uint16_t>(static_cast<unsigned>(payload[2 * i]) | static_cast<unsigned>(payload[2 * i + 1]) << 8);
+  };
   std::vector<float> values(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    values[i] = halfToFloat(static_cast<std::uint16_t>(static_cast<unsigned>(payload[2 * i]) |
-                                                       static_cast<unsigned>(payload[2 * i + 1]) << 8));
-  }
+  for (std::size_t i = 0; i < count; ++i) values[i] = halfToFloat(storedHalf(i));
+  std::optional<Dictionary> dictionary;
   try {
-    return Dictionary(parameters, values);
+    dictionary.emplace(parameters, values);
   } catch (const Error& e) {
     throw fail(e.what());
   }
+  // Stored tree levels must be the ones level 0 makes: a host that uploads the file as it is draws
+  // them, glint draws its own, and the two would differ without a word.
+  for (std::size_t i = count; i < stored; ++i) {
+    if (storedHalf(i) != dictionary->halves_[i]) {
+      const std::size_t marginal = i / static_cast<std::size_t>(parameters.texelsPerDistribution);
+      const std::size_t perTable = static_cast<std::size_t>(parameters.numDistributions);
+      throw fail("tree level " + std::to_string(marginal / perTable - static_cast<std::size_t>(parameters.numLevels) + 1) +
+                 ", distribution " + std::to_string(marginal % perTable) +
+                 " is not the mean its level 0 makes (docs/dictionary.md, \"Tree levels\")");
+    }
+  }
+  return std::move(*dictionary);
 }
 
-void Dictionary::save(const std::filesystem::path& path) const {
-  const std::vector<std::byte> bytes = serialise();
+void Dictionary::save(const std::filesystem::path& path, DictionaryFileTables tables) const {
+  const std::vector<std::byte> bytes = serialise(tables);
   writeFileAtomically(path, bytes);
 }
 

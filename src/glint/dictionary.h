@@ -39,6 +39,10 @@ struct DictionaryParameters {
   void validate() const;
 };
 
+// What a dictionary file holds (docs/dictionary.md, "File format"): the L levels, or the L levels
+// and then the L - 1 tree levels (docs/dictionary.md, "Tree levels").
+enum class DictionaryFileTables { Levels, LevelsAndTreeLevels };
+
 class Dictionary {
  public:
   // `values` holds L * N * R densities, [level][distribution][texel]; each is rounded to binary16.
@@ -75,10 +79,12 @@ class Dictionary {
   float mipTexel(int mip, int level, int distribution, int texel) const;
   std::span<const std::uint16_t> filteredHalfTexels() const { return filteredHalves_; }  // for GPU upload
 
-  // The versioned binary file (docs/dictionary.md, "File format").
-  std::vector<std::byte> serialise() const;
+  // The versioned binary file (docs/dictionary.md, "File format"): the L levels (version 1), or with
+  // the tree levels after them (version 2) for hosts that upload the file as it is. Loading reads
+  // both, and refuses stored tree levels that are not the ones level 0 makes.
+  std::vector<std::byte> serialise(DictionaryFileTables tables = DictionaryFileTables::Levels) const;
   static Dictionary deserialise(std::span<const std::byte> bytes, const std::string& name);
-  void save(const std::filesystem::path& path) const;
+  void save(const std::filesystem::path& path, DictionaryFileTables tables = DictionaryFileTables::Levels) const;
   static Dictionary load(const std::filesystem::path& path);
   // The authors' published EXR dictionary is read by glint::image (glint/dictionary_exr.h), which
   // has the EXR decoder that this library does without.

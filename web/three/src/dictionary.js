@@ -45,7 +45,7 @@ export function parseGlintDictionary(buffer, name = 'dictionary') {
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   if (String.fromCharCode(...bytes.subarray(0, 8)) !== MAGIC) fail('not a glint dictionary (bad magic)');
   const version = view.getUint32(8, true);
-  if (version !== 1) fail(`unsupported format version ${version}`);
+  if (version !== 1 && version !== 2) fail(`unsupported format version ${version}`);
   if (view.getUint32(12, true) !== HEADER_BYTES) fail('corrupt header (header size)');
   if (crc32(bytes.subarray(0, 60)) !== view.getUint32(60, true)) fail('corrupt header (checksum mismatch)');
   const numLevels = view.getUint32(16, true);
@@ -57,7 +57,11 @@ export function parseGlintDictionary(buffer, name = 'dictionary') {
   if (!(texelsPerDistribution >= 2 && texelsPerDistribution <= 4096)) fail(`unsupported texels per distribution ${texelsPerDistribution}`);
   if (!(alpha >= 0.01 && alpha <= 2)) fail(`unsupported dictionary roughness ${alpha}`);
   if (view.getUint32(48, true) !== 1) fail('unsupported texel format (binary16 expected)');
-  const count = numLevels * numDistributions * texelsPerDistribution;
+  // Version 2 holds the tree levels after the L levels (`glint dict --tree-levels`): the kernel's
+  // tables L .. 2L - 2, which the tree LOD construction reads (glintTreeTableLevel).
+  const hasTreeLevels = version === 2;
+  const numTables = hasTreeLevels ? 2 * numLevels - 1 : numLevels;
+  const count = numTables * numDistributions * texelsPerDistribution;
   const payloadBytes = view.getUint32(52, true);
   if (payloadBytes !== 2 * count || bytes.length !== HEADER_BYTES + payloadBytes) fail('corrupt payload (size)');
   const payload = bytes.subarray(HEADER_BYTES);
@@ -77,11 +81,11 @@ export function parseGlintDictionary(buffer, name = 'dictionary') {
   texture.generateMipmaps = false;
   texture.flipY = false;
   texture.needsUpdate = true;
-  return { numLevels, numDistributions, texelsPerDistribution, alpha, texture };
+  return { numLevels, numDistributions, texelsPerDistribution, alpha, hasTreeLevels, texture };
 }
 
 // The dictionary at `url` (fetched): a promise of { numLevels, numDistributions,
-// texelsPerDistribution, alpha, texture }.
+// texelsPerDistribution, alpha, hasTreeLevels, texture }.
 export async function loadGlintDictionary(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url}: cannot fetch the glint dictionary (HTTP ${response.status})`);

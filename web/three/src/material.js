@@ -23,7 +23,8 @@ export class GlintLayer {
     this.masking = 'smith';                // or 'v-cavity'
     this.colouredCells = false;            // EXT_materials_glint's randomColors
     this.multipleScattering = true;
-    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7); 'tree' is drawn as 'paper'
+    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7) or 'tree' (2.8: needs a
+                                           // dictionary with tree levels, `glint dict --tree-levels`)
     this.roughnessTexture = null;          // three Textures, their R channel read as data
     this.logDensityTexture = null;
     this.relativeAreaTexture = null;
@@ -129,7 +130,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
       masking: this.glint.masking,
       colouredCells: Boolean(this.glint.colouredCells),
       multipleScattering: Boolean(this.glint.multipleScattering),
-      consistentLod: this.glint.lod === 'consistent',
+      lod: this.glint.lod,
       smooth: Boolean(this.glintSmooth),
     };
   }
@@ -138,13 +139,16 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     if (!this.glintDictionary) {
       throw new Error(`glint-three: material '${this.name}' has no glint dictionary (set material.glintDictionary)`);
     }
+    if (this.glint.lod === 'tree' && !this.glintDictionary.hasTreeLevels) {
+      throw new Error(`glint-three: material '${this.name}' asks for lod 'tree', whose tree levels its dictionary lacks (write it with glint dict --tree-levels)`);
+    }
     Object.assign(shader.uniforms, this.glintUniforms);
     addGlintLayerToShader(shader, this.glintVariant);
   }
 
   customProgramCacheKey() {
     const v = this.glintVariant;
-    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.consistentLod}:${v.smooth}`;
+    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.lod}:${v.smooth}`;
   }
 
   // From another MeshGlintMaterial, or from a MeshPhysicalMaterial or MeshStandardMaterial (the

@@ -93,14 +93,6 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
     if (!Number.isInteger(seed) || seed < 0 || seed > 4294967295) fail(`patternSeed must be an integer in [0, 4294967295], got ${JSON.stringify(seed)}`);
     layer.patternSeed = seed;
   }
-  // Last, so that a file refused for another value gets no warning first.
-  if (layer.lod === 'tree') {
-    // The tree construction reads tree levels built from the dictionary's level 0 (glint's
-    // Dictionary::appendTreeLevels), which this package does not build: the extension lets a
-    // renderer without a construction draw it as the paper's.
-    console.warn(`${where}: ${EXTENSION_NAME}.lod "tree" is drawn as "paper" (the three.js material has no tree levels)`);
-    layer.lod = 'paper';
-  }
   return layer;
 }
 
@@ -145,6 +137,13 @@ export class GLTFMaterialsGlintExtension {
       parser.assignTexture(textures, field, extension[name]));
     return Promise.all([parser.loadMaterial(materialIndex), Promise.resolve(this.dictionary), ...pending]).then(([core, dictionary]) => {
       for (const [, field] of TEXTURES) layer[field] = textures[field] || null;
+      if (layer.lod === 'tree' && !dictionary.hasTreeLevels) {
+        // The tree construction reads tree levels, which a dictionary file holds only when written
+        // with `glint dict --tree-levels`: the extension lets a renderer without a construction
+        // draw it as the paper's.
+        console.warn(`${where}: ${EXTENSION_NAME}.lod "tree" is drawn as "paper" (the glint dictionary has no tree levels: glint dict --tree-levels writes them)`);
+        layer.lod = 'paper';
+      }
       const material = new MeshGlintMaterial().copy(core);
       material.glint = layer;
       material.glintDictionary = dictionary;

@@ -42,8 +42,11 @@ const VERTEX_MAIN = /* glsl */ `
 
 // The kernel's compile-time choices for one material (one program each, as in glint's rasteriser):
 // the smooth target and masking by the kernel's own constant names, coloured cells, the
-// multiple-scattering lobe, the LOD construction (the paper's alone is compiled unless a material
-// asks for the consistent one), and the smooth lobe in place of the glints.
+// multiple-scattering lobe, the LOD construction (only the one the material asks for is compiled:
+// GLINT_LOD_PAPER 0, GLINT_LOD_CONSISTENT 1, GLINT_LOD_TREE 2 in kernel/glint_brdf.h), and the
+// smooth lobe in place of the glints.
+const LOD_CONSTRUCTIONS = { paper: 0, consistent: 1, tree: 2 };
+
 function kernelDefines(variant) {
   return [
     `#define GLINT_MULTIPLE_SCATTERING ${variant.multipleScattering ? 1 : 0}`,
@@ -51,7 +54,7 @@ function kernelDefines(variant) {
     `#define GLINT_LAYER_MASKING ${variant.masking === 'v-cavity' ? 'GLINT_MASKING_VCAVITY' : 'GLINT_MASKING_SMITH'}`,
     `#define GLINT_LAYER_COLOURED_CELLS ${variant.colouredCells ? 1 : 0}`,
     `#define GLINT_LAYER_SMOOTH ${variant.smooth ? 1 : 0}`,
-    `#define GLINT_LOD_CONSTRUCTION ${variant.consistentLod ? 1 : 0}`,
+    `#define GLINT_LOD_CONSTRUCTION ${LOD_CONSTRUCTIONS[variant.lod]}`,
   ].join('\n');
 }
 

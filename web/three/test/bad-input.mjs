@@ -19,7 +19,9 @@ const at = process.argv.indexOf('--glint');
 const glint = findGlint(at > 0 ? process.argv[at + 1] : undefined);
 build(glint);  // the plugin's module imports the material's, which imports the generated kernel
 const { parseGlintDictionary } = await import('../src/dictionary.js');
-const { glintLayerFromExtension } = await import('../src/plugin.js');
+const { GLTFMaterialsGlintExtension, glintLayerFromExtension } = await import('../src/plugin.js');
+const { MeshGlintMaterial } = await import('../src/material.js');
+const { MeshPhysicalMaterial } = await import('three');
 
 let failures = 0;
 function expectRefused(what, action, expected) {
@@ -72,21 +74,56 @@ try {
   expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
   expectRefused('a misspelt property', layer({ logDenisty: 14 }), 'EXT_materials_glint.logDenisty is not a property');
   expectRefused('patternSeed -1', layer({ patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
-  // lod "tree" is the extension's, drawn as "paper" with one warning line naming the material.
+  // lod "tree": drawn with a dictionary that holds tree levels (`glint dict --tree-levels`, format
+  // version 2); with one that does not, the plugin draws it as "paper" with one warning line naming
+  // the material, and a MeshGlintMaterial asked for it directly refuses to compile.
+  const treeFile = path.join(folder, 'tree.gdict');
+  execFileSync(glint, ['dict', '--tree-levels', '-o', treeFile, '--levels', '4', '--distributions', '8', '--texels', '16'], { stdio: 'ignore' });
+  const treeBytes = readFileSync(treeFile);
+  const withTree = parseGlintDictionary(treeBytes, 'tree.gdict');
+  // Tables 0..3 are the levels (the same bytes as the version-1 file's), 4..6 the tree levels.
+  const treePairs = withTree.texture.image.data;
+  const tableTexels = 8 * 16;
+  const treeHalf = (i) => treeBytes.readUint16LE(64 + 2 * i);
+  const treeShapeOk = withTree.hasTreeLevels === true && dictionary.hasTreeLevels === false && withTree.numLevels === 4 &&
+                      treePairs.length >= 2 * 7 * tableTexels && treeHalf(100) === half(100) &&
+                      treePairs[2 * 4 * tableTexels] === treeHalf(4 * tableTexels) &&
+                      treePairs[2 * (7 * tableTexels - 1)] === treeHalf(7 * tableTexels - 1) && treePairs[2 * (7 * tableTexels - 1) + 1] === 0;
+  if (!treeShapeOk) ++failures;
+  console.log(`${treeShapeOk ? 'ok' : 'FAILED'}: a --tree-levels file reads with its 3 tree levels after the 4 levels, a plain one without`);
+  expectRefused('a tree-level file cut by one table', () => parseGlintDictionary(treeBytes.subarray(0, treeBytes.length - 2 * tableTexels), 'tree.gdict'), 'tree.gdict: corrupt payload (size)');
+  const treeLayer = glintLayerFromExtension({ lod: 'tree' }, 0.5, where);
+  const readOk = treeLayer.lod === 'tree';
+  if (!readOk) ++failures;
+  console.log(`${readOk ? 'ok' : 'FAILED'}: lod "tree" reads as "tree"`);
+  const loadTree = async (dictionaryForPlugin) => {
+    const parser = {
+      json: { materials: [{ name: 'car paint', extensions: { EXT_materials_glint: { lod: 'tree' } } }] },
+      loadMaterial: async () => new MeshPhysicalMaterial(),
+      assignTexture: async () => {},
+      associations: new Map(),
+    };
+    return new GLTFMaterialsGlintExtension(parser, { dictionary: dictionaryForPlugin }).loadMaterial(0);
+  };
   const warnings = [];
   const warn = console.warn;
   console.warn = (line) => warnings.push(String(line));
-  let tree = null;
+  let drawnWithTree = null;
+  let drawnWithout = null;
   try {
-    tree = glintLayerFromExtension({ lod: 'tree' }, 0.5, where);
-    // A layer refused for another value gets its error alone, no warning before it.
-    expectRefused('lod "tree" with patternSeed -1', layer({ lod: 'tree', patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
+    drawnWithTree = await loadTree(withTree);
+    const warnedBefore = warnings.length;
+    drawnWithout = await loadTree(dictionary);
+    const fallbackOk = warnedBefore === 0 && drawnWithTree.glint.lod === 'tree' && drawnWithout.glint.lod === 'paper' &&
+                       warnings.length === 1 && warnings[0].startsWith(`${where}: EXT_materials_glint.lod "tree" is drawn as "paper" (the glint dictionary has no tree levels`);
+    if (!fallbackOk) ++failures;
+    console.log(`${fallbackOk ? 'ok' : 'FAILED'}: the plugin draws lod "tree" with tree levels, as "paper" with one warning without (${warnings.join(' | ')})`);
   } finally {
     console.warn = warn;
   }
-  const treeOk = tree.lod === 'paper' && warnings.length === 1 && warnings[0].startsWith(`${where}: EXT_materials_glint.lod "tree" is drawn as "paper"`);
-  if (!treeOk) ++failures;
-  console.log(`${treeOk ? 'ok' : 'FAILED'}: lod "tree" read as "paper" with one warning, none for a refused layer (${warnings.join(' | ')})`);
+  const direct = new MeshGlintMaterial({ name: 'direct', glint: { lod: 'tree' }, glintDictionary: dictionary });
+  expectRefused('a MeshGlintMaterial with lod "tree" and no tree levels', () => direct.onBeforeCompile({ uniforms: {} }),
+                "glint-three: material 'direct' asks for lod 'tree', whose tree levels its dictionary lacks (write it with glint dict --tree-levels)");
   expectRefused('lod "fast"', layer({ lod: 'fast' }), 'EXT_materials_glint.lod must be "paper" or "consistent" or "tree", got "fast"');
   const defaults = glintLayerFromExtension({ randomColors: 1 }, 0.5, where);
   const defaultsOk = defaults.alpha.x === 0.25 && defaults.alpha.y === 0.25 && defaults.colouredCells === true &&

@@ -37,6 +37,8 @@ const FILES = [
   { name: 'carpaint-gltf-target', scene: 'carpaint', options: GLTF_TARGET, coreIsSmoothLobe: true },
   // the consistent LOD construction (docs/method.md 2.7)
   { name: 'sphere-consistent-lod', scene: 'sphere', options: ['--lod', 'consistent'], coreIsSmoothLobe: false },
+  // the tree LOD construction (docs/method.md 2.8), from the dictionary's tree levels
+  { name: 'sphere-tree-lod', scene: 'sphere', options: ['--lod', 'tree'], coreIsSmoothLobe: false },
   // anisotropic, correlated, coloured, its three glint textures
   { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
   // a plane to the horizon: footprints stretched up to the anisotropy cap
@@ -174,6 +176,11 @@ try {
   const shared = sharedGlintPixels(masks['sphere-consistent-lod'], masks.sphere);
   console.log(`sphere: three's glint pixels shared by the paper's and the consistent construction: ${shared.toFixed(3)}`);
   check(shared < 0.8, `sphere: three's consistent LOD shows the paper's glints (${shared.toFixed(3)} of its glint pixels shared)`);
+  // So does the tree construction, and had three drawn it as the paper's (as it does with a
+  // dictionary without tree levels) every glint pixel would be shared too.
+  const sharedTree = sharedGlintPixels(masks['sphere-tree-lod'], masks.sphere);
+  console.log(`sphere: three's glint pixels shared by the paper's and the tree construction: ${sharedTree.toFixed(3)}`);
+  check(sharedTree < 0.8, `sphere: three's tree LOD shows the paper's glints (${sharedTree.toFixed(3)} of its glint pixels shared)`);
   // three.js's program variants (test/render.js, renderVariants): each compiles and glints.
   const variants = await page.evaluate(() => window.renderVariants({ size: 128 }));
   for (const [name, v] of Object.entries(variants)) {
