@@ -279,6 +279,8 @@ int main(int argc, char** argv) {
   tiny.numDistributions = 3;
   tiny.texelsPerDistribution = 4;
   write("corpus/dictionary/tiny.gdict", text(generateDictionary(tiny).serialise()));
+  write("corpus/dictionary/tiny-tree-levels.gdict",
+        text(generateDictionary(tiny).serialise(DictionaryFileTables::LevelsAndTreeLevels)));
   tiny.numLevels = 1;
   tiny.numDistributions = 1;
   tiny.texelsPerDistribution = 2;
