@@ -278,9 +278,9 @@ int main(int argc, char** argv) {
   tiny.numLevels = 2;
   tiny.numDistributions = 3;
   tiny.texelsPerDistribution = 4;
-  write("corpus/dictionary/tiny.gdict", text(generateDictionary(tiny).serialise()));
-  write("corpus/dictionary/tiny-tree-levels.gdict",
-        text(generateDictionary(tiny).serialise(DictionaryFileTables::LevelsAndTreeLevels)));
+  const Dictionary tinyDictionary = generateDictionary(tiny);
+  write("corpus/dictionary/tiny.gdict", text(tinyDictionary.serialise()));
+  write("corpus/dictionary/tiny-tree-levels.gdict", text(tinyDictionary.serialise(DictionaryFileTables::LevelsAndTreeLevels)));
   tiny.numLevels = 1;
   tiny.numDistributions = 1;
   tiny.texelsPerDistribution = 2;

@@ -333,10 +333,10 @@ TEST(Dictionary, TreeLevelFilesHoldTheTreeLevelsAndLoadBack) {
   EXPECT_TRUE(loaded.serialise() == levels);
   EXPECT_TRUE(loaded.serialise(DictionaryFileTables::LevelsAndTreeLevels) == withTree);
 
-  // Tree level 2 (table 5), distribution 3, texel 0 one binary16 step larger, the checksums remade.
+  // Tree level 2 (table 5), distribution 3, texel 0 with its lowest bit flipped, the checksums remade.
   std::vector<std::byte> tampered = withTree;
   const std::size_t texel = 64 + 2 * ((5 * 8 + 3) * 16);
-  tampered[texel] = static_cast<std::byte>(static_cast<unsigned>(tampered[texel]) + 1);
+  tampered[texel] ^= std::byte{1};
   auto putU32 = [&](std::size_t at, std::uint32_t value) {
     for (int b = 0; b < 4; ++b) tampered[at + b] = static_cast<std::byte>(value >> (8 * b));
   };
@@ -349,7 +349,6 @@ TEST(Dictionary, TreeLevelFilesHoldTheTreeLevelsAndLoadBack) {
   // A version-2 header over a version-1 payload: the size says what is missing.
   std::vector<std::byte> relabelled = levels;
   relabelled[8] = std::byte{2};
-  for (int b = 0; b < 4; ++b) relabelled[60 + b] = std::byte{0};
   tampered = relabelled;
   putU32(60, crc32Ieee(text(0, 60)));
   expectRejected(tampered, "payload bytes, the parameters need " + std::to_string(2 * 7 * tableTexels));

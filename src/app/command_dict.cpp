@@ -47,7 +47,7 @@ void runDict(const DictOptions& options, const CLI::App& command) {
     throw Error("glint dict: nothing to do; give -o FILE, --plot PNG or --stats");
   }
   if (options.treeLevels && options.output.empty()) {
-    throw Error("glint dict: --tree-levels says what -o FILE holds; give -o FILE");
+    throw Error("glint dict: --tree-levels needs -o FILE (it says what the file holds)");
   }
   std::optional<tbb::global_control> threadLimit;
   if (options.threads > 0) {
@@ -73,7 +73,8 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   if (!options.plot.empty()) plot = plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels});
   const DictionaryFileTables tables =
       options.treeLevels ? DictionaryFileTables::LevelsAndTreeLevels : DictionaryFileTables::Levels;
-  if (!options.output.empty()) dictionary->save(options.output, tables);
+  std::size_t fileBytes = 0;
+  if (!options.output.empty()) fileBytes = dictionary->save(options.output, tables);
   if (plot) writePng(options.plot, *plot);
   const DictionaryParameters& p = dictionary->parameters();
   std::fprintf(stderr, "glint: %s dictionary: %d levels x %d distributions x %d texels, alpha %g, lobe std %g, %s",
@@ -82,10 +83,8 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   if (p.placement != LobePlacement::Imported) std::fprintf(stderr, ", seed %llu", static_cast<unsigned long long>(p.seed));
   std::fprintf(stderr, " (%.2f s)\n", seconds);
   if (!options.output.empty()) {
-    std::fprintf(stderr, "glint: wrote %s (%zu KiB of binary16 texels%s)\n", options.output.c_str(),
-                 static_cast<std::size_t>(options.treeLevels ? dictionary->numTables() : p.numLevels) *
-                     p.numDistributions * p.texelsPerDistribution * 2 / 1024,
-                 options.treeLevels ? ", tree levels included" : "");
+    std::fprintf(stderr, "glint: wrote %s (%zu KiB: %s)\n", options.output.c_str(), fileBytes / 1024,
+                 options.treeLevels ? "the levels and the tree levels, format version 2" : "the levels, format version 1");
   }
   if (!options.plot.empty()) std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
   if (options.stats) printStatistics(*dictionary);

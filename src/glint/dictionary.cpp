@@ -289,13 +289,13 @@ float Dictionary::marginal(int level, int distribution, float slope) const {
 std::vector<std::byte> Dictionary::serialise(DictionaryFileTables tables) const {
   const bool withTree = tables == DictionaryFileTables::LevelsAndTreeLevels;
   // The tree levels are derived from level 0: stored only where asked, for hosts that cannot build them.
-  const std::span<const std::uint16_t> levels = withTree ? std::span<const std::uint16_t>(halves_) : halfTexels();
-  const std::size_t payloadBytes = levels.size() * 2;
+  const std::span<const std::uint16_t> stored = withTree ? std::span<const std::uint16_t>(halves_) : halfTexels();
+  const std::size_t payloadBytes = stored.size() * 2;
   std::vector<std::byte> bytes(kHeaderBytes + payloadBytes);
   std::byte* payload = bytes.data() + kHeaderBytes;
-  for (std::size_t i = 0; i < levels.size(); ++i) {
-    payload[2 * i] = static_cast<std::byte>(levels[i] & 0xFFu);
-    payload[2 * i + 1] = static_cast<std::byte>(levels[i] >> 8);
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    payload[2 * i] = static_cast<std::byte>(stored[i] & 0xFFu);
+    payload[2 * i + 1] = static_cast<std::byte>(stored[i] >> 8);
   }
   std::byte* header = bytes.data();
   std::memcpy(header, kMagic, sizeof kMagic);
@@ -349,14 +349,14 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
   } catch (const Error& e) {
     throw fail(e.what());
   }
-  const std::size_t count = static_cast<std::size_t>(parameters.numLevels) * parameters.numDistributions *
-                            parameters.texelsPerDistribution;
-  const std::size_t tables = version == kFormatVersionWithTreeLevels ? 2 * parameters.numLevels - 1 : parameters.numLevels;
-  const std::size_t stored = count / parameters.numLevels * tables;
+  const std::size_t tableTexels = static_cast<std::size_t>(parameters.numDistributions) * parameters.texelsPerDistribution;
+  const std::size_t levelTexels = static_cast<std::size_t>(parameters.numLevels) * tableTexels;
+  const int tables = version == kFormatVersionWithTreeLevels ? numTables(parameters.numLevels) : parameters.numLevels;
+  const std::size_t storedTexels = static_cast<std::size_t>(tables) * tableTexels;
   const std::size_t payloadBytes = getU32(header + 52);
-  if (payloadBytes != 2 * stored) {
+  if (payloadBytes != 2 * storedTexels) {
     throw fail("header says " + std::to_string(payloadBytes) + " payload bytes, the parameters need " +
-               std::to_string(2 * stored));
+               std::to_string(2 * storedTexels));
   }
   if (bytes.size() != kHeaderBytes + payloadBytes) {
     throw fail((bytes.size() < kHeaderBytes + payloadBytes ? "truncated: " : "trailing data: ") +
@@ -369,8 +369,8 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
   auto storedHalf = [&](std::size_t i) {
     return static_cast<std::uint16_t>(static_cast<unsigned>(payload[2 * i]) | static_cast<unsigned>(payload[2 * i + 1]) << 8);
   };
-  std::vector<float> values(count);
-  for (std::size_t i = 0; i < count; ++i) values[i] = halfToFloat(storedHalf(i));
+  std::vector<float> values(levelTexels);
+  for (std::size_t i = 0; i < levelTexels; ++i) values[i] = halfToFloat(storedHalf(i));
   std::optional<Dictionary> dictionary;
   try {
     dictionary.emplace(parameters, values);
@@ -379,21 +379,22 @@ Dictionary Dictionary::deserialise(std::span<const std::byte> bytes, const std::
   }
   // Stored tree levels must be the ones level 0 makes: a host that uploads the file as it is draws
   // them, glint draws its own, and the two would differ without a word.
-  for (std::size_t i = count; i < stored; ++i) {
+  for (std::size_t i = levelTexels; i < storedTexels; ++i) {
     if (storedHalf(i) != dictionary->halves_[i]) {
-      const std::size_t marginal = i / static_cast<std::size_t>(parameters.texelsPerDistribution);
-      const std::size_t perTable = static_cast<std::size_t>(parameters.numDistributions);
-      throw fail("tree level " + std::to_string(marginal / perTable - static_cast<std::size_t>(parameters.numLevels) + 1) +
-                 ", distribution " + std::to_string(marginal % perTable) +
+      const std::size_t table = i / tableTexels;  // tree level k is table L - 1 + k
+      const std::size_t distribution = i % tableTexels / static_cast<std::size_t>(parameters.texelsPerDistribution);
+      throw fail("tree level " + std::to_string(table + 1 - static_cast<std::size_t>(parameters.numLevels)) +
+                 ", distribution " + std::to_string(distribution) +
                  " is not the mean its level 0 makes (docs/dictionary.md, \"Tree levels\")");
     }
   }
   return std::move(*dictionary);
 }
 
-void Dictionary::save(const std::filesystem::path& path, DictionaryFileTables tables) const {
+std::size_t Dictionary::save(const std::filesystem::path& path, DictionaryFileTables tables) const {
   const std::vector<std::byte> bytes = serialise(tables);
   writeFileAtomically(path, bytes);
+  return bytes.size();
 }
 
 Dictionary Dictionary::load(const std::filesystem::path& path) {

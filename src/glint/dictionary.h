@@ -55,7 +55,7 @@ class Dictionary {
   // The marginal density at any slope, with the kernel's interpolation; 0 outside the domain.
   float marginal(int level, int distribution, float slope) const;
 
-  // The L levels' texels, as the file holds them (the tree levels after them are derived).
+  // The L levels' texels, as a version-1 file holds them (the tree levels after them are derived).
   std::span<const std::uint16_t> halfTexels() const {
     return std::span<const std::uint16_t>(halves_).first(static_cast<std::size_t>(parameters_.numLevels) *
                                                          parameters_.numDistributions * parameters_.texelsPerDistribution);
@@ -63,7 +63,8 @@ class Dictionary {
   // Every table the kernel reads: the L levels, then the L - 1 tree levels that the tree LOD
   // construction reads (kernel glintTreeTableLevel, docs/method.md 2.8), built from level 0 at
   // construction, rounded to binary16 like the rest. texel() and marginal() take table levels.
-  int numTables() const { return 2 * parameters_.numLevels - 1; }
+  int numTables() const { return numTables(parameters_.numLevels); }
+  static int numTables(int numLevels) { return 2 * numLevels - 1; }
   // The texels as the GPU's dictionary buffer holds them (glintDictionaryTexelPair in the shaders):
   // texel k of a distribution is the pair (p[k], p[k+1]), with p[R] = 0 (the marginal falls to 0 at
   // 4 sigma_d), so that an interpolation costs one fetch instead of two; two binary16 values a texel.
@@ -84,7 +85,8 @@ class Dictionary {
   // both, and refuses stored tree levels that are not the ones level 0 makes.
   std::vector<std::byte> serialise(DictionaryFileTables tables = DictionaryFileTables::Levels) const;
   static Dictionary deserialise(std::span<const std::byte> bytes, const std::string& name);
-  void save(const std::filesystem::path& path, DictionaryFileTables tables = DictionaryFileTables::Levels) const;
+  // Returns the file's size in bytes.
+  std::size_t save(const std::filesystem::path& path, DictionaryFileTables tables = DictionaryFileTables::Levels) const;
   static Dictionary load(const std::filesystem::path& path);
   // The authors' published EXR dictionary is read by glint::image (glint/dictionary_exr.h), which
   // has the EXR decoder that this library does without.

@@ -35,7 +35,8 @@ function halfIsFiniteNonNegative(bits) {
 
 // The dictionary of a .gdict file's bytes. `name` says which file in the error messages: each
 // problem is one Error whose message names the file and the problem, checked in the file format's
-// order (docs/dictionary.md, "File format (version 1)").
+// order (docs/dictionary.md, "File format"). Stored tree levels (version 2) are taken as they are:
+// glint's own loader checks that they are level 0's means, this one only their checksum and values.
 export function parseGlintDictionary(buffer, name = 'dictionary') {
   const bytes = new Uint8Array(buffer);
   const fail = (problem) => {

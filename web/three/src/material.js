@@ -3,7 +3,7 @@
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
 import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
-import { addGlintLayerToShader } from './shader.js';
+import { LOD_CONSTRUCTIONS, addGlintLayerToShader } from './shader.js';
 
 // A glint layer's parameters, named as the kernel's GlintMaterial (kernel/glint_material.h) is:
 // this object is the value of the shader's `uniform GlintMaterial glintMaterial`. Defaults are
@@ -138,6 +138,9 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
   onBeforeCompile(shader) {
     if (!this.glintDictionary) {
       throw new Error(`glint-three: material '${this.name}' has no glint dictionary (set material.glintDictionary)`);
+    }
+    if (!LOD_CONSTRUCTIONS.includes(this.glint.lod)) {
+      throw new Error(`glint-three: material '${this.name}': lod must be ${LOD_CONSTRUCTIONS.map((l) => `'${l}'`).join(', ')}, got ${JSON.stringify(this.glint.lod)}`);
     }
     if (this.glint.lod === 'tree' && !this.glintDictionary.hasTreeLevels) {
       throw new Error(`glint-three: material '${this.name}' asks for lod 'tree', whose tree levels its dictionary lacks (write it with glint dict --tree-levels)`);

@@ -45,7 +45,7 @@ const VERTEX_MAIN = /* glsl */ `
 // multiple-scattering lobe, the LOD construction (only the one the material asks for is compiled:
 // GLINT_LOD_PAPER 0, GLINT_LOD_CONSISTENT 1, GLINT_LOD_TREE 2 in kernel/glint_brdf.h), and the
 // smooth lobe in place of the glints.
-const LOD_CONSTRUCTIONS = { paper: 0, consistent: 1, tree: 2 };
+export const LOD_CONSTRUCTIONS = ['paper', 'consistent', 'tree'];  // the index is the kernel's constant
 
 function kernelDefines(variant) {
   return [
@@ -54,7 +54,7 @@ function kernelDefines(variant) {
     `#define GLINT_LAYER_MASKING ${variant.masking === 'v-cavity' ? 'GLINT_MASKING_VCAVITY' : 'GLINT_MASKING_SMITH'}`,
     `#define GLINT_LAYER_COLOURED_CELLS ${variant.colouredCells ? 1 : 0}`,
     `#define GLINT_LAYER_SMOOTH ${variant.smooth ? 1 : 0}`,
-    `#define GLINT_LOD_CONSTRUCTION ${LOD_CONSTRUCTIONS[variant.lod]}`,
+    `#define GLINT_LOD_CONSTRUCTION ${LOD_CONSTRUCTIONS.indexOf(variant.lod)}`,
   ].join('\n');
 }
 

@@ -4,6 +4,7 @@
 //   node test/bad-input.mjs --glint PATH
 // Exits 77 with one line when the npm packages are missing (ctest's SKIP_RETURN_CODE).
 import { execFileSync } from 'node:child_process';
+import { crc32 } from 'node:zlib';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -91,7 +92,11 @@ try {
                       treePairs[2 * (7 * tableTexels - 1)] === treeHalf(7 * tableTexels - 1) && treePairs[2 * (7 * tableTexels - 1) + 1] === 0;
   if (!treeShapeOk) ++failures;
   console.log(`${treeShapeOk ? 'ok' : 'FAILED'}: a --tree-levels file reads with its 3 tree levels after the 4 levels, a plain one without`);
-  expectRefused('a tree-level file cut by one table', () => parseGlintDictionary(treeBytes.subarray(0, treeBytes.length - 2 * tableTexels), 'tree.gdict'), 'tree.gdict: corrupt payload (size)');
+  // A version-2 header over a version-1 payload (the header's checksum remade): the size is wrong.
+  const relabelled = Buffer.from(good);
+  relabelled.writeUint32LE(2, 8);
+  relabelled.writeUint32LE(crc32(relabelled.subarray(0, 60)), 60);
+  expectRefused('a version-2 header over the levels alone', () => parseGlintDictionary(relabelled, 'd.gdict'), 'd.gdict: corrupt payload (size)');
   const treeLayer = glintLayerFromExtension({ lod: 'tree' }, 0.5, where);
   const readOk = treeLayer.lod === 'tree';
   if (!readOk) ++failures;
@@ -122,6 +127,9 @@ try {
     console.warn = warn;
   }
   const direct = new MeshGlintMaterial({ name: 'direct', glint: { lod: 'tree' }, glintDictionary: dictionary });
+  const misnamed = new MeshGlintMaterial({ name: 'misnamed', glint: { lod: 'Tree' }, glintDictionary: withTree });
+  expectRefused('a MeshGlintMaterial with lod "Tree"', () => misnamed.onBeforeCompile({ uniforms: {} }),
+                "glint-three: material 'misnamed': lod must be 'paper', 'consistent', 'tree', got \"Tree\"");
   expectRefused('a MeshGlintMaterial with lod "tree" and no tree levels', () => direct.onBeforeCompile({ uniforms: {} }),
                 "glint-three: material 'direct' asks for lod 'tree', whose tree levels its dictionary lacks (write it with glint dict --tree-levels)");
   expectRefused('lod "fast"', layer({ lod: 'fast' }), 'EXT_materials_glint.lod must be "paper" or "consistent" or "tree", got "fast"');
