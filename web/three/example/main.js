@@ -55,7 +55,9 @@ async function load(url) {
   scene.traverse((o) => {
     if (o.material && o.material.isMeshGlintMaterial && !glintMaterials.includes(o.material)) glintMaterials.push(o.material);
   });
+  for (const material of glintMaterials) material.userData.glintFileLod = material.glint.lod;
   setGlints(document.querySelector('#glints').checked);
+  setLod(document.querySelector('#lod').value);
   // Start at the file's default camera (glint's rule: the one named "default", else the first),
   // orbiting about the scene's centre.
   let start = scene.getObjectByName('default');
@@ -80,6 +82,15 @@ async function load(url) {
 function setGlints(on) {
   for (const material of glintMaterials) {
     material.glintSmooth = !on;
+    material.needsUpdate = true;  // another program (customProgramCacheKey)
+  }
+}
+
+// Every layer's LOD construction (docs/method.md 2.7, 2.8), or the file's own: scroll to dolly and
+// compare how the glints hold as the surface recedes.
+function setLod(lod) {
+  for (const material of glintMaterials) {
+    material.glint.lod = lod || material.userData.glintFileLod;
     material.needsUpdate = true;  // another program (customProgramCacheKey)
   }
 }
@@ -127,5 +138,6 @@ if (model) {
 }
 select.addEventListener('change', () => load(select.value));
 document.querySelector('#glints').addEventListener('change', (event) => setGlints(event.target.checked));
+document.querySelector('#lod').addEventListener('change', (event) => setLod(event.target.value));
 window.glintExample = { loaded: load(select.value) };
 requestAnimationFrame(frame);

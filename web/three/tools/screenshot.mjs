@@ -1,6 +1,7 @@
 // A picture of the example page (README.md's): headless chromium (WebGL2 on Mesa llvmpipe through
 // ANGLE) at SIZE x SIZE pixels, the car paint once loaded and drawn for a second; then prints the
-// page's frame-time line with the glints and with the smooth lobe (the "glints" box unticked).
+// page's frame-time line with the glints and with the smooth lobe (the "glints" box unticked), and
+// with the glints again under each level-of-detail construction of the menu.
 //   node tools/screenshot.mjs OUT.png [SIZE]      (after npm run build)
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
@@ -41,6 +42,12 @@ try {
   console.log(`glints, ${size}x${size}: ${await measure()}`);
   await page.click('#glints');
   console.log(`smooth lobe, ${size}x${size}: ${await measure()}`);
+  await page.click('#glints');
+  for (const lod of ['paper', 'consistent', 'tree']) {
+    await page.select('#lod', lod);
+    console.log(`glints, lod ${lod}, ${size}x${size}: ${await measure()}`);
+  }
+  if (errors.length) throw new Error(errors.join('; '));
 } finally {
   await browser.close();
   server.close();
