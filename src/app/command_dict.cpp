@@ -84,7 +84,8 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   std::fprintf(stderr, " (%.2f s)\n", seconds);
   if (!options.output.empty()) {
     std::fprintf(stderr, "glint: wrote %s (%zu KiB: %s)\n", options.output.c_str(), fileBytes / 1024,
-                 options.treeLevels ? "the levels and the tree levels, format version 2" : "the levels, format version 1");
+                 tables == DictionaryFileTables::LevelsAndTreeLevels ? "the levels and the tree levels, format version 2"
+                                                                     : "the levels, format version 1");
   }
   if (!options.plot.empty()) std::fprintf(stderr, "glint: wrote %s\n", options.plot.c_str());
   if (options.stats) printStatistics(*dictionary);
