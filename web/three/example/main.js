@@ -81,8 +81,7 @@ async function load(url) {
 
 function setGlints(on) {
   for (const material of glintMaterials) {
-    material.glintSmooth = !on;
-    material.needsUpdate = true;  // another program (customProgramCacheKey)
+    material.glintSmooth = !on;  // another program, chosen at the next frame
   }
 }
 
@@ -90,8 +89,7 @@ function setGlints(on) {
 // compare how the glints hold as the surface recedes.
 function setLod(lod) {
   for (const material of glintMaterials) {
-    material.glint.lod = lod || material.userData.glintFileLod;
-    material.needsUpdate = true;  // another program (customProgramCacheKey)
+    material.glint.lod = lod || material.userData.glintFileLod;  // another program, chosen at the next frame
   }
 }
 

@@ -86,9 +86,15 @@ export function parseGlintDictionary(buffer, name = 'dictionary') {
 }
 
 // The dictionary at `url` (fetched): a promise of { numLevels, numDistributions,
-// texelsPerDistribution, alpha, hasTreeLevels, texture }.
-export async function loadGlintDictionary(url) {
-  const response = await fetch(url);
-  if (!response.ok) throw new Error(`${url}: cannot fetch the glint dictionary (HTTP ${response.status})`);
-  return parseGlintDictionary(await response.arrayBuffer(), String(url));
+// texelsPerDistribution, alpha, hasTreeLevels, texture }. Its failure is reported where it is
+// used (the load of a file with glint materials, or an await), not also as an unhandled
+// rejection: a page that loads no glint material needs no dictionary.
+export function loadGlintDictionary(url) {
+  const dictionary = (async () => {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error(`${url}: cannot fetch the glint dictionary (HTTP ${response.status})`);
+    return parseGlintDictionary(await response.arrayBuffer(), String(url));
+  })();
+  dictionary.catch(() => {});
+  return dictionary;
 }

@@ -3,7 +3,7 @@
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
 import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
-import { LOD_CONSTRUCTIONS, addGlintLayerToShader } from './shader.js';
+import { LOD_CONSTRUCTIONS, MASKING_NAMES, NDF_NAMES, addGlintLayerToShader } from './shader.js';
 
 // A glint layer's parameters, named as the kernel's GlintMaterial (kernel/glint_material.h) is:
 // this object is the value of the shader's `uniform GlintMaterial glintMaterial`. Defaults are
@@ -40,10 +40,23 @@ export class GlintLayer {
     return 1;
   }
 
+  // From another GlintLayer or from an object of some of its fields; a key that is not a field
+  // (a misspelling, or the extension's spelling of one: randomColors for colouredCells) is
+  // refused in one line rather than left unread. alpha and logDensityRange take a Vector2 or a
+  // number pair.
   copy(source) {
     for (const key of Object.keys(source)) {
+      if (!Object.prototype.hasOwnProperty.call(this, key)) {
+        throw new Error(`glint-three: '${key}' is not a GlintLayer field (fields: ${Object.keys(this).join(', ')})`);
+      }
       const value = source[key];
-      this[key] = value && value.isVector2 ? value.clone() : value;
+      if (this[key] && this[key].isVector2) {
+        if (value && value.isVector2) this[key] = value.clone();
+        else if (Array.isArray(value) && value.length === 2) this[key] = new Vector2(value[0], value[1]);
+        else throw new Error(`glint-three: GlintLayer.${key} must be a Vector2 or two numbers, got ${JSON.stringify(value)}`);
+      } else {
+        this[key] = value;
+      }
     }
     return this;
   }
@@ -97,8 +110,13 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     this.defines.USE_UV = '';  // vUv, the glint uv's source, in every program
     const { glint, ...rest } = parameters;
     this.setValues(rest);
-    if (glint) this.glint = glint instanceof GlintLayer ? glint : new GlintLayer().copy(glint);
-    else this.glint.alpha.setScalar(Math.max(this.roughness * this.roughness, 0.01));
+    if (glint instanceof GlintLayer) {
+      this.glint = glint;
+    } else {
+      // alpha's default is the core roughness squared (the extension's), unless given.
+      this.glint.alpha.setScalar(Math.max(this.roughness * this.roughness, 0.01));
+      if (glint) this.glint.copy(glint);
+    }
     const material = this;
     this.glintUniforms = {
       glintMaterial: { get value() { return material.glintStruct; } },
@@ -139,8 +157,10 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     if (!this.glintDictionary) {
       throw new Error(`glint-three: material '${this.name}' has no glint dictionary (set material.glintDictionary)`);
     }
-    if (!LOD_CONSTRUCTIONS.includes(this.glint.lod)) {
-      throw new Error(`glint-three: material '${this.name}': lod must be ${LOD_CONSTRUCTIONS.map((l) => `'${l}'`).join(', ')}, got ${JSON.stringify(this.glint.lod)}`);
+    for (const [field, names] of [['ndf', Object.keys(NDF_NAMES)], ['masking', Object.keys(MASKING_NAMES)], ['lod', LOD_CONSTRUCTIONS]]) {
+      if (!names.includes(this.glint[field])) {
+        throw new Error(`glint-three: material '${this.name}': ${field} must be ${names.map((n) => `'${n}'`).join(', ')}, got ${JSON.stringify(this.glint[field])}`);
+      }
     }
     if (this.glint.lod === 'tree' && !this.glintDictionary.hasTreeLevels) {
       throw new Error(`glint-three: material '${this.name}' asks for lod 'tree', whose tree levels its dictionary lacks (write it with glint dict --tree-levels)`);
@@ -152,6 +172,15 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
   customProgramCacheKey() {
     const v = this.glintVariant;
     return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.lod}:${v.smooth}`;
+  }
+
+  // three chooses a material's program again only when its version changes (needsUpdate): a
+  // compiled-in field changed since the last frame (ndf, masking, colouredCells,
+  // multipleScattering, lod, glintSmooth) asks for that here, before three picks the program.
+  onBeforeRender() {
+    const key = this.customProgramCacheKey();
+    if (this._glintProgramKey !== undefined && this._glintProgramKey !== key) this.needsUpdate = true;
+    this._glintProgramKey = key;
   }
 
   // From another MeshGlintMaterial, or from a MeshPhysicalMaterial or MeshStandardMaterial (the

@@ -12,6 +12,7 @@
 // plain MeshPhysicalMaterial.
 import { MeshPhysicalMaterial } from 'three';
 import { GlintLayer, MeshGlintMaterial } from './material.js';
+import { LOD_CONSTRUCTIONS, MASKING_NAMES, NDF_NAMES } from './shader.js';
 
 export const EXTENSION_NAME = 'EXT_materials_glint';
 
@@ -34,9 +35,9 @@ const BOOLEANS = [
   ['multipleScattering', 'multipleScattering'],
 ];
 const NAMES = [
-  ['ndf', 'ndf', ['ggx', 'beckmann']],
-  ['masking', 'masking', ['smith', 'v-cavity']],
-  ['lod', 'lod', ['paper', 'consistent', 'tree']],
+  ['ndf', 'ndf', Object.keys(NDF_NAMES)],
+  ['masking', 'masking', Object.keys(MASKING_NAMES)],
+  ['lod', 'lod', LOD_CONSTRUCTIONS],
 ];
 const TEXTURES = [
   ['roughnessTexture', 'roughnessTexture'],
@@ -96,6 +97,33 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
   return layer;
 }
 
+// The glTF texture index of one of the extension's textureInfo objects ({"index": 2}, with
+// texCoord, extensions and extras allowed), refused in one line naming the material and the
+// property where it is not one, as glint's own loader refuses it. The glint textures are mapped
+// with TEXCOORD_0 and without KHR_texture_transform (the extension's rules): either, asked for,
+// is a warning.
+export function glintTextureIndex(textureInfo, name, textureCount, where) {
+  const fail = (problem) => {
+    throw new Error(`${where}: ${EXTENSION_NAME}.${name}${problem}`);
+  };
+  if (typeof textureInfo !== 'object' || textureInfo === null || Array.isArray(textureInfo) || textureInfo.index === undefined) {
+    fail(` must be a textureInfo object with an index, got ${JSON.stringify(textureInfo)}`);
+  }
+  for (const key of Object.keys(textureInfo)) {
+    if (!['index', 'texCoord', 'extensions', 'extras'].includes(key)) fail(`: unknown textureInfo member '${key}' (known: index, texCoord, extensions, extras)`);
+  }
+  if (textureCount === 0) fail(': the file has no textures');
+  const index = textureInfo.index;
+  if (!Number.isInteger(index) || index < 0 || index >= textureCount) fail(`.index must be an integer in [0, ${textureCount - 1}], got ${JSON.stringify(index)}`);
+  const texCoord = textureInfo.texCoord;
+  if (texCoord !== undefined && !(Number.isInteger(texCoord) && texCoord >= 0)) fail(`.texCoord must be a non-negative integer, got ${JSON.stringify(texCoord)}`);
+  if (texCoord > 0) console.warn(`${where}: ${EXTENSION_NAME}.${name}: textures on a texCoord other than 0 are mapped with TEXCOORD_0`);
+  if (textureInfo.extensions && textureInfo.extensions.KHR_texture_transform !== undefined) {
+    console.warn(`${where}: ${EXTENSION_NAME}.${name}: KHR_texture_transform is not applied to glint textures, which are mapped with TEXCOORD_0`);
+  }
+  return index;
+}
+
 export class GLTFMaterialsGlintExtension {
   // options.dictionary: the dictionary (loadGlintDictionary) or a promise of it; every glint
   // material draws with it. options.smooth: draw each layer's smooth target instead of its glints.
@@ -125,17 +153,27 @@ export class GLTFMaterialsGlintExtension {
     const metallicRoughness = definition.pbrMetallicRoughness || {};
     const coreRoughness = metallicRoughness.roughnessFactor !== undefined ? metallicRoughness.roughnessFactor : 1;
     let layer;
+    const textureIndices = [];
     try {
       layer = glintLayerFromExtension(extension, coreRoughness, where);
+      const textureCount = Array.isArray(parser.json.textures) ? parser.json.textures.length : 0;
+      for (const [name, field] of TEXTURES) {
+        if (extension[name] !== undefined) textureIndices.push([name, field, glintTextureIndex(extension[name], name, textureCount, where)]);
+      }
     } catch (error) {
       return Promise.reject(error);
     }
     // The glint textures are data: their R channel as stored (no colour space), sampled at
-    // TEXCOORD_0 without KHR_texture_transform (the extension's rules).
+    // TEXCOORD_0 without KHR_texture_transform (the extension's rules): GLTFLoader is given the
+    // index alone, so that it applies neither.
     const textures = {};
-    const pending = TEXTURES.filter(([name]) => extension[name] !== undefined).map(([name, field]) =>
-      parser.assignTexture(textures, field, extension[name]));
+    const pending = textureIndices.map(([, field, index]) => parser.assignTexture(textures, field, { index }));
     return Promise.all([parser.loadMaterial(materialIndex), Promise.resolve(this.dictionary), ...pending]).then(([core, dictionary]) => {
+      // GLTFLoader warns and goes on without a texture it cannot load; a glint layer drawn without
+      // its texture would be another material, so the load fails, as glint's own loader does.
+      for (const [name, field, index] of textureIndices) {
+        if (!textures[field]) throw new Error(`${where}: ${EXTENSION_NAME}.${name}: texture ${index} could not be loaded`);
+      }
       for (const [, field] of TEXTURES) layer[field] = textures[field] || null;
       if (layer.lod === 'tree' && !dictionary.hasTreeLevels) {
         // The tree construction reads tree levels, which a dictionary file holds only when written

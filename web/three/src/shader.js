@@ -46,12 +46,15 @@ const VERTEX_MAIN = /* glsl */ `
 // GLINT_LOD_PAPER 0, GLINT_LOD_CONSISTENT 1, GLINT_LOD_TREE 2 in kernel/glint_brdf.h), and the
 // smooth lobe in place of the glints.
 export const LOD_CONSTRUCTIONS = ['paper', 'consistent', 'tree'];  // the index is the kernel's constant
+// The names a layer's ndf and masking take (the extension's), each with the kernel's constant.
+export const NDF_NAMES = { ggx: 'GLINT_NDF_GGX', beckmann: 'GLINT_NDF_BECKMANN' };
+export const MASKING_NAMES = { smith: 'GLINT_MASKING_SMITH', 'v-cavity': 'GLINT_MASKING_VCAVITY' };
 
 function kernelDefines(variant) {
   return [
     `#define GLINT_MULTIPLE_SCATTERING ${variant.multipleScattering ? 1 : 0}`,
-    `#define GLINT_LAYER_NDF ${variant.ndf === 'beckmann' ? 'GLINT_NDF_BECKMANN' : 'GLINT_NDF_GGX'}`,
-    `#define GLINT_LAYER_MASKING ${variant.masking === 'v-cavity' ? 'GLINT_MASKING_VCAVITY' : 'GLINT_MASKING_SMITH'}`,
+    `#define GLINT_LAYER_NDF ${NDF_NAMES[variant.ndf]}`,
+    `#define GLINT_LAYER_MASKING ${MASKING_NAMES[variant.masking]}`,
     `#define GLINT_LAYER_COLOURED_CELLS ${variant.colouredCells ? 1 : 0}`,
     `#define GLINT_LAYER_SMOOTH ${variant.smooth ? 1 : 0}`,
     `#define GLINT_LOD_CONSTRUCTION ${LOD_CONSTRUCTIONS.indexOf(variant.lod)}`,

@@ -4,6 +4,7 @@
 //   node test/bad-input.mjs --glint PATH
 // Exits 77 with one line when the npm packages are missing (ctest's SKIP_RETURN_CODE).
 import { execFileSync } from 'node:child_process';
+import http from 'node:http';
 import { crc32 } from 'node:zlib';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -19,12 +20,25 @@ const { build, findGlint } = await import('../tools/build.mjs');
 const at = process.argv.indexOf('--glint');
 const glint = findGlint(at > 0 ? process.argv[at + 1] : undefined);
 build(glint);  // the plugin's module imports the material's, which imports the generated kernel
-const { parseGlintDictionary } = await import('../src/dictionary.js');
+const { loadGlintDictionary, parseGlintDictionary } = await import('../src/dictionary.js');
 const { GLTFMaterialsGlintExtension, glintLayerFromExtension } = await import('../src/plugin.js');
 const { MeshGlintMaterial } = await import('../src/material.js');
 const { MeshPhysicalMaterial } = await import('three');
 
 let failures = 0;
+function check(ok, what) {
+  if (!ok) ++failures;
+  console.log(`${ok ? 'ok' : 'FAILED'}: ${what}`);
+}
+async function expectRejected(what, promise, expected) {
+  let message = null;
+  try {
+    await promise;
+  } catch (error) {
+    message = error.message;
+  }
+  check(message !== null && message.includes(expected) && !message.includes('\n'), `${what}: ${message === null ? 'accepted' : message}`);
+}
 function expectRefused(what, action, expected) {
   let message = null;
   try {
@@ -138,6 +152,101 @@ try {
                      defaults.logDensity === 27 && defaults.ndf === 'ggx' && defaults.masking === 'smith';
   if (!defaultsOk) ++failures;
   console.log(`${defaultsOk ? 'ok' : 'FAILED'}: defaults (alpha = roughness^2, logDensity 27, GGX, Smith) and randomColors 1 as true`);
+
+  // The extension's textureInfo objects, checked as glint's own loader checks them, before
+  // GLTFLoader sees them; GLTFLoader is given the index alone (no texCoord, no transform).
+  const assigned = [];
+  const loadTextured = (extension, { textureCount = 3, loads = true } = {}) => {
+    const parser = {
+      json: {
+        materials: [{ name: 'car paint', extensions: { EXT_materials_glint: extension } }],
+        textures: textureCount ? new Array(textureCount).fill({ source: 0 }) : undefined,
+      },
+      loadMaterial: async () => new MeshPhysicalMaterial(),
+      assignTexture: async (textures, field, textureInfo) => {
+        assigned.push(textureInfo);
+        if (loads) textures[field] = { isTexture: true, index: textureInfo.index };
+      },
+      associations: new Map(),
+    };
+    return new GLTFMaterialsGlintExtension(parser, { dictionary }).loadMaterial(0);
+  };
+  await expectRejected('a texture in a file without textures', loadTextured({ roughnessTexture: { index: 5 } }, { textureCount: 0 }),
+                       `${where}: EXT_materials_glint.roughnessTexture: the file has no textures`);
+  await expectRejected('a texture given as a number', loadTextured({ roughnessTexture: 0 }),
+                       `${where}: EXT_materials_glint.roughnessTexture must be a textureInfo object with an index, got 0`);
+  await expectRejected('a texture index past the last texture', loadTextured({ logDensityTexture: { index: 99 } }),
+                       `${where}: EXT_materials_glint.logDensityTexture.index must be an integer in [0, 2], got 99`);
+  await expectRejected('a texCoord "x"', loadTextured({ relativeAreaTexture: { index: 1, texCoord: 'x' } }),
+                       'EXT_materials_glint.relativeAreaTexture.texCoord must be a non-negative integer, got "x"');
+  await expectRejected('an unknown textureInfo member', loadTextured({ roughnessTexture: { index: 1, scale: 2 } }),
+                       "EXT_materials_glint.roughnessTexture: unknown textureInfo member 'scale'");
+  await expectRejected('a texture GLTFLoader cannot load', loadTextured({ roughnessTexture: { index: 2 } }, { loads: false }),
+                       `${where}: EXT_materials_glint.roughnessTexture: texture 2 could not be loaded`);
+  assigned.length = 0;
+  const textureWarnings = [];
+  console.warn = (line) => textureWarnings.push(String(line));
+  let textured = null;
+  try {
+    textured = await loadTextured({ roughnessTexture: { index: 2, texCoord: 1, extensions: { KHR_texture_transform: { scale: [2, 2] } } } });
+  } finally {
+    console.warn = warn;
+  }
+  check(textured.glint.roughnessTexture && textured.glint.roughnessTexture.index === 2 && assigned.length === 1 &&
+        JSON.stringify(assigned[0]) === '{"index":2}' && textureWarnings.length === 2 &&
+        textureWarnings[0].includes('texCoord other than 0') && textureWarnings[1].includes('KHR_texture_transform is not applied'),
+        `a good texture reaches GLTFLoader as its index alone, texCoord and the transform each one warning (${textureWarnings.join(' | ')})`);
+
+  // A MeshGlintMaterial made by hand: alpha's default is the core roughness squared whether or not
+  // other layer fields are given; a key that is not a layer field, or an unknown ndf or masking,
+  // is refused in one line.
+  const byHand = new MeshGlintMaterial({ roughness: 0.7, glint: { logDensity: 13, uvScale: 4 } });
+  const givenAlpha = new MeshGlintMaterial({ roughness: 0.7, glint: { alpha: [0.3, 0.2] } });
+  check(Math.abs(byHand.glint.alpha.x - 0.49) < 1e-12 && Math.abs(byHand.glint.alpha.y - 0.49) < 1e-12 && byHand.glint.logDensity === 13 &&
+        givenAlpha.glint.alpha.x === 0.3 && givenAlpha.glint.alpha.y === 0.2,
+        `a layer given by hand takes alpha = roughness^2 unless given (${byHand.glint.alpha.x}; ${givenAlpha.glint.alpha.x}, ${givenAlpha.glint.alpha.y})`);
+  expectRefused('a layer field spelt as the extension spells it', () => new MeshGlintMaterial({ glint: { randomColors: true } }),
+                "glint-three: 'randomColors' is not a GlintLayer field (fields: alpha, rho, ");
+  expectRefused('alpha as one number', () => new MeshGlintMaterial({ glint: { alpha: 0.3 } }), 'glint-three: GlintLayer.alpha must be a Vector2 or two numbers, got 0.3');
+  const misspelt = new MeshGlintMaterial({ name: 'misspelt', glint: { ndf: 'beckman' }, glintDictionary: dictionary });
+  expectRefused('a MeshGlintMaterial with ndf "beckman"', () => misspelt.onBeforeCompile({ uniforms: {} }),
+                "glint-three: material 'misspelt': ndf must be 'ggx', 'beckmann', got \"beckman\"");
+
+  // A compiled-in field changed after the first frame chooses another program at the next (three
+  // looks at the program cache key only when the material's version changes); a number does not.
+  const live = new MeshGlintMaterial({ glintDictionary: dictionary });
+  live.onBeforeRender();
+  const version = live.version;
+  live.glint.logDensity = 20;
+  live.onBeforeRender();
+  const afterNumber = live.version;
+  live.glint.ndf = 'beckmann';
+  live.onBeforeRender();
+  const afterNdf = live.version;
+  live.onBeforeRender();
+  check(afterNumber === version && afterNdf === version + 1 && live.version === afterNdf && live.customProgramCacheKey().startsWith('glint:beckmann:'),
+        `changing ndf asks three for another program once, changing a number does not (versions ${version}, ${afterNumber}, ${afterNdf}, ${live.version})`);
+
+  // A dictionary that cannot be fetched: its failure comes where the dictionary is used, and not
+  // also as an unhandled rejection.
+  const server = http.createServer((request, response) => {
+    response.writeHead(404);
+    response.end();
+  });
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const unhandled = [];
+  const onUnhandled = (reason) => unhandled.push(String(reason));
+  process.on('unhandledRejection', onUnhandled);
+  try {
+    const url = `http://127.0.0.1:${server.address().port}/missing.gdict`;
+    const missing = loadGlintDictionary(url);
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    check(unhandled.length === 0, `an unfetchable dictionary that nothing uses is no unhandled rejection (${unhandled.join(' | ') || 'none'})`);
+    await expectRejected('a dictionary the server does not have, when used', missing, `${url}: cannot fetch the glint dictionary (HTTP 404)`);
+  } finally {
+    process.off('unhandledRejection', onUnhandled);
+    server.close();
+  }
 } finally {
   rmSync(folder, { recursive: true, force: true });
 }
