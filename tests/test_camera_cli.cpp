@@ -1,8 +1,11 @@
 // Cameras from the command line (--look-from, --look-at, --up, --fov) and turntable sequences
 // (--orbit N, --orbit-degrees D, -o VIDEO.mp4) as a user runs them: `glint render`, `trace` and
 // `bench`, and their one-line errors.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -173,6 +176,36 @@ TEST(CameraCli, BadCamerasAndSequencesAreOneLineErrors) {
   expectOneLineError(runGlint(folder, "trace sphere --size 32x32 -o out.mp4"), "out.mp4: a video (.mp4) needs --orbit N");
   expectOneLineError(runGlint(folder, "bench sphere --size 32x32 --frames 1 --fov 200"), "--fov must be in (0, 180)");
   EXPECT_TRUE(std::filesystem::is_empty(folder / "") || !std::filesystem::exists(folder / "out.mp4"));
+}
+
+// A camera too far out for its float arithmetic is refused as such, not as an up vector along the
+// view (the view's length overflowed).
+TEST(CameraCli, CoordinatesBeyondTheCamerasRangeAreRefused) {
+  const auto folder = temporaryFolder("camera_range");
+  expectOneLineError(runGlint(folder, "render sphere --size 16x16 -o out.png --look-from 1e30,0,0"),
+                     "--look-from takes numbers within +-1e9");
+  expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 -o out.exr --look-at 1e38,1e38,1e38"),
+                     "--look-at takes numbers within +-1e9");
+  for (const char* file : {"out.png", "out.exr"}) EXPECT_FALSE(std::filesystem::exists(folder / file)) << file;
+}
+
+// An orbit's frames are one output: a frame that cannot be written (a folder in its place) leaves
+// none of the frames before it, for the rasteriser and for the path tracer (its EXRs and PNGs).
+TEST(CameraCli, AnOrbitThatFailsLeavesNoFrame) {
+  const auto folder = temporaryFolder("camera_orbit_failure");
+  std::filesystem::create_directory(folder / "spin-0002.png");
+  expectOneLineError(runGlint(folder, "render sphere --size 16x16 --orbit 4 -o spin.png"),
+                     "spin-0002.png: cannot write (is a directory)");
+  std::filesystem::create_directory(folder / "walk-0002.exr");
+  expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 --orbit 3 -o walk.exr"),
+                     "walk-0002.exr: cannot write (is a directory)");
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find("-00") != std::string::npos || name.find(".tmp") != std::string::npos) left.push_back(name);
+  }
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"spin-0002.png", "walk-0002.exr"}));
 }
 
 TEST(CameraCli, AVideoWithoutFfmpegLeavesTheFramesAndSaysSo) {

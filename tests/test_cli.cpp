@@ -23,6 +23,13 @@ TEST(GlintCli, MistypedCommandsAndSizesSayWhatIsWrong) {
   expectOneLineError(result, "unknown command 'rendr' (commands: dict, eval, diff, render, view, trace, bench");
   expectOneLineError(result, "did you mean 'render'?");
   expectOneLineError(runGlint(folder, "zzzzzz"), "unknown command 'zzzzzz'");
+  // Command-line syntax errors exit with 2 (docs/conventions.md), an unknown command too; an
+  // option before any command is named.
+  EXPECT_EQ(result.exitCode, 2);
+  const RunResult option = runGlint(folder, "--bogus");
+  expectOneLineError(option, "unknown option '--bogus': give a command first (commands: dict, eval,");
+  EXPECT_EQ(option.exitCode, 2);
+  EXPECT_EQ(runGlint(folder, "--help").exitCode, 0);
   // A size that looks right but is out of range says the range, not the form.
   expectOneLineError(runGlint(folder, "render sphere --size 100000x100000 -o x.png"),
                      "--size must be between 1x1 and 8192x8192, got 100000x100000");
@@ -115,6 +122,10 @@ TEST(DictCli, BadArgumentsGiveOneLineErrors) {
   expectOneLineError(runGlint(folder, "dict --plot plot.png --plot-levels 16"), "plot level 16 does not exist");
   expectOneLineError(runGlint(folder, "dict -o no/such/folder/x.gdict"), "no/such/folder/x.gdict: cannot create");
   expectOneLineError(runGlint(folder, "dict --no-such-flag"), "no-such-flag");
+  expectOneLineError(runGlint(folder, "dict -o x.gdict --plot-levels 0,3"), "glint dict: --plot-levels needs --plot PNG");
+  // The dictionary and its plot are one output: a plot that cannot be written leaves no dictionary.
+  std::ofstream(folder / "afile") << "a file, not a folder";
+  expectOneLineError(runGlint(folder, "dict --levels 4 -o x.gdict --plot afile/plot.png --plot-levels 0,3"), "afile/plot.png: cannot create");
   EXPECT_FALSE(std::filesystem::exists(folder / "x.gdict"));
   EXPECT_FALSE(std::filesystem::exists(folder / "plot.png"));
 }
@@ -122,6 +133,14 @@ TEST(DictCli, BadArgumentsGiveOneLineErrors) {
 TEST(DictCli, NegativeSeedsAndThreadCountsAndHugeFolderNumbersAreRefused) {
   const auto folder = temporaryFolder("dict_numbers");
   expectOneLineError(runGlint(folder, "dict --seed -1 -o d.gdict"), "must be a non-negative integer");
+  // One past the largest seed, and far past it: refused, not saturated to 2^64 - 1.
+  for (const char* seed : {"18446744073709551616", "99999999999999999999999"}) {
+    const RunResult result = runGlint(folder, std::string("dict --seed ") + seed + " -o d.gdict");
+    expectOneLineError(result, "must be an integer in [0, 2^64)");
+    EXPECT_EQ(result.exitCode, 2) << seed;
+  }
+  ASSERT_EQ(runGlint(folder, "dict --levels 2 --distributions 2 --texels 8 --seed 18446744073709551615 -o largest.gdict").exitCode, 0);
+  std::filesystem::remove(folder / "largest.gdict");
   expectOneLineError(runGlint(folder, "dict --threads -3 -o d.gdict"), "--threads");
   std::filesystem::create_directories(folder / "dict_99999999999_192_64_0p5_0p02");
   expectOneLineError(runGlint(folder, "dict --from dict_99999999999_192_64_0p5_0p02 -o d.gdict"),

@@ -14,6 +14,7 @@
 #include <tinyexr.h>
 
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "glint/image_io.h"
 #include "glint/kernel/tonemap.h"
 #include "glint/pcg.h"
@@ -414,6 +415,42 @@ TEST(ImageIoWrite, AFullDiskGivesTheSystemsReasonAndTheFileName) {
   }
   EXPECT_EQ(entries, 2u);
   EXPECT_TRUE(std::filesystem::is_character_file("/dev/full"));
+}
+
+// Files that come one at a time and make one output (an orbit's frames): none is in place before
+// commit(); a failure at the third leaves the first two's old contents and no temporary; after
+// commit() all are in place.
+TEST(ImageIoWrite, StagedFilesAppearTogetherOrNotAtAll) {
+  const auto folder = temporaryFolder("staged_files");
+  const auto bytes = [](const std::string& text) {
+    return std::vector<std::byte>(reinterpret_cast<const std::byte*>(text.data()),
+                                  reinterpret_cast<const std::byte*>(text.data()) + text.size());
+  };
+  writeFileAtomically(folder / "a", bytes("old a"));
+  std::filesystem::create_directory(folder / "c");  // a folder where the third file would go
+  {
+    StagedFiles staged;
+    staged.add(folder / "a", bytes("new a"));
+    staged.add(folder / "b", bytes("new b"));
+    EXPECT_EQ(slurp(folder / "a"), "old a");
+    EXPECT_FALSE(std::filesystem::exists(folder / "b"));
+    expectError([&] { staged.add(folder / "c", bytes("new c")); }, {"c: cannot write (is a directory)"});
+  }  // not committed: the staged files' temporaries go
+  EXPECT_EQ(slurp(folder / "a"), "old a");
+  EXPECT_FALSE(std::filesystem::exists(folder / "b"));
+  std::filesystem::remove(folder / "c");
+  {
+    StagedFiles staged;
+    for (const char* name : {"a", "b", "c"}) staged.add(folder / name, bytes(std::string("new ") + name));
+    staged.commit();
+  }
+  for (const char* name : {"a", "b", "c"}) EXPECT_EQ(slurp(folder / name), std::string("new ") + name);
+  std::size_t entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+    ++entries;
+  }
+  EXPECT_EQ(entries, 3u);
 }
 
 // --- Metrics -----------------------------------------------------------------------------------

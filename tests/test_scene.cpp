@@ -1254,6 +1254,19 @@ TEST(GltfErrors, MissingBufferFile) {
   expectLoadError(path, "textured.bin");
 }
 
+// A buffer's or an image's uri that names a folder is refused naming it, not as a failed
+// allocation (tinygltf's own reader takes a folder's stream size for the file's).
+TEST(GltfErrors, BufferOrImageUriNamingAFolder) {
+  const fs::path path = copyTextured("gltf_folder_uri");
+  fs::create_directory(path.parent_path() / "folder.bin");
+  editJson(path, [](json& d) { d["buffers"][0]["uri"] = "folder.bin"; });
+  expectLoadError(path, "folder.bin : is a directory, expected a file");
+  const fs::path image = copyTextured("gltf_folder_image_uri");
+  fs::create_directory(image.parent_path() / "folder.png");
+  editJson(image, [](json& d) { d["images"][0]["uri"] = "folder.png"; });
+  expectLoadError(image, "image 0 'folder.png': no image data");
+}
+
 TEST(GltfErrors, MissingTextureImage) {
   const fs::path path = copyTextured("gltf_missing_png");
   fs::remove(path.parent_path() / "image0.png");  // the base colour's image

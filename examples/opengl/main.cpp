@@ -359,6 +359,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const char* usage = "usage: glint_opengl OUTPUT.{png,exr} [--dictionary FILE] [--size N]";
   Options options;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -367,7 +368,10 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw glint::Error(argument + " needs a value");
         return argv[++i];
       };
-      if (argument == "--dictionary") {
+      if (argument == "-h" || argument == "--help") {
+        std::printf("%s\n", usage);
+        return 0;
+      } else if (argument == "--dictionary") {
         options.dictionary = value();
       } else if (argument == "--size") {
         const std::string text = value();
@@ -383,9 +387,8 @@ int main(int argc, char** argv) {
         throw glint::Error("unknown argument '" + argument + "'");
       }
     }
-    if (options.output.empty()) {
-      throw glint::Error("usage: glint_opengl OUTPUT.{png,exr} [--dictionary FILE] [--size N]");
-    }
+    if (options.output.empty()) throw glint::Error(usage);
+    glint::requireImageExtension(options.output);  // before the work, not after it
     return run(options);
   } catch (const glint::Error& e) {
     std::fprintf(stderr, "glint_opengl: error: %s\n", e.what());

@@ -244,6 +244,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const char* usage = "usage: glint_path_tracer OUTPUT.{png,exr} [--smooth] [--dictionary FILE] [--size N] [--spp N]";
   Options options;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -262,6 +263,10 @@ int main(int argc, char** argv) {
         }
         return static_cast<int>(n);
       };
+      if (argument == "-h" || argument == "--help") {
+        std::printf("%s\n", usage);
+        return 0;
+      }
       if (argument == "--smooth") options.smooth = true;
       else if (argument == "--dictionary") options.dictionary = value();
       else if (argument == "--size") options.size = count(8, 4096);
@@ -269,9 +274,8 @@ int main(int argc, char** argv) {
       else if (argument[0] != '-' && options.output.empty()) options.output = argument;
       else throw glint::Error("unknown argument '" + argument + "'");
     }
-    if (options.output.empty()) {
-      throw glint::Error("usage: glint_path_tracer OUTPUT.{png,exr} [--smooth] [--dictionary FILE] [--size N] [--spp N]");
-    }
+    if (options.output.empty()) throw glint::Error(usage);
+    glint::requireImageExtension(options.output);  // before the work, not after it
     return run(options);
   } catch (const glint::Error& e) {
     std::fprintf(stderr, "glint_path_tracer: error: %s\n", e.what());

@@ -31,7 +31,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -40,6 +39,7 @@
 
 #include <glint/dictionary.h>
 #include <glint/error.h>
+#include <glint/file_io.h>
 #include <glint/image_io.h>
 #include <glint/kernel/glint_material.h>
 
@@ -389,14 +389,15 @@ class Vulkan {
   std::deque<Buffer> buffers_;  // deque: references stay valid as it grows
 };
 
+// glint's file reader (a folder, a missing or unreadable file: one line naming it), then the
+// module's shape: whole 32-bit words, SPIR-V's magic number and its five-word header.
 std::vector<std::uint32_t> readSpirv(const std::string& path) {
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw glint::Error(path + ": cannot be read");
-  const std::streamsize size = file.tellg();
-  std::vector<std::uint32_t> words(static_cast<std::size_t>(std::max<std::streamsize>(size, 0)) / 4);
-  file.seekg(0);
-  file.read(reinterpret_cast<char*>(words.data()), static_cast<std::streamsize>(words.size() * 4));
-  if (size % 4 != 0 || words.empty() || words[0] != 0x07230203u) throw glint::Error(path + ": not a SPIR-V module");
+  const std::vector<std::byte> bytes = glint::readFile(path);
+  std::vector<std::uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  if (bytes.size() % 4 != 0 || words.size() < 5 || words[0] != 0x07230203u) {
+    throw glint::Error(path + ": not a SPIR-V module");
+  }
   return words;
 }
 
@@ -452,6 +453,8 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const char* usage =
+      "usage: glint_vulkan_deferred OUTPUT.{exr,png} --dictionary FILE.gdict [--size N] [--shader FILE.spv]";
   Options options;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -460,6 +463,10 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw glint::Error(argument + " needs a value");
         return argv[++i];
       };
+      if (argument == "-h" || argument == "--help") {
+        std::printf("%s\n", usage);
+        return 0;
+      }
       if (argument == "--dictionary") options.dictionary = value();
       else if (argument == "--shader") options.shader = value();
       else if (argument == "--size") {
@@ -473,10 +480,8 @@ int main(int argc, char** argv) {
       } else if (argument[0] != '-' && options.output.empty()) options.output = argument;
       else throw glint::Error("unknown argument '" + argument + "'");
     }
-    if (options.output.empty() || options.dictionary.empty()) {
-      throw glint::Error(
-          "usage: glint_vulkan_deferred OUTPUT.{exr,png} --dictionary FILE.gdict [--size N] [--shader FILE.spv]");
-    }
+    if (options.output.empty() || options.dictionary.empty()) throw glint::Error(usage);
+    glint::requireImageExtension(options.output);  // before the work, not after it
     return run(options);
   } catch (const glint::Error& e) {
     std::fprintf(stderr, "glint_vulkan_deferred: error: %s\n", e.what());

@@ -21,9 +21,17 @@ namespace glint::app {
 
 namespace {
 
+// Coordinates beyond this would overflow the camera's float arithmetic (the view vector's length
+// squares them) and leave its frame undefined.
+constexpr float kLargestCoordinate = 1e9f;
+
 glm::vec3 vectorOption(const std::vector<float>& values, const char* name) {
   if (values.size() != 3 || !std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); })) {
     throw Error(std::string(name) + " takes three finite numbers X,Y,Z");
+  }
+  if (!std::all_of(values.begin(), values.end(), [](float v) { return std::fabs(v) <= kLargestCoordinate; })) {
+    throw Error(std::string(name) + " takes numbers within +-1e9, got " + std::to_string(values[0]) + "," +
+                std::to_string(values[1]) + "," + std::to_string(values[2]));
   }
   return {values[0], values[1], values[2]};
 }

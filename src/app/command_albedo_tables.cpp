@@ -22,7 +22,7 @@ void registerAlbedoTablesCommand(CLI::App& app) {
   command->callback([output] {
     const std::string text = albedoTablesHeader(computeAlbedoTables());
     writeFileAtomically(*output, std::as_bytes(std::span<const char>(text.data(), text.size())));
-    std::printf("wrote %s\n", output->c_str());
+    std::fprintf(stderr, "glint: wrote %s\n", output->c_str());
   });
 }
 

@@ -1,5 +1,7 @@
 // `glint dict`: generate a dictionary, or load one, then write it, plot it, print its statistics.
+#include <charconv>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -12,6 +14,8 @@
 #include "glint/dictionary_exr.h"
 #include "glint/dictionary_plot.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
+#include "glint/image.h"
 
 namespace glint::app {
 
@@ -43,6 +47,10 @@ void printStatistics(const Dictionary& dictionary) {
 }
 
 void runDict(const DictOptions& options, const CLI::App& command) {
+  // The plot's own options without a plot would do nothing: said, not ignored.
+  for (const char* name : {"--plot-distributions", "--plot-levels"}) {
+    if (options.plot.empty() && command.count(name) > 0) throw Error(std::string("glint dict: ") + name + " needs --plot PNG");
+  }
   if (options.output.empty() && options.plot.empty() && !options.stats) {
     throw Error("glint dict: nothing to do; give -o FILE, --plot PNG or --stats");
   }
@@ -73,9 +81,13 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   if (!options.plot.empty()) plot = plotDictionary(*dictionary, {options.plotDistributions, options.plotLevels});
   const DictionaryFileTables tables =
       options.treeLevels ? DictionaryFileTables::LevelsAndTreeLevels : DictionaryFileTables::Levels;
-  std::size_t fileBytes = 0;
-  if (!options.output.empty()) fileBytes = dictionary->save(options.output, tables);
-  if (plot) writePng(options.plot, *plot);
+  // The dictionary and its plot are one output: both are written, or neither (a plot that cannot
+  // be written leaves no dictionary file behind).
+  std::vector<FileContents> outputs;
+  if (!options.output.empty()) outputs.push_back({options.output, dictionary->serialise(tables)});
+  if (plot) outputs.push_back({options.plot, encodePng(plot->width(), plot->height(), 3, plot->data())});
+  writeFilesAtomically(outputs);
+  const std::size_t fileBytes = options.output.empty() ? 0 : outputs.front().bytes.size();
   const DictionaryParameters& p = dictionary->parameters();
   std::fprintf(stderr, "glint: %s dictionary: %d levels x %d distributions x %d texels, alpha %g, lobe std %g, %s",
                options.from.empty() ? "generated" : "loaded", p.numLevels, p.numDistributions,
@@ -109,9 +121,13 @@ void registerDictCommand(CLI::App& app) {
   command->add_option("--texels", p.texelsPerDistribution, "R: texels per distribution")->capture_default_str();
   command->add_option("--alpha", p.alpha, "alpha_d: the dictionary's Beckmann roughness")->capture_default_str();
   command->add_option("--lobe-std", p.lobeStd, "s: standard deviation of each lobe")->capture_default_str();
-  // CLI11 would wrap a negative seed around to a large unsigned one: refused on the text.
+  // CLI11 would wrap a negative seed around to a large unsigned one and saturate one past 2^64 - 1:
+  // both refused on the text.
   command->add_option("--seed", p.seed, "Seed of the PCG32 streams, an integer in [0, 2^64); same seed, same bytes")
       ->check([](const std::string& text) {
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc::result_out_of_range) return std::string("must be an integer in [0, 2^64)");
         return !text.empty() && text.front() == '-' ? std::string("must be a non-negative integer") : std::string();
       })
       ->capture_default_str();

@@ -11,6 +11,8 @@
 #include "gl/display.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
+#include "glint/image.h"
 #include "glint/image_io.h"
 
 namespace glint::app {
@@ -55,7 +57,7 @@ void runRender(const RenderOptions& options) {
   const gl::AntiAliasing antiAliasing =
       options.reference != 0 ? gl::AntiAliasing::None : gl::antiAliasingFromString(options.antiAliasing);
   const int spp = options.reference != 0 ? options.reference : options.spp;
-  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
+  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
   const scene::Scene scene = options.scene.loadScene();
   const Dictionary dictionary = options.scene.loadDictionary();
   const auto start = std::chrono::steady_clock::now();
@@ -78,6 +80,7 @@ void runRender(const RenderOptions& options) {
   const int frames = static_cast<int>(cameras.size());
   const bool progress = (spp > 1 || frames > 1) && isatty(STDERR_FILENO);
   std::string first, last;
+  StagedFiles written;  // an orbit's frames are one output: all of them, or none
   for (int f = 0; f < frames; ++f) {
     frame.camera = cameras[static_cast<std::size_t>(f)];
     const ImageRgbF image = gl::renderSupersampled(renderer, frame, spp, [&](int k) {
@@ -87,18 +90,20 @@ void runRender(const RenderOptions& options) {
     });
     const std::string path = options.orbit.enabled() ? sequenceFramePath(output, f, frames, extension).string() : output;
     if (extension == ".exr") {
-      writeExr(path, image);
+      written.add(path, encodeExr(path, image));
     } else {
       // The display pass of the viewer's window, so that `glint view` shows these very bytes.
-      writePng(path, gl::DisplayPass().encode(image, scene.exposure * options.exposure));
+      const ImageRgb8 display = gl::DisplayPass().encode(image, scene.exposure * options.exposure);
+      written.add(path, encodePng(display.width(), display.height(), 3, display.data()));
     }
     (f == 0 ? first : last) = path;
   }
+  written.commit();
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
+  const std::string report = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s%s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
-               written.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               report.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
                footprintNote(frame.footprintPolicy).c_str(), gl::toString(antiAliasing), frame.shadows ? "on" : "off",
                frame.msaa, seconds, gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());

@@ -109,7 +109,7 @@ void runTrace(const TraceOptions& options) {
   if (!video && lowercaseExtension(output) != ".exr") {
     throw Error(output.string() + ": the output must end in .exr (a .png preview is written beside it), or .mp4 with --orbit");
   }
-  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be positive");
+  if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
   if (options.threads < 0 || options.threads > 1024) throw Error("--threads must be in [0, 1024]");
   std::optional<tbb::global_control> threadLimit;
   if (options.threads > 0) {
@@ -124,6 +124,7 @@ void runTrace(const TraceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string first, last;
   std::uint64_t nonFiniteSamples = 0;
+  StagedFiles written;  // an orbit's frames are one output: all of them, or none
   for (int f = 0; f < frames; ++f) {
     settings.camera = cameras[static_cast<std::size_t>(f)];
     // What the tracer refuses of the scene (coordinates beyond its rays' range) names the scene.
@@ -144,10 +145,11 @@ void runTrace(const TraceOptions& options) {
     const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
     // The EXR and its preview are one output: both replace what was there, or neither does.
     const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);
-    writeFilesAtomically({{exrPath, encodeExr(exrPath, image)},
-                          {pngPath, encodePng(preview.width(), preview.height(), 3, preview.data())}});
+    written.add(exrPath, encodeExr(exrPath, image));
+    written.add(pngPath, encodePng(preview.width(), preview.height(), 3, preview.data()));
     (f == 0 ? first : last) = exrPath.string() + " and " + pngPath.string();
   }
+  written.commit();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
   const std::string brdf = settings.brdf == trace::SpecularModel::Glint
@@ -156,9 +158,9 @@ void runTrace(const TraceOptions& options) {
                                : options.brdf;
   const std::string paths =
       settings.directOnly ? std::string("direct light only") : "max depth " + std::to_string(settings.maxDepth);
-  const std::string written = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
+  const std::string report = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s, %s, %.2f s, %.0f samples/s on %zu threads)\n",
-               written.c_str(), options.scene.scene.c_str(), settings.width, settings.height, settings.spp,
+               report.c_str(), options.scene.scene.c_str(), settings.width, settings.height, settings.spp,
                brdf.c_str(), paths.c_str(), seconds, samples / seconds,
                tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   if (nonFiniteSamples > 0) {

@@ -27,25 +27,30 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-// A first argument that is neither an option nor a command: one line naming it, the commands and
-// the nearest one (CLI11 would say only that a subcommand is required).
-void requireKnownCommand(const CLI::App& app, int argc, char** argv) {
-  if (argc < 2 || argv[1][0] == '-') return;
+// A first argument that is not a command, nor glint's own --help or --version: the one line that
+// names it, the commands and the nearest one (CLI11 would say only that a subcommand is required),
+// or empty when it is one. It is a command-line syntax error (exit status 2).
+std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return {};
   const std::string given = argv[1];
   std::string names;
+  for (const CLI::App* command : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + command->get_name();
+  if (given.front() == '-') {
+    if (given == "-h" || given == "--help" || given == "--help-all" || given == "--version") return {};
+    return "unknown option '" + given + "': give a command first (commands: " + names + ")";
+  }
   std::string nearest;
   std::size_t nearestDistance = 3;  // suggest only names at most two edits away
   for (const CLI::App* command : app.get_subcommands({})) {
-    if (command->get_name() == given) return;
-    names += (names.empty() ? "" : ", ") + command->get_name();
+    if (command->get_name() == given) return {};
     const std::size_t distance = editDistance(given, command->get_name());
     if (distance < nearestDistance) {
       nearestDistance = distance;
       nearest = command->get_name();
     }
   }
-  throw glint::Error("unknown command '" + given + "' (commands: " + names + ")" +
-                     (nearest.empty() ? "" : "; did you mean '" + nearest + "'?"));
+  return "unknown command '" + given + "' (commands: " + names + ")" +
+         (nearest.empty() ? "" : "; did you mean '" + nearest + "'?");
 }
 
 // The command whose arguments CLI11 refused, "glint" or "glint render", so that its error points at
@@ -78,8 +83,11 @@ int main(int argc, char** argv) {
   glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
+  if (const std::string unknown = unknownCommand(app, argc, argv); !unknown.empty()) {
+    std::fprintf(stderr, "glint: error: %s (see glint --help)\n", unknown.c_str());
+    return 2;
+  }
   try {
-    requireKnownCommand(app, argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -71,7 +71,7 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("scene", scene, "A built-in scene (" + builtins + ") or a glTF 2.0 file")->capture_default_str();
   command.add_option("--glint-material", glintMaterials,
                      "Put a glint layer on this material of a glTF scene ('*' for all); repeatable");
-  command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY")->delimiter(',');
+  command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY, each in [0.005, 2] (shaded as at least 0.01)")->delimiter(',');
   command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");

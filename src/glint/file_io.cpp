@@ -100,41 +100,57 @@ void writeFileAtomically(const std::filesystem::path& path, std::span<const std:
 }
 
 void writeFilesAtomically(const std::vector<FileContents>& files) {
-  std::vector<std::filesystem::path> temporaries;
-  std::vector<const FileContents*> renamed;  // the files written through temporaries, in order
-  const auto removeTemporaries = [&] {
-    for (const std::filesystem::path& temporary : temporaries) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-    }
-  };
+  StagedFiles staged;
+  for (const FileContents& file : files) {
+    if (!isDeviceOrPipe(file.path)) staged.add(file.path, file.bytes);
+  }
+  // Devices last among the writes: a failure there still leaves the files as they were.
+  for (const FileContents& file : files) {
+    if (isDeviceOrPipe(file.path)) writeAndClose(file.path, file.path, 0, file.bytes);
+  }
+  staged.commit();
+}
+
+StagedFiles::~StagedFiles() { removeTemporaries(); }
+
+void StagedFiles::add(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  if (isDeviceOrPipe(path)) {
+    writeAndClose(path, path, 0, bytes);
+    return;
+  }
+  // A folder in the file's place would fail its rename after the others': refused first.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": cannot write (is a directory)");
+  removeStaleTemporaries(path);
+  const std::filesystem::path temporary = temporaryFor(path);
   try {
-    for (const FileContents& file : files) {
-      if (isDeviceOrPipe(file.path)) continue;
-      // A folder in a file's place would fail its rename after the others': refused first.
-      std::error_code ec;
-      if (std::filesystem::is_directory(file.path, ec)) throw Error(file.path.string() + ": cannot write (is a directory)");
-      removeStaleTemporaries(file.path);
-      temporaries.push_back(temporaryFor(file.path));
-      renamed.push_back(&file);
-      writeAndClose(file.path, temporaries.back(), O_CREAT | O_TRUNC, file.bytes);
-    }
-    // Devices last among the writes: a failure there still leaves the files as they were.
-    for (const FileContents& file : files) {
-      if (isDeviceOrPipe(file.path)) writeAndClose(file.path, file.path, 0, file.bytes);
-    }
+    writeAndClose(path, temporary, O_CREAT | O_TRUNC, bytes);
   } catch (...) {
-    removeTemporaries();
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
     throw;
   }
-  for (std::size_t i = 0; i < renamed.size(); ++i) {
+  staged_.emplace_back(path, temporary);
+}
+
+void StagedFiles::commit() {
+  for (const auto& [path, temporary] : staged_) {
     std::error_code ec;
-    std::filesystem::rename(temporaries[i], renamed[i]->path, ec);
+    std::filesystem::rename(temporary, path, ec);
     if (ec) {
       removeTemporaries();
-      throw Error(renamed[i]->path.string() + ": cannot write (" + ec.message() + ")");
+      throw Error(path.string() + ": cannot write (" + ec.message() + ")");
     }
   }
+  staged_.clear();
+}
+
+void StagedFiles::removeTemporaries() {
+  for (const auto& staged : staged_) {
+    std::error_code ignored;
+    std::filesystem::remove(staged.second, ignored);
+  }
+  staged_.clear();
 }
 
 }  // namespace glint

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -26,5 +27,27 @@ struct FileContents {
   std::vector<std::byte> bytes;
 };
 void writeFilesAtomically(const std::vector<FileContents>& files);
+
+// Files that make one output but come one at a time (an orbit's frames): each is written to its
+// temporary beside its name as it comes (add), and only commit() renames them all over their
+// names, so that a failure at any of them leaves no new file and the files that were there as they
+// were. What is not committed is removed when the object goes. A device or a pipe (/dev/stdout) is
+// no file to replace: add writes it at once.
+class StagedFiles {
+ public:
+  StagedFiles() = default;
+  StagedFiles(const StagedFiles&) = delete;
+  StagedFiles& operator=(const StagedFiles&) = delete;
+  ~StagedFiles();
+
+  // Throws Error naming the file (a folder in its place, a full disk) and leaves the others staged.
+  void add(const std::filesystem::path& path, std::span<const std::byte> bytes);
+  // Throws Error naming the file whose rename fails; the files before it are then in place.
+  void commit();
+
+ private:
+  void removeTemporaries();
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // (name, temporary)
+};
 
 }  // namespace glint

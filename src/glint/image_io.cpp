@@ -411,12 +411,18 @@ void writePngSrgb(const std::filesystem::path& path, const ImageRgbF& image) {
   writePng(path, encoded);
 }
 
-void writeImage(const std::filesystem::path& path, const ImageRgbF& image) {
+void requireImageExtension(const std::filesystem::path& path) {
   const std::string extension = lowercaseExtension(path);
-  if (extension == ".png") return writePngSrgb(path, image);
-  if (extension == ".exr") return writeExr(path, image);
-  throw Error(path.string() + ": unsupported image extension '" + path.extension().string() +
-              "' (supported: .png, .exr)");
+  if (extension != ".png" && extension != ".exr") {
+    throw Error(path.string() + ": unsupported image extension '" + path.extension().string() +
+                "' (supported: .png, .exr)");
+  }
+}
+
+void writeImage(const std::filesystem::path& path, const ImageRgbF& image) {
+  requireImageExtension(path);
+  if (lowercaseExtension(path) == ".png") return writePngSrgb(path, image);
+  return writeExr(path, image);
 }
 
 ImageRgbF fromRgba8Srgb(int width, int height, const std::uint8_t* rgba, bool bottomUp) {

@@ -59,6 +59,9 @@ std::vector<std::byte> encodeExr(const std::filesystem::path& path, const ImageR
 void writePngSrgb(const std::filesystem::path& path, const ImageRgbF& image);
 // By extension, case-insensitive: .png (writePngSrgb) or .exr (writeExr); otherwise Error.
 void writeImage(const std::filesystem::path& path, const ImageRgbF& image);
+// Throws the Error writeImage would throw for `path`'s extension, so that a program can refuse an
+// output name before the work that makes the image.
+void requireImageExtension(const std::filesystem::path& path);
 // The extension with its dot, lower-cased ("" when there is none): how files are told apart by name.
 std::string lowercaseExtension(const std::filesystem::path& path);
 

@@ -1036,6 +1036,24 @@ class GltfReader {
   int defaultMaterial_ = -1;
 };
 
+// tinygltf's file reader for a buffer's or an image's uri, through glint's (file_io.h): a uri that
+// names a folder is refused as one ("is a directory, expected a file"), where tinygltf's own reader
+// takes the folder's stream size for the file's and fails to allocate it.
+bool readReferencedFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  try {
+    const std::vector<std::byte> bytes = readFile(path);
+    const auto* first = reinterpret_cast<const unsigned char*>(bytes.data());
+    out->assign(first, first + bytes.size());
+    return true;
+  } catch (const std::exception& e) {
+    // tinygltf's message names the file already ("File read error : PATH : "): the reason alone.
+    std::string reason = e.what();
+    if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
+    if (err) *err += reason + "\n";
+    return false;
+  }
+}
+
 // Little-endian 32-bit word at `at` (the caller checks the range).
 std::uint32_t word32(std::span<const std::byte> bytes, std::size_t at) {
   return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
@@ -1102,6 +1120,12 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
     tinygltf::TinyGLTF loader;
     loader.SetStoreOriginalJSONForExtrasAndExtensions(true);  // for extras.glint, read with nlohmann::json
     loader.SetImageLoader(decodeImage, nullptr);
+    tinygltf::FsCallbacks files{};
+    files.FileExists = &tinygltf::FileExists;
+    files.ExpandFilePath = &tinygltf::ExpandFilePath;
+    files.ReadWholeFile = &readReferencedFile;
+    files.WriteWholeFile = &tinygltf::WriteWholeFile;
+    loader.SetFsCallbacks(files);
     tinygltf::Model model;
     std::string errors;
     std::string warnings;

@@ -23,6 +23,19 @@ function(run what)
   set(run_output "${out}" PARENT_SCOPE)
 endfunction()
 
+# Runs a command that must refuse its input: a non-zero exit and one line on stderr holding
+# `expected`; stops the test otherwise.
+function(refuse what expected)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(STRIP "${err}" line)
+  string(FIND "${line}" "${expected}" at)
+  string(FIND "${line}" "\n" newline)
+  if(status EQUAL 0 OR at EQUAL -1 OR NOT newline EQUAL -1)
+    message(FATAL_ERROR "${what}: expected one error line with '${expected}', got exit ${status}:\n${out}\n${err}")
+  endif()
+  message(STATUS "${what}: refused (${line})")
+endfunction()
+
 set(prefix ${WORK}/prefix)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
@@ -79,6 +92,23 @@ run("path tracer, glints" ${tracer} ${WORK}/glint.exr --dictionary ${WORK}/dicti
 run("path tracer, smooth" ${tracer} ${WORK}/smooth.exr --smooth --dictionary ${WORK}/dictionary.gdict)
 run("check the images" ${CHECKER} ${WORK}/glint.exr ${WORK}/smooth.exr)
 message(STATUS "${run_output}")
+# Each example answers --help with its usage, and refuses an output it cannot write before the
+# work (a path tracer at 64 samples a pixel would take seconds first), leaving no file.
+foreach(example IN ITEMS ${tracer} ${WORK}/build/opengl/glint_opengl ${WORK}/build/vulkan/glint_vulkan_deferred)
+  if(EXISTS ${example})
+    get_filename_component(name ${example} NAME)
+    run("${name} --help" ${example} --help)
+    string(FIND "${run_output}" "usage: ${name} OUTPUT" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "${name} --help printed no usage: ${run_output}")
+    endif()
+    refuse("${name} to a .bmp" "unsupported image extension '.bmp'" ${example} ${WORK}/out.bmp
+           --dictionary ${WORK}/dictionary.gdict --size 256)
+  endif()
+endforeach()
+if(EXISTS ${WORK}/out.bmp)
+  message(FATAL_ERROR "an example refused out.bmp and still wrote it")
+endif()
 
 # The OpenGL example (examples/opengl), built where libepoxy, libOpenGL and libEGL are: glint's built-in
 # sphere shaded with the installed GLSL kernel, against `glint render sphere` of the same setup (one
@@ -107,6 +137,8 @@ if(EXISTS ${vulkan_example} AND EXAMPLE_FLAGS)
   # driver never frees is then reported as the example's leak; the plain build runs and checks it.
   message(STATUS "examples/vulkan: built; not run in the sanitizer build (lavapipe's own leaks)")
 elseif(EXISTS ${vulkan_example})
+  refuse("Vulkan deferred shading, a folder as its shader" "is a directory" ${vulkan_example} ${WORK}/vulkan.exr
+         --dictionary ${WORK}/dictionary.gdict --shader ${WORK})
   run("Vulkan deferred shading" ${vulkan_example} ${WORK}/vulkan.exr --dictionary ${WORK}/dictionary.gdict --size 256)
   run("glint render sphere" ${prefix}/bin/glint render sphere --size 256x256 --aa none --shadows off
       --env-intensity 0 --dict ${WORK}/dictionary.gdict -o ${WORK}/render-vulkan.exr)
