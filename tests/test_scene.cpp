@@ -1372,6 +1372,8 @@ TEST(GltfErrors, BadGlintExtras) {
   expectLoadError(path, "rho must be a number");
   withGlint({{"log_density", 1e300}});
   expectLoadError(path, "log_density 1e+300 is beyond a float's range");
+  withGlint({{"relative_area", 1e-46}});  // in (0, 1], but no float holds it
+  expectLoadError(path, "relative_area 1e-46 is below the smallest positive float (1.401298464324817e-45)");
   withGlint({{"alpah", 0.2}});
   expectLoadError(path, "unknown field 'alpah'");
   withGlint(json::array({1, 2}));

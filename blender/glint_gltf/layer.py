@@ -16,9 +16,10 @@ LAYER_PROPERTY = "glint_layer"
 
 # The largest 32-bit float: uvScale's upper bound in the extension.
 FLOAT32_MAX = 3.4028234663852886e38
-# The smallest positive 32-bit float (normal): Blender's stand-in for the extension's exclusive
-# minimum 0 of relativeArea and uvScale (a Blender property has inclusive bounds only).
-FLOAT32_MIN_POSITIVE = 1.1754943508222875e-38
+# The smallest positive 32-bit float (subnormal; Blender's float properties hold subnormals): the
+# extension's minimum of uvScale, and Blender's stand-in for the exclusive minimum 0 of relativeArea
+# (a Blender property has inclusive bounds only).
+FLOAT32_MIN_POSITIVE = 1.401298464324817e-45
 # Blender's integer properties are 32-bit signed; the extension's patternSeed goes to 2^32 - 1.
 BLENDER_INT_MAX = 2**31 - 1
 EXTENSION_SEED_MAX = 2**32 - 1
@@ -74,7 +75,7 @@ FIELDS = [
           0, EXTENSION_SEED_MAX, default=0),
     Field("uv_scale", "uvScale", "number", "UV Scale",
           "Glint uv = TEXCOORD_0 times this; raising it by k multiplies the facets per unit of surface by k squared",
-          0.0, FLOAT32_MAX, exclusive_minimum=True, default=1.0, soft_max=100.0),
+          FLOAT32_MIN_POSITIVE, FLOAT32_MAX, default=1.0, soft_max=100.0),
     Field("random_colors", "randomColors", "boolean", "Random Colors",
           "Each cell's glints get a random colour (the flakes of a car paint)", default=False),
     Field("lod", "lod", "choice", "Level of Detail",
@@ -206,6 +207,10 @@ def _check_number(field, value, where):
     low_ok = value > field.minimum if field.exclusive_minimum else value >= field.minimum
     if not (low_ok and value <= field.maximum):
         raise LayerError("%s = %s is outside %s" % (where, _number_text(value), field.range_text()))
+    # Blender holds 32-bit floats: a positive value that no such float holds would become 0, below
+    # an exclusive minimum of 0 (glint's loader refuses it too).
+    if value != 0 and struct.unpack("<f", struct.pack("<f", value))[0] == 0:
+        raise LayerError("%s = %s is below the smallest positive 32-bit float" % (where, _number_text(value)))
     return float(value)
 
 

@@ -93,6 +93,10 @@ float numberField(const json& value, const std::string& field) {
   if (!(std::abs(number) <= std::numeric_limits<float>::max())) {
     throw Error(field + " " + describeJsonValue(value) + " is beyond a float's range");
   }
+  // A number too small for any float would be checked, and refused, as 0: said as what it is.
+  if (number != 0.0 && static_cast<float>(number) == 0.0f) {
+    throw Error(field + " " + describeJsonValue(value) + " is below the smallest positive float (1.401298464324817e-45)");
+  }
   return static_cast<float>(number);
 }
 

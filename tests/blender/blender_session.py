@@ -4,7 +4,8 @@
 #   author ZIP OUT.glb OUT.blend          the add-on enabled; a glinty sphere authored from scratch, exported, saved
 #   export-without-addon IN.blend OUT.glb  the add-on not enabled; IN opened and exported
 #   import-layers ZIP IN.glb              the add-on enabled; IN imported; prints a JSON line: each
-#                                         material's layer (enabled, log_density, random_colors, pattern_seed)
+#                                         material's layer (enabled, log_density, random_colors, pattern_seed,
+#                                         uv_scale)
 #   glint-pixels GLINT.exr SMOOTH.exr     prints a JSON line: object pixels and glint pixels of a render
 # The add-on is installed into the user scripts folder, which run_blender_test.py points at a
 # temporary folder (BLENDER_USER_SCRIPTS), as are Blender's preferences (BLENDER_USER_CONFIG).
@@ -110,7 +111,8 @@ def import_layers(zip_path, source):
     bpy.ops.import_scene.gltf(filepath=source)
     print(json.dumps({m.name: {"enabled": m.glint_layer.enabled, "log_density": m.glint_layer.log_density,
                                "random_colors": m.glint_layer.random_colors,
-                               "pattern_seed": m.glint_layer.pattern_seed} for m in bpy.data.materials}))
+                               "pattern_seed": m.glint_layer.pattern_seed,
+                               "uv_scale": m.glint_layer.uv_scale} for m in bpy.data.materials}))
 
 
 def luminance(pixels):

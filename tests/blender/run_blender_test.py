@@ -223,10 +223,27 @@ def import_checks(h):
     layers = json.loads(next(l for l in output.splitlines() if l.startswith("{")))
     warnings = [l for l in output.splitlines() if l.startswith("glint_gltf: ")]
     check(layers["red glint"] == {"enabled": True, "log_density": 9.5, "random_colors": True,
-                                  "pattern_seed": 3000000000 - 2**31},
+                                  "pattern_seed": 3000000000 - 2**31, "uv_scale": 4.0},
           "randomColors 1 is read as true, patternSeed 3000000000 as 3000000000 - 2^31: %s" % layers["red glint"])
     check(len(warnings) == 1 and "patternSeed = 3000000000 is above 2147483647" in warnings[0],
           "one line says the seed is above Blender's largest integer: %s" % warnings)
+    # At the bottom of the 32-bit floats: a subnormal uvScale within the extension's range is kept
+    # (not raised to the smallest normal float), a relativeArea that no 32-bit float holds (it would
+    # be 0) is refused, as glint's loader refuses it.
+    tiny, underflow = h.path("tiny.glb"), h.path("underflow.glb")
+    with_glint_fields(original, tiny, {"uvScale": 1e-40})
+    with_glint_fields(original, underflow, {"relativeArea": 1e-46})
+    output = h.blender_session("import-layers", h.zip, tiny)
+    layer = json.loads(next(l for l in output.splitlines() if l.startswith("{")))["red glint"]
+    check(layer["enabled"] and abs(layer["uv_scale"] - 1e-40) < 1e-44,
+          "uvScale 1e-40 is kept as the 32-bit float nearest it: %s" % layer)
+    output = h.blender_session("import-layers", h.zip, underflow)
+    layers = json.loads(next(l for l in output.splitlines() if l.startswith("{")))
+    warnings = [l for l in output.splitlines() if l.startswith("glint_gltf: ")]
+    check(layers["red glint"]["enabled"] is False and
+          warnings == ["glint_gltf: underflow.glb: material 'red glint': EXT_materials_glint.relativeArea = 1e-46 is "
+                       "below the smallest positive 32-bit float; imported without its glint layer"],
+          "relativeArea 1e-46 is refused in one line: %s" % warnings)
 
 
 def main():
