@@ -44,7 +44,7 @@ std::string missingForWebTests() {
   if (!fs::exists(kDriver.parent_path() / "node_modules" / "puppeteer-core")) {
     return "puppeteer-core is not installed in tests/web (scripts/deps installs it)";
   }
-  if (!fs::exists(kSite / "glint.wasm") || !fs::exists(kSite / "dictionary.glintdict")) {
+  if (!fs::exists(kSite / "glint.wasm") || !fs::exists(kSite / "dictionary.gdict")) {
     return "the page is not built in " + kSite.string() + " (the build makes it when Emscripten is installed: scripts/deps)";
   }
   return "";
@@ -126,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, KernelWeb, ::testing::Values("llvmpipe", "swi
 // The page's dictionary is the one the desktop tests use: `glint dict` with its defaults.
 TEST(PageWeb, DictionaryIsGlintsDefault) {
   SKIP_WITHOUT_BROWSER();
-  const Dictionary page = Dictionary::load(kSite / "dictionary.glintdict");
+  const Dictionary page = Dictionary::load(kSite / "dictionary.gdict");
   const auto a = page.halfTexels();
   const auto b = defaultDictionary().halfTexels();
   EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));

@@ -254,8 +254,8 @@ async function start() {
   }
   page.renderer = await loadRenderer();
   page.renderer.start('#view');
-  const response = await fetch('dictionary.glintdict');
-  if (!response.ok) throw new Error(`dictionary.glintdict: ${response.status} ${response.statusText}`);
+  const response = await fetch('dictionary.gdict');
+  if (!response.ok) throw new Error(`dictionary.gdict: ${response.status} ${response.statusText}`);
   page.renderer.loadDictionary(new Uint8Array(await response.arrayBuffer()));
   wireControls();
   loadBuiltin(SCENES.includes(query.get('scene')) ? query.get('scene') : 'sphere');

@@ -85,7 +85,8 @@ const keep = option('--keep');
 const work = keep ? path.resolve(keep) : mkdtempSync(path.join(tmpdir(), 'glint-three-'));
 mkdirSync(work, { recursive: true });
 
-// glint's side: the renders, read back as linear RGBA float32, rows as the EXR stores them.
+// glint's side: the renders, read back as linear RGBA float32, rows bottom up (EXRLoader's order,
+// the same as three's readback).
 function readExr(file) {
   const loader = new EXRLoader();
   loader.setDataType(FloatType);
@@ -142,7 +143,8 @@ try {
   const masks = {};  // three's glint pixels per file
   for (const file of FILES) {
     const scene = file.name;
-    const reference = glintStatistics(glintRender(file, 'glint'), glintRender(file, 'cook-torrance'));
+    const glintFrames = { glints: glintRender(file, 'glint'), smooth: glintRender(file, 'cook-torrance') };
+    const reference = glintStatistics(glintFrames.glints, glintFrames.smooth);
     const three = {};
     for (const mode of ['glints', 'smooth', 'core']) {
       const result = await page.evaluate((url, size, mode) => window.renderView({ url, size, mode }),
@@ -162,6 +164,12 @@ try {
     const fractionRatio = withPlugin.glintFraction / reference.glintFraction;
     const excessRatio = withPlugin.meanExcess / reference.meanExcess;
     console.log(`${scene}: three / glint: glint fraction ${fractionRatio.toFixed(3)}, mean excess ${excessRatio.toFixed(3)}`);
+    // The same triangles, camera, uv and kernel give the same glints at the same places: glint's
+    // glint pixels glint in three's frame too (a wrong uv, seed or frame would move them).
+    const glintPlaces = glintMask(glintFrames.glints, glintFrames.smooth);
+    const samePlaces = sharedGlintPixels(glintPlaces, masks[scene]);
+    console.log(`${scene}: glint's glint pixels that glint in three's frame too: ${Math.round(samePlaces * reference.glintPixels)} of ${reference.glintPixels}`);
+    check(samePlaces >= 0.95, `${scene}: only ${samePlaces.toFixed(3)} of glint's glint pixels glint in three's frame`);
     check(reference.glintPixels >= 20, `${scene}: glint's own render shows only ${reference.glintPixels} glint pixels`);
     check(Math.abs(fractionRatio - 1) <= TOLERANCE, `${scene}: three's glint fraction is ${fractionRatio.toFixed(3)} times glint's`);
     check(Math.abs(excessRatio - 1) <= TOLERANCE, `${scene}: three's mean excess is ${excessRatio.toFixed(3)} times glint's`);

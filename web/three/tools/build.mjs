@@ -33,7 +33,10 @@ function run(glint, args) {
   try {
     execFileSync(glint, args, { stdio: ['ignore', 'ignore', 'pipe'] });
   } catch (error) {
-    const said = error.stderr ? String(error.stderr).trim().split('\n').pop() : error.message;
+    // glint's own one line when it said one; else how it ended (a program that prints nothing).
+    const stderr = error.stderr ? String(error.stderr).trim() : '';
+    const ended = error.status !== null && error.status !== undefined ? `exit status ${error.status}` : error.signal ? `killed by ${error.signal}` : error.message;
+    const said = stderr ? stderr.split('\n').pop() : ended;
     throw new Error(`glint ${args.join(' ')} failed: ${said}`);
   }
 }
