@@ -2,6 +2,7 @@
 // material's EXT_materials_glint (docs/cli.md, docs/scenes.md "Writing glTF").
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "app/commands.h"
 #include "app/scene_options.h"
@@ -28,9 +29,12 @@ void runExport(const ExportOptions& options) {
                options.output.c_str(), losses.c_str());
   std::size_t triangles = 0;
   for (const scene::Mesh& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
-  std::fprintf(stderr, "glint: wrote %s (%s: %zu meshes, %zu triangles, %zu materials, %zu textures, %zu lights, %zu cameras)\n",
-               options.output.c_str(), options.scene.scene.c_str(), scene.meshes.size(), triangles,
-               scene.materials.size(), scene.textures.size(), scene.lights.size(), scene.cameras.size());
+  const auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  std::fprintf(stderr, "glint: wrote %s (%s: %s, %s, %s, %s, %s, %s)\n", options.output.c_str(),
+               options.scene.scene.c_str(), count(scene.meshes.size(), "mesh", "meshes").c_str(),
+               count(triangles, "triangle", "triangles").c_str(), count(scene.materials.size(), "material", "materials").c_str(),
+               count(scene.textures.size(), "texture", "textures").c_str(), count(scene.lights.size(), "light", "lights").c_str(),
+               count(scene.cameras.size(), "camera", "cameras").c_str());
 }
 
 }  // namespace
