@@ -30,6 +30,9 @@ TEST(GlintCli, MistypedCommandsAndSizesSayWhatIsWrong) {
   expectOneLineError(option, "unknown option '--bogus': give a command first (commands: dict, eval,");
   EXPECT_EQ(option.exitCode, 2);
   EXPECT_EQ(runGlint(folder, "--help").exitCode, 0);
+  const RunResult empty = runGlint(folder, "''");
+  expectOneLineError(empty, "unknown command '' (commands: dict,");
+  EXPECT_EQ(empty.exitCode, 2);
   // A size that looks right but is out of range says the range, not the form.
   expectOneLineError(runGlint(folder, "render sphere --size 100000x100000 -o x.png"),
                      "--size must be between 1x1 and 8192x8192, got 100000x100000");
@@ -56,6 +59,18 @@ TEST(GlintCli, VersionIsTheProjectVersion) {
   EXPECT_EQ(std::to_string(GLINT_VERSION_MAJOR) + "." + std::to_string(GLINT_VERSION_MINOR) + "." +
                 std::to_string(GLINT_VERSION_PATCH),
             GLINT_PROJECT_VERSION);
+}
+
+// Standard output sent to a file, named through a link into /proc (as /dev/stdout is): the bytes
+// go to that file and the link stays a link, not replaced by a renamed temporary.
+TEST(DictCli, AnOutputLinkedIntoProcIsWrittenInPlace) {
+  const auto folder = temporaryFolder("dict_proc_link");
+  std::filesystem::create_symlink("/proc/self/fd/1", folder / "out.gdict");
+  const RunResult result = runGlint(folder, "dict --levels 2 --distributions 2 --texels 8 -o out.gdict");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out.size(), 64u + 2u * 2u * 2u * 8u);  // header + 2 levels x 2 distributions x 8 binary16 texels
+  EXPECT_EQ(result.out.substr(0, 8), "GLINTDIC");
+  EXPECT_TRUE(std::filesystem::is_symlink(folder / "out.gdict"));
 }
 
 TEST(DictCli, SameSeedGivesIdenticalBytesOnOneAndTwoThreads) {
@@ -133,10 +148,16 @@ TEST(DictCli, BadArgumentsGiveOneLineErrors) {
 TEST(DictCli, NegativeSeedsAndThreadCountsAndHugeFolderNumbersAreRefused) {
   const auto folder = temporaryFolder("dict_numbers");
   expectOneLineError(runGlint(folder, "dict --seed -1 -o d.gdict"), "must be a non-negative integer");
-  // One past the largest seed, and far past it: refused, not saturated to 2^64 - 1.
+  // One past the largest seed, and far past it: refused, not saturated to 2^64 - 1; nor is a sign
+  // or a space taken (CLI11 would read "+18446744073709551616" as 2^64 - 1 and " -1" as -1).
   for (const char* seed : {"18446744073709551616", "99999999999999999999999"}) {
     const RunResult result = runGlint(folder, std::string("dict --seed ") + seed + " -o d.gdict");
     expectOneLineError(result, "must be an integer in [0, 2^64)");
+    EXPECT_EQ(result.exitCode, 2) << seed;
+  }
+  for (const char* seed : {"+18446744073709551616", "' -1'", "+5"}) {
+    const RunResult result = runGlint(folder, std::string("dict --seed ") + seed + " -o d.gdict");
+    expectOneLineError(result, "must be a non-negative integer (digits only)");
     EXPECT_EQ(result.exitCode, 2) << seed;
   }
   ASSERT_EQ(runGlint(folder, "dict --levels 2 --distributions 2 --texels 8 --seed 18446744073709551615 -o largest.gdict").exitCode, 0);

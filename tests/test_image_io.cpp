@@ -445,6 +445,13 @@ TEST(ImageIoWrite, StagedFilesAppearTogetherOrNotAtAll) {
     staged.commit();
   }
   for (const char* name : {"a", "b", "c"}) EXPECT_EQ(slurp(folder / name), std::string("new ") + name);
+  {
+    // One name given twice, the second time spelt another way: both would share a temporary.
+    StagedFiles staged;
+    staged.add(folder / "a", bytes("newer a"));
+    expectError([&] { staged.add(folder / "." / "a", bytes("other a")); }, {"a: given twice as an output"});
+  }
+  EXPECT_EQ(slurp(folder / "a"), "new a");
   std::size_t entries = 0;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();

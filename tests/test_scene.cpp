@@ -1373,7 +1373,9 @@ TEST(GltfErrors, BadGlintExtras) {
   withGlint({{"log_density", 1e300}});
   expectLoadError(path, "log_density 1e+300 is beyond a float's range");
   withGlint({{"relative_area", 1e-46}});  // in (0, 1], but no float holds it
-  expectLoadError(path, "relative_area 1e-46 is below the smallest positive float (1.401298464324817e-45)");
+  expectLoadError(path, "relative_area 1e-46 is too small for a 32-bit float and would be 0: relative_area must be in (0, 1], got 0");
+  withGlint({{"rho", -1e-46}});  // 0 is in rho's range: read as 0
+  EXPECT_EQ(loadGltf(path).materials.at(0).glint.rho, 0.0f);
   withGlint({{"alpah", 0.2}});
   expectLoadError(path, "unknown field 'alpah'");
   withGlint(json::array({1, 2}));

@@ -207,10 +207,11 @@ def _check_number(field, value, where):
     low_ok = value > field.minimum if field.exclusive_minimum else value >= field.minimum
     if not (low_ok and value <= field.maximum):
         raise LayerError("%s = %s is outside %s" % (where, _number_text(value), field.range_text()))
-    # Blender holds 32-bit floats: a positive value that no such float holds would become 0, below
-    # an exclusive minimum of 0 (glint's loader refuses it too).
-    if value != 0 and struct.unpack("<f", struct.pack("<f", value))[0] == 0:
-        raise LayerError("%s = %s is below the smallest positive 32-bit float" % (where, _number_text(value)))
+    # Blender holds 32-bit floats: a value no such float holds but 0 (1e-46) becomes 0, outside an
+    # exclusive minimum of 0 (glint's loader refuses it too); where 0 is in range it is read.
+    if field.exclusive_minimum and value != 0 and struct.unpack("<f", struct.pack("<f", value))[0] == 0:
+        raise LayerError("%s = %s is too small for a 32-bit float and would be 0, outside %s"
+                         % (where, _number_text(value), field.range_text()))
     return float(value)
 
 

@@ -30,8 +30,9 @@ glm::vec3 vectorOption(const std::vector<float>& values, const char* name) {
     throw Error(std::string(name) + " takes three finite numbers X,Y,Z");
   }
   if (!std::all_of(values.begin(), values.end(), [](float v) { return std::fabs(v) <= kLargestCoordinate; })) {
-    throw Error(std::string(name) + " takes numbers within +-1e9, got " + std::to_string(values[0]) + "," +
-                std::to_string(values[1]) + "," + std::to_string(values[2]));
+    char given[96];
+    std::snprintf(given, sizeof given, "%g,%g,%g", values[0], values[1], values[2]);
+    throw Error(std::string(name) + " takes numbers within +-1e9, got " + given);
   }
   return {values[0], values[1], values[2]};
 }

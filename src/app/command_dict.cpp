@@ -85,7 +85,7 @@ void runDict(const DictOptions& options, const CLI::App& command) {
   // be written leaves no dictionary file behind).
   std::vector<FileContents> outputs;
   if (!options.output.empty()) outputs.push_back({options.output, dictionary->serialise(tables)});
-  if (plot) outputs.push_back({options.plot, encodePng(plot->width(), plot->height(), 3, plot->data())});
+  if (plot) outputs.push_back({options.plot, encodePng(*plot)});
   writeFilesAtomically(outputs);
   const std::size_t fileBytes = options.output.empty() ? 0 : outputs.front().bytes.size();
   const DictionaryParameters& p = dictionary->parameters();
@@ -121,14 +121,16 @@ void registerDictCommand(CLI::App& app) {
   command->add_option("--texels", p.texelsPerDistribution, "R: texels per distribution")->capture_default_str();
   command->add_option("--alpha", p.alpha, "alpha_d: the dictionary's Beckmann roughness")->capture_default_str();
   command->add_option("--lobe-std", p.lobeStd, "s: standard deviation of each lobe")->capture_default_str();
-  // CLI11 would wrap a negative seed around to a large unsigned one and saturate one past 2^64 - 1:
-  // both refused on the text.
+  // CLI11 would wrap a negative seed around to a large unsigned one, saturate one past 2^64 - 1 and
+  // take a sign or spaces: the text must be digits, and within range.
   command->add_option("--seed", p.seed, "Seed of the PCG32 streams, an integer in [0, 2^64); same seed, same bytes")
       ->check([](const std::string& text) {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+          return std::string("must be a non-negative integer (digits only)");
+        }
         std::uint64_t value = 0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error == std::errc::result_out_of_range) return std::string("must be an integer in [0, 2^64)");
-        return !text.empty() && text.front() == '-' ? std::string("must be a non-negative integer") : std::string();
+        return error == std::errc::result_out_of_range ? std::string("must be an integer in [0, 2^64)") : std::string();
       })
       ->capture_default_str();
   command->add_option("--placement", options->placement,

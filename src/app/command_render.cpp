@@ -80,7 +80,7 @@ void runRender(const RenderOptions& options) {
   const int frames = static_cast<int>(cameras.size());
   const bool progress = (spp > 1 || frames > 1) && isatty(STDERR_FILENO);
   std::string first, last;
-  StagedFiles written;  // an orbit's frames are one output: all of them, or none
+  StagedFiles written;  // an orbit's frames are one output: written all or none, renamed together
   for (int f = 0; f < frames; ++f) {
     frame.camera = cameras[static_cast<std::size_t>(f)];
     const ImageRgbF image = gl::renderSupersampled(renderer, frame, spp, [&](int k) {
@@ -93,8 +93,7 @@ void runRender(const RenderOptions& options) {
       written.add(path, encodeExr(path, image));
     } else {
       // The display pass of the viewer's window, so that `glint view` shows these very bytes.
-      const ImageRgb8 display = gl::DisplayPass().encode(image, scene.exposure * options.exposure);
-      written.add(path, encodePng(display.width(), display.height(), 3, display.data()));
+      written.add(path, encodePng(gl::DisplayPass().encode(image, scene.exposure * options.exposure)));
     }
     (f == 0 ? first : last) = path;
   }

@@ -124,7 +124,7 @@ void runTrace(const TraceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string first, last;
   std::uint64_t nonFiniteSamples = 0;
-  StagedFiles written;  // an orbit's frames are one output: all of them, or none
+  StagedFiles written;  // an orbit's frames are one output: written all or none, renamed together
   for (int f = 0; f < frames; ++f) {
     settings.camera = cameras[static_cast<std::size_t>(f)];
     // What the tracer refuses of the scene (coordinates beyond its rays' range) names the scene.
@@ -146,7 +146,7 @@ void runTrace(const TraceOptions& options) {
     // The EXR and its preview are one output: both replace what was there, or neither does.
     const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);
     written.add(exrPath, encodeExr(exrPath, image));
-    written.add(pngPath, encodePng(preview.width(), preview.height(), 3, preview.data()));
+    written.add(pngPath, encodePng(preview));
     (f == 0 ? first : last) = exrPath.string() + " and " + pngPath.string();
   }
   written.commit();

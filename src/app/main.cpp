@@ -35,8 +35,8 @@ std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
   const std::string given = argv[1];
   std::string names;
   for (const CLI::App* command : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + command->get_name();
-  if (given.front() == '-') {
-    if (given == "-h" || given == "--help" || given == "--help-all" || given == "--version") return {};
+  if (!given.empty() && given[0] == '-') {
+    if (given == "-h" || given == "--help" || given == "--version") return {};
     return "unknown option '" + given + "': give a command first (commands: " + names + ")";
   }
   std::string nearest;

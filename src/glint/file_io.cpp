@@ -60,12 +60,28 @@ void removeStaleTemporaries(const std::filesystem::path& path) {
   }
 }
 
-// A device or a pipe (/dev/stdout, /dev/full), directly or through a symbolic link, is no file to
-// replace, and renaming a temporary over it would replace the device: it is written as it is.
-bool isDeviceOrPipe(const std::filesystem::path& path) {
+// What is written as it is, not through a temporary renamed over it: a device or a pipe
+// (/dev/full, /dev/stdout on a terminal), directly or through a symbolic link, and any name in or
+// linked into /dev or /proc (/dev/stdout when the shell sends it to a file is a link to
+// /proc/self/fd/1, which names a regular file: a rename would replace /dev/stdout itself).
+bool writtenInPlace(const std::filesystem::path& path) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  return std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status);
+  if (std::filesystem::is_character_file(status) || std::filesystem::is_fifo(status)) return true;
+  const auto isSystemName = [](const std::filesystem::path& name) {
+    std::error_code ignored;
+    const std::string text = std::filesystem::absolute(name, ignored).lexically_normal().string();
+    return text.rfind("/dev/", 0) == 0 || text.rfind("/proc/", 0) == 0;
+  };
+  std::filesystem::path link = path;
+  for (int depth = 0; depth < 8; ++depth) {  // a link's own links, as far as the kernel follows them
+    if (isSystemName(link)) return true;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(link, ec))) return false;
+    const std::filesystem::path target = std::filesystem::read_symlink(link, ec);
+    if (ec) return false;
+    link = target.is_absolute() ? target : link.parent_path() / target;
+  }
+  return false;
 }
 
 // Writes all of `bytes` to `file` (opened with `flags`: a temporary, or a device itself), then
@@ -102,11 +118,11 @@ void writeFileAtomically(const std::filesystem::path& path, std::span<const std:
 void writeFilesAtomically(const std::vector<FileContents>& files) {
   StagedFiles staged;
   for (const FileContents& file : files) {
-    if (!isDeviceOrPipe(file.path)) staged.add(file.path, file.bytes);
+    if (!writtenInPlace(file.path)) staged.add(file.path, file.bytes);
   }
   // Devices last among the writes: a failure there still leaves the files as they were.
   for (const FileContents& file : files) {
-    if (isDeviceOrPipe(file.path)) writeAndClose(file.path, file.path, 0, file.bytes);
+    if (writtenInPlace(file.path)) writeAndClose(file.path, file.path, 0, file.bytes);
   }
   staged.commit();
 }
@@ -114,15 +130,24 @@ void writeFilesAtomically(const std::vector<FileContents>& files) {
 StagedFiles::~StagedFiles() { removeTemporaries(); }
 
 void StagedFiles::add(const std::filesystem::path& path, std::span<const std::byte> bytes) {
-  if (isDeviceOrPipe(path)) {
+  if (writtenInPlace(path)) {
     writeAndClose(path, path, 0, bytes);
     return;
   }
-  // A folder in the file's place would fail its rename after the others': refused first.
+  // A folder in the file's place would fail its rename after the others': refused first. So is a
+  // name given twice (`-o a.png --plot ./a.png`): both would share one temporary.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": cannot write (is a directory)");
+  const std::filesystem::path same = std::filesystem::weakly_canonical(path, ec);
+  for (const auto& [name, temporary] : staged_) {
+    std::error_code other;
+    if (name == path || (!ec && std::filesystem::weakly_canonical(name, other) == same && !other)) {
+      throw Error(path.string() + ": given twice as an output");
+    }
+  }
   removeStaleTemporaries(path);
   const std::filesystem::path temporary = temporaryFor(path);
+  staged_.reserve(staged_.size() + 1);  // so that recording it below cannot throw and lose it
   try {
     writeAndClose(path, temporary, O_CREAT | O_TRUNC, bytes);
   } catch (...) {

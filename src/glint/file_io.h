@@ -31,8 +31,9 @@ void writeFilesAtomically(const std::vector<FileContents>& files);
 // Files that make one output but come one at a time (an orbit's frames): each is written to its
 // temporary beside its name as it comes (add), and only commit() renames them all over their
 // names, so that a failure at any of them leaves no new file and the files that were there as they
-// were. What is not committed is removed when the object goes. A device or a pipe (/dev/stdout) is
-// no file to replace: add writes it at once.
+// were. What is not committed is removed when the object goes. A device, a pipe or a name in /dev
+// or /proc (/dev/stdout) is no file to replace: add writes it at once. A name given twice is an
+// error.
 class StagedFiles {
  public:
   StagedFiles() = default;

@@ -86,10 +86,14 @@ std::vector<std::byte> encodePng(int width, int height, int channels, const std:
   return encoded;
 }
 
+std::vector<std::byte> encodePng(const ImageRgb8& image) {
+  return encodePng(image.width(), image.height(), 3, image.data());
+}
+
 void writePng(const std::filesystem::path& path, const ImageRgb8& image) {
   std::vector<std::byte> encoded;
   try {
-    encoded = encodePng(image.width(), image.height(), 3, image.data());
+    encoded = encodePng(image);
   } catch (const Error& e) {
     throw Error(path.string() + ": " + e.what());
   }

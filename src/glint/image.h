@@ -38,6 +38,8 @@ class ImageRgb8 {
 // (stb_image_write); throws Error when encoding fails. The one PNG encoder: writePng and the glTF
 // writer's embedded textures use it.
 std::vector<std::byte> encodePng(int width, int height, int channels, const std::uint8_t* pixels);
+// An 8-bit RGB image's PNG bytes.
+std::vector<std::byte> encodePng(const ImageRgb8& image);
 
 // Throws Error naming the file when it cannot be written; leaves no partial file.
 void writePng(const std::filesystem::path& path, const ImageRgb8& image);

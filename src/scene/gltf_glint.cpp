@@ -93,10 +93,6 @@ float numberField(const json& value, const std::string& field) {
   if (!(std::abs(number) <= std::numeric_limits<float>::max())) {
     throw Error(field + " " + describeJsonValue(value) + " is beyond a float's range");
   }
-  // A number too small for any float would be checked, and refused, as 0: said as what it is.
-  if (number != 0.0 && static_cast<float>(number) == 0.0f) {
-    throw Error(field + " " + describeJsonValue(value) + " is below the smallest positive float (1.401298464324817e-45)");
-  }
   return static_cast<float>(number);
 }
 
@@ -261,7 +257,16 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
     float GlintLayer::*const member = number.second;  // a named variable: lambdas cannot capture bindings in clang 14
     if (!reader.has(field)) continue;
     const float value = numberField(reader.at(field), reader.name(field));
-    checkRange(reader.name(field), [&](GlintLayer& probe) { probe.*member = value; });
+    try {
+      checkRange(reader.name(field), [&](GlintLayer& probe) { probe.*member = value; });
+    } catch (const Error& e) {
+      // A number no float holds but 0 (relativeArea 1e-46) is refused as 0: said why it is 0.
+      if (value == 0.0f && reader.at(field).get<double>() != 0.0) {
+        throw Error(std::string(reader.name(field)) + " " + describeJsonValue(reader.at(field)) +
+                    " is too small for a 32-bit float and would be 0: " + e.what());
+      }
+      throw;
+    }
     layer.*member = value;
   }
   if (reader.has(GlintField::PatternSeed)) {

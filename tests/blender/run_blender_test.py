@@ -242,7 +242,7 @@ def import_checks(h):
     warnings = [l for l in output.splitlines() if l.startswith("glint_gltf: ")]
     check(layers["red glint"]["enabled"] is False and
           warnings == ["glint_gltf: underflow.glb: material 'red glint': EXT_materials_glint.relativeArea = 1e-46 is "
-                       "below the smallest positive 32-bit float; imported without its glint layer"],
+                       "too small for a 32-bit float and would be 0, outside (0, 1]; imported without its glint layer"],
           "relativeArea 1e-46 is refused in one line: %s" % warnings)
 
 

@@ -93,7 +93,8 @@ run("path tracer, smooth" ${tracer} ${WORK}/smooth.exr --smooth --dictionary ${W
 run("check the images" ${CHECKER} ${WORK}/glint.exr ${WORK}/smooth.exr)
 message(STATUS "${run_output}")
 # Each example answers --help with its usage, and refuses an output it cannot write before the
-# work (a path tracer at 64 samples a pixel would take seconds first), leaving no file.
+# work (a path tracer at 64 samples a pixel would take seconds first), leaving no file: before it
+# loads the dictionary, here one that does not exist.
 foreach(example IN ITEMS ${tracer} ${WORK}/build/opengl/glint_opengl ${WORK}/build/vulkan/glint_vulkan_deferred)
   if(EXISTS ${example})
     get_filename_component(name ${example} NAME)
@@ -103,7 +104,7 @@ foreach(example IN ITEMS ${tracer} ${WORK}/build/opengl/glint_opengl ${WORK}/bui
       message(FATAL_ERROR "${name} --help printed no usage: ${run_output}")
     endif()
     refuse("${name} to a .bmp" "unsupported image extension '.bmp'" ${example} ${WORK}/out.bmp
-           --dictionary ${WORK}/dictionary.gdict --size 256)
+           --dictionary ${WORK}/missing.gdict --size 256)
   endif()
 endforeach()
 if(EXISTS ${WORK}/out.bmp)

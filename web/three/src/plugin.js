@@ -65,7 +65,13 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
   for (const [name, field, low, high, exclusive] of NUMBERS) {
     if (extension[name] === undefined) continue;
     const value = extension[name];
-    if (!inRange(value, low, high, exclusive)) fail(`${name} must be a number in ${exclusive ? '(' : '['}${low}, ${high}], got ${JSON.stringify(value)}`);
+    const range = `${exclusive ? '(' : '['}${low}, ${high}]`;
+    if (!inRange(value, low, high, exclusive)) fail(`${name} must be a number in ${range}, got ${JSON.stringify(value)}`);
+    // The shader holds 32-bit floats: a value no float holds but 0 (1e-46) would be 0, outside an
+    // exclusive minimum of 0, as glint's loader refuses it.
+    if (!inRange(Math.fround(value), low, high, exclusive)) {
+      fail(`${name} ${JSON.stringify(value)} is too small for a 32-bit float and would be 0: ${name} must be in ${range}`);
+    }
     layer[field] = value;
   }
   for (const [name, field, low, high] of PAIRS) {
@@ -115,6 +121,12 @@ export function glintTextureIndex(textureInfo, name, textureCount, where) {
   if (textureCount === 0) fail(': the file has no textures');
   const index = textureInfo.index;
   if (!Number.isInteger(index) || index < 0 || index >= textureCount) fail(`.index must be an integer in [0, ${textureCount - 1}], got ${JSON.stringify(index)}`);
+  for (const key of ['extensions', 'extras']) {
+    const member = textureInfo[key];
+    if (member !== undefined && (typeof member !== 'object' || member === null || Array.isArray(member))) {
+      fail(`.${key} must be an object, got ${JSON.stringify(member)}`);
+    }
+  }
   const texCoord = textureInfo.texCoord;
   if (texCoord !== undefined && !(Number.isInteger(texCoord) && texCoord >= 0)) fail(`.texCoord must be a non-negative integer, got ${JSON.stringify(texCoord)}`);
   if (texCoord > 0) console.warn(`${where}: ${EXTENSION_NAME}.${name}: textures on a texCoord other than 0 are mapped with TEXCOORD_0`);

@@ -85,6 +85,9 @@ try {
   expectRefused('relativeArea 0', layer({ relativeArea: 0 }), 'EXT_materials_glint.relativeArea must be a number in (0, 1]');
   expectRefused('uvScale 1e-50', layer({ uvScale: 1e-50 }), 'EXT_materials_glint.uvScale must be a number in [1.401298464324817e-45, ');
   expectRefused('one alpha', layer({ alpha: [0.3] }), 'EXT_materials_glint.alpha must be two numbers');
+  expectRefused('relativeArea 1e-46', layer({ relativeArea: 1e-46 }),
+                'EXT_materials_glint.relativeArea 1e-46 is too small for a 32-bit float and would be 0: relativeArea must be in (0, 1]');
+  check(layer({ rho: -1e-46 })().rho === -1e-46, 'rho -1e-46 is read (0 is in its range)');
   expectRefused('randomColors "yes"', layer({ randomColors: 'yes' }), 'EXT_materials_glint.randomColors must be true or false');
   expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
   expectRefused('a misspelt property', layer({ logDenisty: 14 }), 'EXT_materials_glint.logDenisty is not a property');
@@ -181,6 +184,8 @@ try {
                        'EXT_materials_glint.relativeAreaTexture.texCoord must be a non-negative integer, got "x"');
   await expectRejected('an unknown textureInfo member', loadTextured({ roughnessTexture: { index: 1, scale: 2 } }),
                        "EXT_materials_glint.roughnessTexture: unknown textureInfo member 'scale'");
+  await expectRejected('textureInfo extensions that are no object', loadTextured({ roughnessTexture: { index: 1, extensions: 5 } }),
+                       'EXT_materials_glint.roughnessTexture.extensions must be an object, got 5');
   await expectRejected('a texture GLTFLoader cannot load', loadTextured({ roughnessTexture: { index: 2 } }, { loads: false }),
                        `${where}: EXT_materials_glint.roughnessTexture: texture 2 could not be loaded`);
   assigned.length = 0;
