@@ -50,6 +50,30 @@ TEST(GlintCli, ArgumentErrorsPointAtTheirCommandsHelp) {
   expectOneLineError(runGlint(folder, "--bogus"), "(see glint --help)");
 }
 
+// What a command prints on standard output must reach it: with the descriptor closed, the command
+// fails in one line (exit status 1) where it used to exit 0 having written nothing. (The trailing
+// '#' leaves runGlint's own redirections of stdout out of the shell command.)
+TEST(GlintCli, AStandardOutputThatCannotBeWrittenIsAnError) {
+  const auto folder = temporaryFolder("cli_closed_stdout");
+  const RunResult result = runGlint(folder, "shader-bundle --language glsl 2> stderr.txt 1>&- #");
+  expectOneLineError(result, "standard output: cannot write (Bad file descriptor)");
+  EXPECT_EQ(result.exitCode, 1);
+}
+
+// An option given an empty value (an unset shell variable in `-o "$OUT"`) is refused, not taken as
+// absent: `glint trace -o ''` would otherwise overwrite SCENE.exr and SCENE.png.
+TEST(GlintCli, EmptyOptionValuesAreRefused) {
+  const auto folder = temporaryFolder("cli_empty_values");
+  for (const auto& [arguments, option] : {std::pair<std::string, std::string>{"trace sphere --size 8x8 --spp 1 -o ''", "-o"},
+                                          {"shader-bundle --language glsl --output=", "--output"},
+                                          {"render sphere --size 8x8 --dict ''", "--dict"}}) {
+    const RunResult result = runGlint(folder, arguments);
+    expectOneLineError(result, option + " was given an empty value");
+    EXPECT_EQ(result.exitCode, 2) << arguments;
+  }
+  for (const char* file : {"sphere.exr", "sphere.png"}) EXPECT_FALSE(std::filesystem::exists(folder / file)) << file;
+}
+
 // `glint --version` prints the version that project() declares in CMakeLists.txt (given to the
 // tests as GLINT_PROJECT_VERSION by tests/CMakeLists.txt), as do the macros of glint/version.h.
 TEST(GlintCli, VersionIsTheProjectVersion) {

@@ -169,5 +169,26 @@ TEST(ShaderBundleCli, BadArgumentsGiveOneLine) {
   EXPECT_FALSE(std::filesystem::exists(folder / "x"));
 }
 
+// A bundle that cannot be written leaves nothing behind: no `.partial` or temporary beside a
+// folder given as the file, none of the three Shadertoy files when one of them cannot be written,
+// no folder made for them, and no parent folders made for a missing one.
+TEST(ShaderBundleCli, AFailedWriteLeavesNothing) {
+  const std::filesystem::path folder = temporaryFolder("shader-bundle-failed");
+  std::filesystem::create_directory(folder / "kernel.hlsl");
+  expectOneLineError(runGlint(folder, "shader-bundle --language hlsl -o kernel.hlsl"), "kernel.hlsl: cannot write (is a directory)");
+  std::filesystem::create_directories(folder / "toy" / "image.glsl");
+  expectOneLineError(runGlint(folder, "shader-bundle --shadertoy -o toy"), "toy/image.glsl: cannot write (is a directory)");
+  EXPECT_FALSE(std::filesystem::exists(folder / "toy" / "common.glsl"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "toy" / "buffer_a.glsl"));
+  expectOneLineError(runGlint(folder, "shader-bundle --shadertoy -o missing/toy"), "missing/toy: cannot make the folder");
+  EXPECT_FALSE(std::filesystem::exists(folder / "missing"));
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find(".partial") != std::string::npos || name.find(".tmp") != std::string::npos) left.push_back(name);
+  }
+  EXPECT_TRUE(left.empty()) << left.front();
+}
+
 }  // namespace
 }  // namespace glint

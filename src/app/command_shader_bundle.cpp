@@ -1,16 +1,18 @@
 // `glint shader-bundle`: the kernel as one file, for a host renderer that takes one include
 // (--language), or as a Shadertoy shader (--shadertoy): docs/integration.md.
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "gl/shader.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "glint/version.h"
 
 namespace glint::app {
@@ -51,22 +53,9 @@ std::string languagePreamble(const std::string& language) {
   throw Error("--language must be glsl, glsl-es, vulkan or hlsl, got '" + language + "'");
 }
 
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  // Through a temporary name, so that a failed write leaves no partial file.
-  const std::filesystem::path temporary = path.string() + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw Error(path.string() + ": cannot write");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) throw Error(path.string() + ": cannot write (" + error.message() + ")");
+std::vector<std::byte> bytesOf(const std::string& text) {
+  const auto* first = reinterpret_cast<const std::byte*>(text.data());
+  return {first, first + text.size()};
 }
 
 void runShaderBundle(const BundleOptions& options) {
@@ -81,22 +70,31 @@ void runShaderBundle(const BundleOptions& options) {
       std::fputs(text.c_str(), stdout);
       return;
     }
-    writeText(options.output, text);
+    writeFileAtomically(options.output, bytesOf(text));
     std::fprintf(stderr, "glint: wrote %s (%s)\n", options.output.c_str(), options.language.c_str());
     return;
   }
   if (options.output.empty()) throw Error("--shadertoy writes three files: give the folder with -o FOLDER");
+  // The folder is made if it is missing (its parent must exist, as for every other output), and
+  // the three files are one output: all are written, or none, and a folder made here for them goes
+  // again when they cannot be.
   const std::filesystem::path folder = options.output;
   std::error_code error;
-  std::filesystem::create_directories(folder, error);
-  if (error || !std::filesystem::is_directory(folder)) throw Error(options.output + ": cannot make the folder");
+  const bool made = !std::filesystem::exists(folder, error) && std::filesystem::create_directory(folder, error);
+  if (error || !std::filesystem::is_directory(folder)) {
+    throw Error(options.output + ": cannot make the folder (" + (error ? error.message() : "a file is in its place") + ")");
+  }
   const std::string header = bundleHeader("a Shadertoy shader");
-  writeText(folder / "common.glsl", header + "// Paste into the Common tab.\n" +
-                                        expandedWithoutLines("shadertoy_common.glsl"));
-  writeText(folder / "buffer_a.glsl", header + "// Paste into Buffer A.\n" +
-                                          expandedWithoutLines("shadertoy_buffer_a.glsl"));
-  writeText(folder / "image.glsl", header + "// Paste into the Image tab; set its iChannel0 to Buffer A.\n" +
-                                       expandedWithoutLines("shadertoy_image.glsl"));
+  try {
+    writeFilesAtomically(
+        {{folder / "common.glsl", bytesOf(header + "// Paste into the Common tab.\n" + expandedWithoutLines("shadertoy_common.glsl"))},
+         {folder / "buffer_a.glsl", bytesOf(header + "// Paste into Buffer A.\n" + expandedWithoutLines("shadertoy_buffer_a.glsl"))},
+         {folder / "image.glsl", bytesOf(header + "// Paste into the Image tab; set its iChannel0 to Buffer A.\n" +
+                                         expandedWithoutLines("shadertoy_image.glsl"))}});
+  } catch (const Error&) {
+    if (made) std::filesystem::remove(folder, error);  // only if empty: nothing of the user's goes
+    throw;
+  }
   std::fprintf(stderr, "glint: wrote %s: common.glsl (Common), buffer_a.glsl (Buffer A), image.glsl (Image, iChannel0 = Buffer A)\n",
                options.output.c_str());
 }

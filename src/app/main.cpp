@@ -1,9 +1,15 @@
 // `glint`: one command, git-style subcommands (docs/cli.md).
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <iostream>
 #include <string>
 #include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "commands.h"
 #include "glint/error.h"
@@ -53,6 +59,35 @@ std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
          (nearest.empty() ? "" : "; did you mean '" + nearest + "'?");
 }
 
+// An option given an empty value (`-o ''`, `--dict=`, an unset shell variable in `-o "$OUT"`),
+// which the commands would take as not given and fall back to their default (`glint trace -o ''`
+// would overwrite SCENE.exr): the one line that names it, or empty when there is none. A
+// command-line syntax error (exit status 2).
+std::string emptyOptionValue(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument.size() < 2 || argument[0] != '-') continue;
+    const std::size_t equals = argument.find('=');
+    if (equals != std::string::npos ? equals + 1 == argument.size() : (i + 1 < argc && argv[i + 1][0] == '\0')) {
+      return argument.substr(0, equals) + " was given an empty value";
+    }
+  }
+  return {};
+}
+
+// What the command printed on standard output reached it (a full disk, a closed descriptor): a
+// failed write is an error, not a cut-short file and exit status 0. Empty when it did.
+std::string standardOutputProblem() {
+  std::cout.flush();
+  errno = 0;
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || std::cout.fail();
+  if (!failed) return {};
+  // A write that failed while the command ran left no errno to read here; a closed descriptor
+  // still says so.
+  if (errno == 0 && ::fcntl(STDOUT_FILENO, F_GETFD) == -1) return std::string("standard output: cannot write (") + std::strerror(errno) + ")";
+  return std::string("standard output: cannot write (") + (errno != 0 ? std::strerror(errno) : "a write failed") + ")";
+}
+
 // The command whose arguments CLI11 refused, "glint" or "glint render", so that its error points at
 // that command's own --help (CLI11's message points at the top-level one).
 std::string refusingCommand(const CLI::App& app) {
@@ -83,9 +118,11 @@ int main(int argc, char** argv) {
   glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
-  if (const std::string unknown = unknownCommand(app, argc, argv); !unknown.empty()) {
-    std::fprintf(stderr, "glint: error: %s (see glint --help)\n", unknown.c_str());
-    return 2;
+  for (const std::string& problem : {unknownCommand(app, argc, argv), emptyOptionValue(argc, argv)}) {
+    if (!problem.empty()) {
+      std::fprintf(stderr, "glint: error: %s (see glint --help)\n", problem.c_str());
+      return 2;
+    }
   }
   try {
     app.parse(argc, argv);
@@ -104,6 +141,10 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint: internal error: %s\n", e.what());
     return 3;
+  }
+  if (const std::string problem = standardOutputProblem(); !problem.empty()) {
+    std::fprintf(stderr, "glint: error: %s\n", problem.c_str());
+    return 1;
   }
   return 0;
 }
