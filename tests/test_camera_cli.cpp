@@ -208,6 +208,25 @@ TEST(CameraCli, AnOrbitThatFailsLeavesNoFrame) {
   EXPECT_EQ(left, (std::vector<std::string>{"spin-0002.png", "walk-0002.exr"}));
 }
 
+// An output without a place (a missing folder, a folder in a file's place, a preview's or a later
+// frame's) is refused before anything is loaded or rendered: here before a dictionary that does not
+// exist is read, which would otherwise be the error.
+TEST(CameraCli, OutputsWithoutAPlaceAreRefusedFirst) {
+  const auto folder = temporaryFolder("camera_output_place");
+  std::filesystem::create_directory(folder / "p.png");
+  std::filesystem::create_directory(folder / "spin-0002.png");
+  const std::string dictionary = " --dict missing.gdict";
+  expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 -o nodir/a.exr" + dictionary),
+                     "nodir/a.exr: cannot create (No such file or directory)");
+  expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 -o p.exr" + dictionary), "p.png: cannot write (is a directory)");
+  expectOneLineError(runGlint(folder, "render sphere --size 8x8 --orbit 4 -o spin.png" + dictionary),
+                     "spin-0002.png: cannot write (is a directory)");
+  expectOneLineError(runGlint(folder, "render sphere --size 8x8 -o nodir/r.png" + dictionary),
+                     "nodir/r.png: cannot create (No such file or directory)");
+  EXPECT_FALSE(std::filesystem::exists(folder / "p.exr"));
+  EXPECT_FALSE(std::filesystem::exists(folder / "spin-0000.png"));
+}
+
 TEST(CameraCli, AVideoWithoutFfmpegLeavesTheFramesAndSaysSo) {
   const auto folder = temporaryFolder("camera_video_absent");
   // A PATH without ffmpeg (the shell and glint are found by their full paths).

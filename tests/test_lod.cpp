@@ -450,6 +450,8 @@ TEST(LodConsistencyCli, MeasuresEveryConstructionOnTheSameFrames) {
   const RunResult bad = runGlint(folder, "lod-consistency sphere --size 32x32 --frames 4 --lod fast");
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_EQ(bad.err, "glint: error: --lod must be \"paper\", \"consistent\" or \"tree\", got \"fast\"\n");
+  expectOneLineError(runGlint(folder, "lod-consistency sphere --size 32x32 --frames 4 --lod paper --lod paper"),
+                     "--lod 'paper' is given twice");
 }
 
 // Under ggaa+lean the glint layer's roughness is widened by the normal map's slopes, so the layer is

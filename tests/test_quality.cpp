@@ -67,6 +67,9 @@ TEST(QualityCli, BadTiersGiveOneLineNamingTheOption) {
     }
   }
   EXPECT_FALSE(std::filesystem::exists(folder / "x.png"));
+  // A tier given twice would be measured, and reported, twice.
+  expectOneLineError(runGlint(folder, "aa-error sphere --size 16x16 --reference 1 --sequence 2 --quality low --quality low"),
+                     "--quality 'low' is given twice");
 }
 
 TEST(QualityCli, ATierSetsItsSettingsAndOptionsGivenWin) {

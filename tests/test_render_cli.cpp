@@ -549,6 +549,11 @@ TEST(ViewCli, OpensAndRendersUnderXvfb) {
   if (std::getenv("DISPLAY") == nullptr) expectOneLineError(noDisplay, "no window");
   expectOneLineError(runGlint(folder, "view sphere --width 10 --frames 1"), "--width and --height must be in [64, 8192], got 10x720");
   expectOneLineError(runGlint(folder, "view sphere --screenshot shot.png"), "--screenshot needs --frames N");
+  // The screenshot is a PNG, whatever name it is given: another extension is refused, not written
+  // as PNG bytes under it; so is a name without a place, before a window opens.
+  expectOneLineError(runGlint(folder, "view sphere --frames 1 --screenshot shot.exr"), "shot.exr: the screenshot must end in .png");
+  expectOneLineError(runGlint(folder, "view sphere --frames 1 --screenshot nodir/shot.png"), "nodir/shot.png: cannot create");
+  EXPECT_FALSE(std::filesystem::exists(folder / "shot.exr"));
 }
 
 // The viewer opens on exactly what `glint render` draws: for every built-in scene but the two at the

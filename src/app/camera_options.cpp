@@ -119,6 +119,14 @@ glm::vec3 orbitPivot(const scene::Scene& scene, const CameraOptions& camera) {
   return 0.5f * (scene.boundsMin() + scene.boundsMax());
 }
 
+std::vector<std::filesystem::path> OrbitOptions::framePaths(const std::filesystem::path& output,
+                                                           const std::string& extension) const {
+  if (!enabled()) return {output};
+  std::vector<std::filesystem::path> paths;
+  for (int f = 0; f < *frames; ++f) paths.push_back(sequenceFramePath(output, f, *frames, extension));
+  return paths;
+}
+
 std::filesystem::path sequenceFramePath(const std::filesystem::path& output, int index, int count,
                                         const std::string& extension) {
   char number[16];

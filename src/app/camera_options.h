@@ -42,6 +42,9 @@ struct OrbitOptions {
   void validate() const;
   // The cameras of the frames, turned about `pivot`; without --orbit, the camera alone.
   std::vector<scene::Camera> cameras(const scene::Camera& camera, glm::vec3 pivot) const;
+  // The image files the frames are written to: `output` alone without --orbit, else its numbered
+  // frames (sequenceFramePath) with `extension`.
+  std::vector<std::filesystem::path> framePaths(const std::filesystem::path& output, const std::string& extension) const;
 };
 
 // The turntable's pivot: --look-at where it was given, the centre of the scene's bounds otherwise.

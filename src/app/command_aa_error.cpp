@@ -204,6 +204,7 @@ void runAaError(const AaErrorOptions& options) {
       throw Error(std::string("--quality: ") + error.what());
     }
   }
+  requireEachOnce(options.qualities, "--quality");
   const std::vector<std::string> names = options.scenes.empty() ? std::vector<std::string>{"sphere"} : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;

@@ -293,7 +293,7 @@ Figures measureMode(const Dolly& dolly, const Sequence& mode, const Sequence& re
       beyond += std::max(0.0, modeChange - ownChange);
     }
   }
-  if (energy <= 0.0 || referenceEnergy <= 0.0) throw Error("no glint layer stays in view across the dolly");
+  if (energy <= 0.0 || referenceEnergy <= 0.0) throw Error("no glint layer stays in view across the frames");
   // Persistence: the share of a frame's glint energy, block by block, that the next frame shows
   // again. Change and popping: the energy that comes or goes between frames, block by block, and
   // the part of it beyond the reference's in the same block, both per unit of the reference's
@@ -499,6 +499,7 @@ void runLodConsistency(LodConsistencyOptions options) {
   gl::antiAliasingFromString(options.antiAliasing);  // throws naming the choices
   if (options.lodModes.empty()) options.lodModes = {"paper", "consistent", "tree"};
   for (const std::string& lodMode : options.lodModes) lodFromName("--lod", lodMode);  // throws naming the choices
+  requireEachOnce(options.lodModes, "--lod");
   const std::vector<std::string> names = options.scenes.empty() ? kDefaultScenes : options.scenes;
   SceneOptions sceneOptions;
   sceneOptions.dictionary = options.dictionary;
@@ -528,7 +529,11 @@ void runLodConsistency(LodConsistencyOptions options) {
                            {"scenes", nlohmann::json::array()}};
   // The size by value: clang 14's lambdas cannot capture a structured binding by reference.
   measureScenes(scenes, report, [&, w = width, h = height](const scene::Scene& scene) {
-    return measureScene(scene, dictionary, options, w, h);
+    try {
+      return measureScene(scene, dictionary, options, w, h);
+    } catch (const Error& e) {
+      throw Error("scene '" + scene.name + "': " + e.what());  // which of the scenes it was
+    }
   });
   if (options.json) {
     std::printf("%s\n", report.dump(2).c_str());

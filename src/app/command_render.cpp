@@ -58,6 +58,9 @@ void runRender(const RenderOptions& options) {
       options.reference != 0 ? gl::AntiAliasing::None : gl::antiAliasingFromString(options.antiAliasing);
   const int spp = options.reference != 0 ? options.reference : options.spp;
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
+  // Every file the run writes has a place, before the render that makes it.
+  const std::vector<std::filesystem::path> paths = options.orbit.framePaths(output, extension);
+  for (const std::filesystem::path& path : paths) requireWritablePlace(path);
   const scene::Scene scene = options.scene.loadScene();
   const Dictionary dictionary = options.scene.loadDictionary();
   const auto start = std::chrono::steady_clock::now();
@@ -88,7 +91,7 @@ void runRender(const RenderOptions& options) {
       if (frames > 1) std::fprintf(stderr, "\rglint: frame %d/%d", f + 1, frames);
       if (spp > 1) std::fprintf(stderr, "%s sample %d/%d", frames > 1 ? "," : "\rglint:", k + 1, spp);
     });
-    const std::string path = options.orbit.enabled() ? sequenceFramePath(output, f, frames, extension).string() : output;
+    const std::string path = paths[static_cast<std::size_t>(f)].string();
     if (extension == ".exr") {
       written.add(path, encodeExr(path, image));
     } else {

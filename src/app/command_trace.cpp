@@ -111,6 +111,12 @@ void runTrace(const TraceOptions& options) {
   }
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
   if (options.threads < 0 || options.threads > 1024) throw Error("--threads must be in [0, 1024]");
+  // Every file the run writes has a place, before the render that makes it.
+  const std::vector<std::filesystem::path> exrPaths = options.orbit.framePaths(output, ".exr");
+  for (const std::filesystem::path& exrPath : exrPaths) {
+    requireWritablePlace(exrPath);
+    requireWritablePlace(std::filesystem::path(exrPath).replace_extension(".png"));
+  }
   std::optional<tbb::global_control> threadLimit;
   if (options.threads > 0) {
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
@@ -141,7 +147,7 @@ void runTrace(const TraceOptions& options) {
     progress.finish();
     nonFiniteSamples += tracer.nonFiniteSamples();
 
-    const std::filesystem::path exrPath = options.orbit.enabled() ? sequenceFramePath(output, f, frames, ".exr") : output;
+    const std::filesystem::path& exrPath = exrPaths[static_cast<std::size_t>(f)];
     const std::filesystem::path pngPath = std::filesystem::path(exrPath).replace_extension(".png");
     // The EXR and its preview are one output: both replace what was there, or neither does.
     const ImageRgb8 preview = displayEncode(image, scene.exposure * options.exposure);

@@ -22,7 +22,9 @@
 #include "gl/frame_timer.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
+#include "glint/file_io.h"
 #include "glint/image.h"
+#include "glint/image_io.h"
 #include "scene/camera_moves.h"
 #include "scene/view_controls.h"
 
@@ -236,6 +238,10 @@ void runView(const ViewOptions& options) {
                 std::to_string(options.height));
   }
   if (options.frames < 0) throw Error("--frames must be 0 (until closed) or positive");
+  if (!options.screenshot.empty() && lowercaseExtension(options.screenshot) != ".png") {
+    throw Error(options.screenshot + ": the screenshot must end in .png (it is the window's 8-bit image)");
+  }
+  if (!options.screenshot.empty()) requireWritablePlace(options.screenshot);
   if (!options.screenshot.empty() && options.frames == 0) {
     throw Error("--screenshot needs --frames N (the screenshot is of frame N)");
   }

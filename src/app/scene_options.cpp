@@ -1,5 +1,6 @@
 #include "app/scene_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
@@ -72,7 +73,7 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
   command.add_option("--glint-material", glintMaterials,
                      "Put a glint layer on this material of a glTF scene ('*' for all); repeatable");
   command.add_option("--alpha", alpha, "Override the roughness of every glint layer: A or AX,AY, each in [0.005, 2] (shaded as at least 0.01)")->delimiter(',');
-  command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in (-1, 1)");
+  command.add_option("--rho", rho, "Override the slope correlation of every glint layer, in [-0.99, 0.99]");
   command.add_option("--log-density", logDensity, "Override the log microfacet density of every glint layer");
   command.add_option("--relative-area", relativeArea, "Override the microfacet relative area of every glint layer");
   command.add_option("--pattern-seed", patternSeed,
@@ -80,12 +81,22 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
                      "statistics");
   command.add_option("--ndf", ndf, "The smooth target of every material's specular lobe: beckmann or ggx");
   command.add_option("--masking", masking, "The masking of every material's specular lobe: v-cavity or smith");
+  // CLI11 would take 2, -3, yes and on as booleans: the words the docs give, and only them.
   command.add_option("--multiple-scattering", multipleScattering,
-                     "Compensate the energy lost to multiple scattering on every material: true or false");
+                     "Compensate the energy lost to multiple scattering on every material: true or false")
+      ->check(CLI::IsMember({"true", "false"}));
   command.add_option("--lod", lod,
                      "The level-of-detail construction of every glint layer: paper (each cell its own glints), "
                      "consistent (a cell's glints shared out among its children) or tree (every cell below a level set "
                      "by the density the mean of its four children)");
+}
+
+void requireEachOnce(const std::vector<std::string>& values, const std::string& option) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::find(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(i), values[i]) != values.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw Error(option + " '" + values[i] + "' is given twice");
+    }
+  }
 }
 
 std::string describeDefaultGlintDensity(const scene::Scene& scene, const std::vector<std::size_t>& layered) {

@@ -78,6 +78,10 @@ struct SceneOptions {
 // and its material's uv units per metre, and how to set another, e.g. "log density of the new glint layers, about
 // 100 microfacets per pixel at the default camera (512 pixels high): 'Material_MR' 16.9 (0.279 uv
 // units per metre); --log-density D sets another".
+// Throws Error("--lod 'paper' is given twice") for a value a repeatable option was given twice:
+// it would be measured, and reported, twice.
+void requireEachOnce(const std::vector<std::string>& values, const std::string& option);
+
 std::string describeDefaultGlintDensity(const scene::Scene& scene, const std::vector<std::size_t>& layered);
 
 // Says on stderr, in one line, when the scene has more lights than the rasteriser draws.

@@ -111,6 +111,16 @@ void writeAndClose(const std::filesystem::path& path, const std::filesystem::pat
 
 }  // namespace
 
+void requireWritablePlace(const std::filesystem::path& path) {
+  if (writtenInPlace(path)) return;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": cannot write (is a directory)");
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::filesystem::file_status status = std::filesystem::status(folder, ec);
+  if (!std::filesystem::exists(status)) throw Error(path.string() + ": cannot create (" + std::strerror(ENOENT) + ")");
+  if (!std::filesystem::is_directory(status)) throw Error(path.string() + ": cannot create (" + std::strerror(ENOTDIR) + ")");
+}
+
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
   writeFilesAtomically({{path, std::vector<std::byte>(bytes.begin(), bytes.end())}});
 }

@@ -28,6 +28,12 @@ struct FileContents {
 };
 void writeFilesAtomically(const std::vector<FileContents>& files);
 
+// Throws the Error writing `path` would throw for its place, so that a command can refuse an output
+// before the work that makes it: a folder in its place ("cannot write (is a directory)"), a
+// folder to hold it that does not exist or is a file ("cannot create (...)"). Names written as
+// they are (a device, /dev/stdout) pass.
+void requireWritablePlace(const std::filesystem::path& path);
+
 // Files that make one output but come one at a time (an orbit's frames): each is written to its
 // temporary beside its name as it comes (add), and only commit() renames them all over their
 // names, so that a failure at any of them leaves no new file and the files that were there as they
