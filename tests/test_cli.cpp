@@ -60,6 +60,22 @@ TEST(GlintCli, AStandardOutputThatCannotBeWrittenIsAnError) {
   EXPECT_EQ(result.exitCode, 1);
 }
 
+// A whole number means what it says: CLI11 would read "010" as 8 and "0x10" as 16; every
+// whole-number option of every command refuses both, and 0 itself is a number.
+TEST(GlintCli, WholeNumbersAreDecimal) {
+  const auto folder = temporaryFolder("cli_decimal");
+  for (const auto& [arguments, option] : {std::pair<std::string, std::string>{"render sphere --size 8x8 --spp 010 -o x.png", "--spp"},
+                                          {"trace sphere --size 8x8 --pattern-seed 0x10 -o x.exr", "--pattern-seed"},
+                                          {"dict --seed 010 -o x.gdict", "--seed"},
+                                          {"dict --levels 4 --plot x.png --plot-levels 0,03", "--plot-levels"}}) {
+    const RunResult result = runGlint(folder, arguments);
+    expectOneLineError(result, option + ": must be a decimal whole number (no leading 0, no 0x)");
+    EXPECT_EQ(result.exitCode, 2) << arguments;
+  }
+  EXPECT_EQ(runGlint(folder, "dict --levels 2 --distributions 2 --texels 8 --seed 0 -o zero.gdict").exitCode, 0);
+  for (const char* file : {"x.png", "x.exr", "x.gdict"}) EXPECT_FALSE(std::filesystem::exists(folder / file)) << file;
+}
+
 // An option given an empty value (an unset shell variable in `-o "$OUT"`) is refused, not taken as
 // absent: `glint trace -o ''` would otherwise overwrite SCENE.exr and SCENE.png.
 TEST(GlintCli, EmptyOptionValuesAreRefused) {

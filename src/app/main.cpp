@@ -88,6 +88,27 @@ std::string standardOutputProblem() {
   return std::string("standard output: cannot write (") + (errno != 0 ? std::strerror(errno) : "a write failed") + ")";
 }
 
+// CLI11 reads whole numbers with strtol's base 0, "010" as 8 and "0x10" as 16: every whole-number
+// option of every command refuses a leading 0 and a base prefix, so that a number means what it
+// says.
+void requireDecimalWholeNumbers(CLI::App& app) {
+  const CLI::Validator decimal(
+      [](std::string& text) {
+        const std::size_t sign = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+        if (text.size() > sign + 1 && text[sign] == '0') {
+          return "must be a decimal whole number (no leading 0, no 0x), got '" + text + "'";
+        }
+        return std::string();
+      },
+      "");
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options({})) {
+      const std::string type = option->get_type_name();
+      if (type == "INT" || type == "UINT") option->check(decimal);
+    }
+  }
+}
+
 // The command whose arguments CLI11 refused, "glint" or "glint render", so that its error points at
 // that command's own --help (CLI11's message points at the top-level one).
 std::string refusingCommand(const CLI::App& app) {
@@ -118,6 +139,7 @@ int main(int argc, char** argv) {
   glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
+  requireDecimalWholeNumbers(app);
   for (const std::string& problem : {unknownCommand(app, argc, argv), emptyOptionValue(argc, argv)}) {
     if (!problem.empty()) {
       std::fprintf(stderr, "glint: error: %s (see glint --help)\n", problem.c_str());
