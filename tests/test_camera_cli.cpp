@@ -191,6 +191,9 @@ TEST(CameraCli, CoordinatesBeyondTheCamerasRangeAreRefused) {
 
 // An orbit's frames are one output: a frame that cannot be written (a folder in its place) leaves
 // none of the frames before it, for the rasteriser and for the path tracer (its EXRs and PNGs).
+// Such a frame is now refused before the render (OutputsWithoutAPlaceAreRefusedFirst); a failure
+// that only the write meets (a full disk) leaves none either, as the frames are staged
+// (ImageIoWrite.StagedFilesAppearTogetherOrNotAtAll).
 TEST(CameraCli, AnOrbitThatFailsLeavesNoFrame) {
   const auto folder = temporaryFolder("camera_orbit_failure");
   std::filesystem::create_directory(folder / "spin-0002.png");
