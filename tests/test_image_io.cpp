@@ -380,6 +380,15 @@ TEST(ImageIoRead, BadFilesGiveOneLineErrorsNamingTheFile) {
   expectError([&] { readImage(folder / "empty.exr"); }, {"empty.exr: empty file"});
   expectError([&] { readImage(folder / "missing.png"); }, {"missing.png: cannot open"});
   expectError([&] { readImage(folder); }, {"is a directory"});
+  // A damaged chunk's name reaches the message as printable text, not raw bytes.
+  std::string renamed = png;
+  const std::size_t idat = renamed.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  renamed[idat + 3] = static_cast<char>(0xbd);
+  writeBytes(folder / "renamed.png", renamed);
+  const std::string message = errorOf([&] { readImage(folder / "renamed.png"); });
+  EXPECT_NE(message.find("renamed.png: truncated or corrupt PNG (IDA? PNG chunk not known)"), std::string::npos) << message;
+  EXPECT_TRUE(std::all_of(message.begin(), message.end(), [](char c) { return c >= 0x20 && c <= 0x7e; })) << message;
 }
 
 // --- Writing by extension ----------------------------------------------------------------------

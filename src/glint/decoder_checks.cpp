@@ -193,4 +193,13 @@ void checkGltfImageForDecoder(std::span<const std::byte> bytes, std::uint64_t ma
   throw Error("not a PNG or JPEG image (the formats glTF 2.0 allows)");
 }
 
+std::string decoderReason(const char* reason, const std::string& otherwise) {
+  if (reason == nullptr || *reason == '\0') return otherwise;
+  std::string text = reason;
+  for (char& c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+  }
+  return text;
+}
+
 }  // namespace glint

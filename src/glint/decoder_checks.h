@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 
 namespace glint {
 
@@ -52,5 +53,10 @@ void checkGltfImageForDecoder(std::span<const std::byte> bytes, std::uint64_t ma
 // "tiles" attribute (tinyexr converts the header it has read even when reading it failed, and
 // asserts that the type matches). What tinyexr stops at (a truncated attribute) ends the walk.
 void checkExrForDecoder(std::span<const std::byte> bytes);
+
+// stb_image's reason for a failed decode, fit for one line of text: its terse code ("outofdata"),
+// with any byte that is not printable ASCII (a damaged chunk's name) as '?', or `otherwise` when
+// stb_image gave none.
+std::string decoderReason(const char* reason, const std::string& otherwise = "unreadable");
 
 }  // namespace glint

@@ -72,8 +72,7 @@ ImageRgbF decodePng(const std::string& name, std::span<const std::byte> bytes, s
   // Three channels requested: grey is replicated and alpha dropped.
   std::unique_ptr<stbi_us, StbiFree> samples(stbi_load_16_from_memory(data, size, &width, &height, &channels, 3));
   if (!samples) {
-    const char* reason = stbi_failure_reason();
-    throw Error(name + ": truncated or corrupt PNG (" + (reason ? reason : "unreadable") + ")");
+    throw Error(name + ": truncated or corrupt PNG (" + decoderReason(stbi_failure_reason()) + ")");
   }
   if (width <= 0 || height <= 0) throw Error(name + ": zero-size image (" + sizeText(width, height) + ")");
   // One decode per code value: a table of the 65536 linear values keeps the decoder in one place

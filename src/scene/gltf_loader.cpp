@@ -275,10 +275,9 @@ bool decodeImage(tinygltf::Image* image, int imageIndex, std::string* errors, st
   if (tinygltf::LoadImageData(image, imageIndex, &tinygltfReason, warnings, width, height, bytes, size, nullptr)) {
     return true;
   }
-  const char* decoderReason = stbi_failure_reason();
   if (errors) {
     *errors += describeImage(*image, imageIndex) + ": not an image glint can decode (" +
-               (decoderReason ? std::string(decoderReason) : oneLine(tinygltfReason)) + ")\n";
+               decoderReason(stbi_failure_reason(), oneLine(tinygltfReason)) + ")\n";
   }
   return false;
 }
