@@ -1176,7 +1176,8 @@ TEST(TraceCli, BadOptionsAndScenesGiveOneLineAndNoFile) {
       {"nosuchscene --size 16x16", "unknown scene 'nosuchscene'"},
       {"sphere --exposure -1 --size 16x16", "--exposure"},
       {"sphere --threads -2 --size 16x16", "--threads"},
-      {"sphere --log-density 500 --size 16x16", "log_density"},
+      {"sphere --log-density 500 --size 16x16", "--log-density: log_density must be in [0, 100], got 500"},
+      {"sphere --alpha 5 --size 16x16", "--alpha: alpha_x must be in [0.005, 2], got 5"},
       {"sphere --dict missing.bin --size 16x16", "missing.bin"},
   };
   for (const auto& [arguments, problem] : cases) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <regex>
 
 #include "gl/renderer.h"
@@ -134,6 +135,22 @@ scene::Scene SceneOptions::loadScene() const {
   if (patternSeed && !(*patternSeed >= 0 && *patternSeed <= 0xffffffffLL)) {
     throw Error("--pattern-seed must be a whole number in [0, 4294967295], got " + std::to_string(*patternSeed));
   }
+  // The layer overrides are checked as options first, so that a bad one is named as the option
+  // ("--alpha: alpha_x must be in [0.005, 2], got 5"), not as the first material it reaches.
+  const auto checkOverride = [](const char* option, const std::function<void(scene::GlintLayer&)>& set) {
+    scene::GlintLayer probe;
+    probe.enabled = true;
+    set(probe);
+    try {
+      scene::validateGlintLayer(probe, 0);
+    } catch (const Error& e) {
+      throw Error(std::string(option) + ": " + e.what());
+    }
+  };
+  if (!alpha.empty()) checkOverride("--alpha", [&](scene::GlintLayer& p) { p.alpha = glm::vec2(alpha.front(), alpha.back()); });
+  if (rho) checkOverride("--rho", [&](scene::GlintLayer& p) { p.rho = *rho; });
+  if (logDensity) checkOverride("--log-density", [&](scene::GlintLayer& p) { p.logDensity = *logDensity; });
+  if (relativeArea) checkOverride("--relative-area", [&](scene::GlintLayer& p) { p.relativeArea = *relativeArea; });
   for (scene::Material& m : s.materials) {
     if (ndf) m.specular.ndf = ndfFromName("--ndf", *ndf);
     if (masking) m.specular.masking = maskingFromName("--masking", *masking);
