@@ -108,7 +108,12 @@ FIELDS_BY_JSON_NAME = {field.json_name: field for field in FIELDS}
 
 
 def _number_text(value):
-    return "%.17g" % value if isinstance(value, float) else str(value)
+    """The shortest text that reads back as `value` (0.99, not 0.98999999999999999), whole numbers
+    without a trailing .0."""
+    if not isinstance(value, float):
+        return str(value)
+    text = repr(value)
+    return text[:-2] if text.endswith(".0") else text
 
 
 def _blender_property(field):

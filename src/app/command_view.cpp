@@ -384,6 +384,7 @@ void runView(const ViewOptions& options) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (options.frames > 0 && frameIndex + 1 == options.frames && !options.screenshot.empty()) {
       writePng(options.screenshot, gl::readFramebufferRgb8(width, height));
+      std::fprintf(stderr, "glint: wrote %s (frame %d, %dx%d)\n", options.screenshot.c_str(), options.frames, width, height);
     }
     glfwSwapBuffers(window.window());
   }
