@@ -226,6 +226,9 @@ TEST(CameraCli, OutputsWithoutAPlaceAreRefusedFirst) {
                      "spin-0002.png: cannot write (is a directory)");
   expectOneLineError(runGlint(folder, "render sphere --size 8x8 -o nodir/r.png" + dictionary),
                      "nodir/r.png: cannot create (No such file or directory)");
+  std::filesystem::create_directory(folder / "turn.mp4");
+  expectOneLineError(runGlint(folder, "trace sphere --size 8x8 --spp 1 --orbit 2 -o turn.mp4" + dictionary),
+                     "turn.mp4: cannot write (is a directory)");
   EXPECT_FALSE(std::filesystem::exists(folder / "p.exr"));
   EXPECT_FALSE(std::filesystem::exists(folder / "spin-0000.png"));
 }

@@ -58,6 +58,9 @@ TEST(GlintCli, AStandardOutputThatCannotBeWrittenIsAnError) {
   const RunResult result = runGlint(folder, "shader-bundle --language glsl 2> stderr.txt 1>&- #");
   expectOneLineError(result, "standard output: cannot write (Bad file descriptor)");
   EXPECT_EQ(result.exitCode, 1);
+  const RunResult help = runGlint(folder, "render --help 2> stderr.txt 1>&- #");
+  expectOneLineError(help, "standard output: cannot write (Bad file descriptor)");
+  EXPECT_EQ(help.exitCode, 1);
 }
 
 // A whole number means what it says: CLI11 would read "010" as 8 and "0x10" as 16; every
@@ -67,7 +70,8 @@ TEST(GlintCli, WholeNumbersAreDecimal) {
   for (const auto& [arguments, option] : {std::pair<std::string, std::string>{"render sphere --size 8x8 --spp 010 -o x.png", "--spp"},
                                           {"trace sphere --size 8x8 --pattern-seed 0x10 -o x.exr", "--pattern-seed"},
                                           {"dict --seed 010 -o x.gdict", "--seed"},
-                                          {"dict --levels 4 --plot x.png --plot-levels 0,03", "--plot-levels"}}) {
+                                          {"dict --levels 4 --plot x.png --plot-levels 0,03", "--plot-levels"},
+                                          {"dict --threads 010 -o x.gdict", "--threads"}}) {  // an option with a check of its own
     const RunResult result = runGlint(folder, arguments);
     expectOneLineError(result, option + ": must be a decimal whole number (no leading 0, no 0x)");
     EXPECT_EQ(result.exitCode, 2) << arguments;
@@ -84,8 +88,16 @@ TEST(GlintCli, EmptyOptionValuesAreRefused) {
                                           {"shader-bundle --language glsl --output=", "--output"},
                                           {"render sphere --size 8x8 --dict ''", "--dict"}}) {
     const RunResult result = runGlint(folder, arguments);
-    expectOneLineError(result, option + " was given an empty value");
+    expectOneLineError(result, option + " was given an empty value (see glint " + arguments.substr(0, arguments.find(' ')) + " --help)");
     EXPECT_EQ(result.exitCode, 2) << arguments;
+  }
+  // Not an option given an empty value: an empty argument after a flag, after an option's value
+  // that starts with '-', or after `--` is CLI11's to judge (here an unexpected argument).
+  for (const char* arguments : {"trace sphere --size 8x8 --direct-only ''", "render sphere --size 8x8 --orbit 2 --orbit-degrees -90 ''",
+                                "render sphere --size 8x8 -- ''"}) {
+    const RunResult result = runGlint(folder, arguments);
+    EXPECT_NE(result.exitCode, 0) << arguments;
+    EXPECT_EQ(result.err.find("was given an empty value"), std::string::npos) << arguments << ": " << result.err;
   }
   for (const char* file : {"sphere.exr", "sphere.png"}) EXPECT_FALSE(std::filesystem::exists(folder / file)) << file;
 }

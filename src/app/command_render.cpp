@@ -58,7 +58,8 @@ void runRender(const RenderOptions& options) {
       options.reference != 0 ? gl::AntiAliasing::None : gl::antiAliasingFromString(options.antiAliasing);
   const int spp = options.reference != 0 ? options.reference : options.spp;
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
-  // Every file the run writes has a place, before the render that makes it.
+  // Every file the run writes has a place, before the render that makes it (the video's too).
+  if (video) requireWritablePlace(output);
   const std::vector<std::filesystem::path> paths = options.orbit.framePaths(output, extension);
   for (const std::filesystem::path& path : paths) requireWritablePlace(path);
   const scene::Scene scene = options.scene.loadScene();

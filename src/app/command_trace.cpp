@@ -111,7 +111,8 @@ void runTrace(const TraceOptions& options) {
   }
   if (!(options.exposure > 0.0f && options.exposure < 1e6f)) throw Error("--exposure must be in (0, 1e6)");
   if (options.threads < 0 || options.threads > 1024) throw Error("--threads must be in [0, 1024]");
-  // Every file the run writes has a place, before the render that makes it.
+  // Every file the run writes has a place, before the render that makes it (the video's too).
+  if (video) requireWritablePlace(output);
   const std::vector<std::filesystem::path> exrPaths = options.orbit.framePaths(output, ".exr");
   for (const std::filesystem::path& exrPath : exrPaths) {
     requireWritablePlace(exrPath);

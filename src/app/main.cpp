@@ -59,18 +59,32 @@ std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
          (nearest.empty() ? "" : "; did you mean '" + nearest + "'?");
 }
 
-// An option given an empty value (`-o ''`, `--dict=`, an unset shell variable in `-o "$OUT"`),
-// which the commands would take as not given and fall back to their default (`glint trace -o ''`
-// would overwrite SCENE.exr): the one line that names it, or empty when there is none. A
-// command-line syntax error (exit status 2).
-std::string emptyOptionValue(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
+// An option of the command given an empty value (`-o ''`, `--dict=`, an unset shell variable in
+// `-o "$OUT"`), which the commands would take as not given and fall back to their default (`glint
+// trace -o ''` would overwrite SCENE.exr): the one line that names it, or empty when there is none.
+// Only the command's own options that take a value count (not flags, negative numbers or values);
+// `--` ends the options. A command-line syntax error (exit status 2).
+std::string emptyOptionValue(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return {};
+  const CLI::App* command = nullptr;
+  for (const CLI::App* candidate : app.get_subcommands({})) {
+    if (candidate->get_name() == argv[1]) command = candidate;
+  }
+  if (command == nullptr) return {};
+  for (int i = 2; i < argc; ++i) {
     const std::string argument = argv[i];
+    if (argument == "--") break;
     if (argument.size() < 2 || argument[0] != '-') continue;
     const std::size_t equals = argument.find('=');
-    if (equals != std::string::npos ? equals + 1 == argument.size() : (i + 1 < argc && argv[i + 1][0] == '\0')) {
-      return argument.substr(0, equals) + " was given an empty value";
+    const std::string name = argument.substr(0, equals);
+    const CLI::Option* option = command->get_option_no_throw(name);
+    if (option == nullptr || option->get_items_expected_min() == 0) continue;  // not an option, or a flag
+    if (equals != std::string::npos) {
+      if (equals + 1 == argument.size()) return name + " was given an empty value";
+      continue;
     }
+    if (i + 1 < argc && argv[i + 1][0] == '\0') return name + " was given an empty value";
+    ++i;  // its value, which may start with '-' (--look-at -1,0,0)
   }
   return {};
 }
@@ -103,8 +117,10 @@ void requireDecimalWholeNumbers(CLI::App& app) {
       "");
   for (CLI::App* command : app.get_subcommands({})) {
     for (CLI::Option* option : command->get_options({})) {
+      // CLI11 appends an option's checks to its type name ("INT:INT in [0 - 4096]").
       const std::string type = option->get_type_name();
-      if (type == "INT" || type == "UINT") option->check(decimal);
+      const auto is = [&](const std::string& name) { return type == name || type.rfind(name + ":", 0) == 0; };
+      if (is("INT") || is("UINT")) option->check(decimal);
     }
   }
 }
@@ -140,20 +156,30 @@ int main(int argc, char** argv) {
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
   requireDecimalWholeNumbers(app);
-  for (const std::string& problem : {unknownCommand(app, argc, argv), emptyOptionValue(argc, argv)}) {
-    if (!problem.empty()) {
-      std::fprintf(stderr, "glint: error: %s (see glint --help)\n", problem.c_str());
-      return 2;
-    }
+  if (const std::string problem = unknownCommand(app, argc, argv); !problem.empty()) {
+    std::fprintf(stderr, "glint: error: %s (see glint --help)\n", problem.c_str());
+    return 2;
   }
+  if (const std::string problem = emptyOptionValue(app, argc, argv); !problem.empty()) {
+    std::fprintf(stderr, "glint: error: %s (see glint %s --help)\n", problem.c_str(), argv[1]);
+    return 2;
+  }
+  // What was printed reached standard output, or the run fails whatever it did (--help too).
+  const auto finished = [](int status) {
+    if (const std::string problem = standardOutputProblem(); !problem.empty()) {
+      std::fprintf(stderr, "glint: error: %s\n", problem.c_str());
+      return status == 0 ? 1 : status;
+    }
+    return status;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return finished(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return finished(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return finished(app.exit(e));
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "glint: error: %s (see %s --help)\n", e.what(), refusingCommand(app).c_str());
     return 2;
@@ -164,9 +190,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "glint: internal error: %s\n", e.what());
     return 3;
   }
-  if (const std::string problem = standardOutputProblem(); !problem.empty()) {
-    std::fprintf(stderr, "glint: error: %s\n", problem.c_str());
-    return 1;
-  }
-  return 0;
+  return finished(0);
 }
