@@ -42,22 +42,22 @@ std::filesystem::path temporaryFor(const std::filesystem::path& path) {
   return temporary;
 }
 
-void removeStaleTemporaries(const std::filesystem::path& path) {
-  const std::string prefix = path.filename().string() + ".tmp";
+// The temporaries in `folder` left by processes that no longer exist: NAME.tmpPID where
+// kill(PID, 0) fails with ESRCH (not this process's own).
+std::vector<std::filesystem::path> staleTemporariesIn(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> stale;
   std::error_code ec;
-  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::size_t tmp = name.rfind(".tmp");
+    if (tmp == std::string::npos || tmp == 0) continue;
+    const std::string digits = name.substr(tmp + 4);
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     const pid_t pid = static_cast<pid_t>(std::stol(digits));
     if (pid <= 0 || pid == ::getpid()) continue;
-    if (::kill(pid, 0) == -1 && errno == ESRCH) {
-      std::error_code ignored;
-      std::filesystem::remove(it->path(), ignored);
-    }
+    if (::kill(pid, 0) == -1 && errno == ESRCH) stale.push_back(it->path());
   }
+  return stale;
 }
 
 // What is written as it is, not through a temporary renamed over it: a device or a pipe
@@ -148,21 +148,32 @@ void StagedFiles::add(const std::filesystem::path& path, std::span<const std::by
   // name given twice (`-o a.png --plot ./a.png`): both would share one temporary.
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": cannot write (is a directory)");
-  const std::filesystem::path same = std::filesystem::weakly_canonical(path, ec);
-  for (const auto& [name, temporary] : staged_) {
-    std::error_code other;
-    if (name == path || (!ec && std::filesystem::weakly_canonical(name, other) == same && !other)) {
-      throw Error(path.string() + ": given twice as an output");
+  std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  if (ec) canonical = std::filesystem::absolute(path, ec).lexically_normal();
+  if (stagedNames_.count(canonical) > 0) throw Error(path.string() + ": given twice as an output");
+  // A killed run's temporary of this very name goes; the folder is listed once, not once a file
+  // (an orbit of N frames would otherwise read it N times).
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  auto stale = staleTemporaries_.find(folder);
+  if (stale == staleTemporaries_.end()) stale = staleTemporaries_.emplace(folder, staleTemporariesIn(folder)).first;
+  const std::string prefix = path.filename().string() + ".tmp";
+  for (const std::filesystem::path& temporary : stale->second) {
+    const std::string name = temporary.filename().string();
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+        name.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
     }
   }
-  removeStaleTemporaries(path);
   const std::filesystem::path temporary = temporaryFor(path);
   staged_.reserve(staged_.size() + 1);  // so that recording it below cannot throw and lose it
+  const auto name = stagedNames_.insert(canonical).first;
   try {
     writeAndClose(path, temporary, O_CREAT | O_TRUNC, bytes);
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
+    stagedNames_.erase(name);
     throw;
   }
   staged_.emplace_back(path, temporary);
@@ -178,6 +189,7 @@ void StagedFiles::commit() {
     }
   }
   staged_.clear();
+  stagedNames_.clear();
 }
 
 void StagedFiles::removeTemporaries() {
@@ -186,6 +198,7 @@ void StagedFiles::removeTemporaries() {
     std::filesystem::remove(staged.second, ignored);
   }
   staged_.clear();
+  stagedNames_.clear();
 }
 
 }  // namespace glint

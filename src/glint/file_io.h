@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <span>
 #include <utility>
 #include <vector>
@@ -55,6 +57,8 @@ class StagedFiles {
  private:
   void removeTemporaries();
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // (name, temporary)
+  std::set<std::filesystem::path> stagedNames_;  // each staged name as weakly_canonical spells it
+  std::map<std::filesystem::path, std::vector<std::filesystem::path>> staleTemporaries_;  // by folder, listed once
 };
 
 }  // namespace glint
