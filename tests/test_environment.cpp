@@ -621,6 +621,11 @@ TEST(EnvironmentCli, BadMapsAndValuesGiveOneLineAndNoOutput) {
       EXPECT_FALSE(std::filesystem::exists(folder / "out.png"));
     }
   }
+  // A name that is all extension (".hdr" is a hidden file's name, with none) or another one.
+  for (const char* output : {".hdr", "sky.png"}) {
+    expectOneLineError(runGlint(folder, std::string("hdri --size 64x32 -o ") + output),
+                       std::string(output) + ": the output must end in .hdr or .exr");
+  }
 }
 
 }  // namespace

@@ -434,10 +434,20 @@ int run(const Options& options) {
                                                         pairs.size() * sizeof(std::uint16_t), VK_FORMAT_R16G16_SFLOAT);
   const Vulkan::Buffer frameBuffer = vulkan.buffer(VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &frame, sizeof frame);
   const std::uint32_t groups = static_cast<std::uint32_t>((size + 7) / 8);  // numthreads(8, 8, 1)
-  vulkan.dispatch(spirv, {&gBufferBuffer, &radiance, &dictionaryBuffer, &frameBuffer},
-                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                   VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                  groups, groups);
+  try {
+    vulkan.dispatch(spirv, {&gBufferBuffer, &radiance, &dictionaryBuffer, &frameBuffer},
+                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                    groups, groups);
+  } catch (const glint::Error& e) {
+    // readSpirv checks the module's header only: a file cut short after it reaches the driver,
+    // which refuses the module or its pipeline. Say which file.
+    const std::string what = e.what();
+    if (what.find("vkCreateShaderModule") != std::string::npos || what.find("vkCreateComputePipelines") != std::string::npos) {
+      throw glint::Error(options.shader + ": the Vulkan driver refused the shader (" + what + ")");
+    }
+    throw;
+  }
 
   const std::vector<std::byte> bytes = vulkan.read(radiance);
   glint::ImageRgbF image = glint::ImageRgbF::filled(size, size);

@@ -39,7 +39,7 @@ void runHdri(const HdriOptions& options) {
   requireWithin("--sun-irradiance", sky.sunIrradiance, 0.0f, 1e6f);
   const std::string extension = lowercaseExtension(options.output);
   if (extension != ".hdr" && extension != ".exr") {
-    throw Error(options.output + ": unsupported extension '" + extension + "' (supported: .hdr, .exr)");
+    throw Error(options.output + ": the output must end in .hdr or .exr");
   }
   const scene::Environment environment = scene::sunSkyEnvironment(sky);
   const ImageRgbF image{environment.width, environment.height, environment.pixels};
