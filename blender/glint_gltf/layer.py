@@ -161,13 +161,18 @@ class GlintLayerProperties(bpy.types.PropertyGroup):
 
 # --- Export: the Blender properties as the extension's JSON object ---------------------------------
 
+def as_float32(value):
+    """`value` rounded to the 32-bit float Blender holds it as."""
+    return struct.unpack("<f", struct.pack("<f", value))[0]
+
+
 def float32_text_value(value):
     """The shortest decimal that reads back as the same 32-bit float (what Blender holds), so that
     the file says 0.3 rather than 0.30000001192092896 and glint reads the float Blender had."""
-    single = struct.unpack("<f", struct.pack("<f", value))[0]
+    single = as_float32(value)
     for digits in range(1, 10):
         candidate = float("%.*g" % (digits, single))
-        if struct.unpack("<f", struct.pack("<f", candidate))[0] == single:
+        if as_float32(candidate) == single:
             return candidate
     return single
 
@@ -214,7 +219,7 @@ def _check_number(field, value, where):
         raise LayerError("%s = %s is outside %s" % (where, _number_text(value), field.range_text()))
     # Blender holds 32-bit floats: a value no such float holds but 0 (1e-46) becomes 0, outside an
     # exclusive minimum of 0 (glint's loader refuses it too); where 0 is in range it is read.
-    if field.exclusive_minimum and value != 0 and struct.unpack("<f", struct.pack("<f", value))[0] == 0:
+    if field.exclusive_minimum and value != 0 and as_float32(value) == 0:
         raise LayerError("%s = %s is too small for a 32-bit float and would be 0, outside %s"
                          % (where, _number_text(value), field.range_text()))
     return float(value)

@@ -33,6 +33,14 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+// The command called `name`, or null.
+const CLI::App* commandNamed(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* command : app.get_subcommands({})) {
+    if (command->get_name() == name) return command;
+  }
+  return nullptr;
+}
+
 // A first argument that is not a command, nor glint's own --help or --version: the one line that
 // names it, the commands and the nearest one (CLI11 would say only that a subcommand is required),
 // or empty when it is one. It is a command-line syntax error (exit status 2).
@@ -45,10 +53,10 @@ std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
     if (given == "-h" || given == "--help" || given == "--version") return {};
     return "unknown option '" + given + "': give a command first (commands: " + names + ")";
   }
+  if (commandNamed(app, given) != nullptr) return {};
   std::string nearest;
   std::size_t nearestDistance = 3;  // suggest only names at most two edits away
   for (const CLI::App* command : app.get_subcommands({})) {
-    if (command->get_name() == given) return {};
     const std::size_t distance = editDistance(given, command->get_name());
     if (distance < nearestDistance) {
       nearestDistance = distance;
@@ -66,10 +74,7 @@ std::string unknownCommand(const CLI::App& app, int argc, char** argv) {
 // `--` ends the options. A command-line syntax error (exit status 2).
 std::string emptyOptionValue(const CLI::App& app, int argc, char** argv) {
   if (argc < 2) return {};
-  const CLI::App* command = nullptr;
-  for (const CLI::App* candidate : app.get_subcommands({})) {
-    if (candidate->get_name() == argv[1]) command = candidate;
-  }
+  const CLI::App* command = commandNamed(app, argv[1]);
   if (command == nullptr) return {};
   for (int i = 2; i < argc; ++i) {
     const std::string argument = argv[i];
@@ -97,8 +102,8 @@ std::string standardOutputProblem() {
   const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || std::cout.fail();
   if (!failed) return {};
   // A write that failed while the command ran left no errno to read here; a closed descriptor
-  // still says so.
-  if (errno == 0 && ::fcntl(STDOUT_FILENO, F_GETFD) == -1) return std::string("standard output: cannot write (") + std::strerror(errno) + ")";
+  // still says so (fcntl sets EBADF).
+  if (errno == 0) ::fcntl(STDOUT_FILENO, F_GETFD);
   return std::string("standard output: cannot write (") + (errno != 0 ? std::strerror(errno) : "a write failed") + ")";
 }
 

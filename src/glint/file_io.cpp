@@ -42,10 +42,10 @@ std::filesystem::path temporaryFor(const std::filesystem::path& path) {
   return temporary;
 }
 
-// The temporaries in `folder` left by processes that no longer exist: NAME.tmpPID where
-// kill(PID, 0) fails with ESRCH (not this process's own).
-std::vector<std::filesystem::path> staleTemporariesIn(const std::filesystem::path& folder) {
-  std::vector<std::filesystem::path> stale;
+// The temporaries in `folder` left by processes that no longer exist, by the name of the file each
+// was for: NAME.tmpPID where kill(PID, 0) fails with ESRCH (not this process's own).
+std::multimap<std::string, std::filesystem::path> staleTemporariesIn(const std::filesystem::path& folder) {
+  std::multimap<std::string, std::filesystem::path> stale;
   std::error_code ec;
   for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -55,7 +55,7 @@ std::vector<std::filesystem::path> staleTemporariesIn(const std::filesystem::pat
     if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
     const pid_t pid = static_cast<pid_t>(std::stol(digits));
     if (pid <= 0 || pid == ::getpid()) continue;
-    if (::kill(pid, 0) == -1 && errno == ESRCH) stale.push_back(it->path());
+    if (::kill(pid, 0) == -1 && errno == ESRCH) stale.emplace(name.substr(0, tmp), it->path());
   }
   return stale;
 }
@@ -146,8 +146,8 @@ void StagedFiles::add(const std::filesystem::path& path, std::span<const std::by
   }
   // A folder in the file's place would fail its rename after the others': refused first. So is a
   // name given twice (`-o a.png --plot ./a.png`): both would share one temporary.
+  requireWritablePlace(path);
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(path.string() + ": cannot write (is a directory)");
   std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
   if (ec) canonical = std::filesystem::absolute(path, ec).lexically_normal();
   if (stagedNames_.count(canonical) > 0) throw Error(path.string() + ": given twice as an output");
@@ -156,14 +156,10 @@ void StagedFiles::add(const std::filesystem::path& path, std::span<const std::by
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   auto stale = staleTemporaries_.find(folder);
   if (stale == staleTemporaries_.end()) stale = staleTemporaries_.emplace(folder, staleTemporariesIn(folder)).first;
-  const std::string prefix = path.filename().string() + ".tmp";
-  for (const std::filesystem::path& temporary : stale->second) {
-    const std::string name = temporary.filename().string();
-    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
-        name.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-    }
+  const auto [first, last] = stale->second.equal_range(path.filename().string());
+  for (auto it = first; it != last; ++it) {
+    std::error_code ignored;
+    std::filesystem::remove(it->second, ignored);
   }
   const std::filesystem::path temporary = temporaryFor(path);
   staged_.reserve(staged_.size() + 1);  // so that recording it below cannot throw and lose it

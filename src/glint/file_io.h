@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -58,7 +59,8 @@ class StagedFiles {
   void removeTemporaries();
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // (name, temporary)
   std::set<std::filesystem::path> stagedNames_;  // each staged name as weakly_canonical spells it
-  std::map<std::filesystem::path, std::vector<std::filesystem::path>> staleTemporaries_;  // by folder, listed once
+  // Killed runs' temporaries by folder (listed once) and by the name of the file each was for.
+  std::map<std::filesystem::path, std::multimap<std::string, std::filesystem::path>> staleTemporaries_;
 };
 
 }  // namespace glint

@@ -3,7 +3,7 @@
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
 import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
-import { LOD_CONSTRUCTIONS, MASKING_NAMES, NDF_NAMES, addGlintLayerToShader } from './shader.js';
+import { LAYER_NAME_CHOICES, addGlintLayerToShader } from './shader.js';
 
 // A glint layer's parameters, named as the kernel's GlintMaterial (kernel/glint_material.h) is:
 // this object is the value of the shader's `uniform GlintMaterial glintMaterial`. Defaults are
@@ -157,7 +157,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     if (!this.glintDictionary) {
       throw new Error(`glint-three: material '${this.name}' has no glint dictionary (set material.glintDictionary)`);
     }
-    for (const [field, names] of [['ndf', Object.keys(NDF_NAMES)], ['masking', Object.keys(MASKING_NAMES)], ['lod', LOD_CONSTRUCTIONS]]) {
+    for (const [field, names] of Object.entries(LAYER_NAME_CHOICES)) {
       if (!names.includes(this.glint[field])) {
         throw new Error(`glint-three: material '${this.name}': ${field} must be ${names.map((n) => `'${n}'`).join(', ')}, got ${JSON.stringify(this.glint[field])}`);
       }

@@ -12,7 +12,7 @@
 // plain MeshPhysicalMaterial.
 import { MeshPhysicalMaterial } from 'three';
 import { GlintLayer, MeshGlintMaterial } from './material.js';
-import { LOD_CONSTRUCTIONS, MASKING_NAMES, NDF_NAMES } from './shader.js';
+import { LAYER_NAME_CHOICES } from './shader.js';
 
 export const EXTENSION_NAME = 'EXT_materials_glint';
 
@@ -34,11 +34,7 @@ const BOOLEANS = [
   ['randomColors', 'colouredCells'],
   ['multipleScattering', 'multipleScattering'],
 ];
-const NAMES = [
-  ['ndf', 'ndf', Object.keys(NDF_NAMES)],
-  ['masking', 'masking', Object.keys(MASKING_NAMES)],
-  ['lod', 'lod', LOD_CONSTRUCTIONS],
-];
+const NAMES = Object.entries(LAYER_NAME_CHOICES).map(([field, names]) => [field, field, names]);  // the same spelling in the file
 const TEXTURES = [
   ['roughnessTexture', 'roughnessTexture'],
   ['logDensityTexture', 'logDensityTexture'],

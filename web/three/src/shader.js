@@ -49,6 +49,8 @@ export const LOD_CONSTRUCTIONS = ['paper', 'consistent', 'tree'];  // the index 
 // The names a layer's ndf and masking take (the extension's), each with the kernel's constant.
 export const NDF_NAMES = { ggx: 'GLINT_NDF_GGX', beckmann: 'GLINT_NDF_BECKMANN' };
 export const MASKING_NAMES = { smith: 'GLINT_MASKING_SMITH', 'v-cavity': 'GLINT_MASKING_VCAVITY' };
+// The layer's compiled-in fields that take a name, each with the names it takes.
+export const LAYER_NAME_CHOICES = { ndf: Object.keys(NDF_NAMES), masking: Object.keys(MASKING_NAMES), lod: LOD_CONSTRUCTIONS };
 
 function kernelDefines(variant) {
   return [
