@@ -4,7 +4,9 @@
 
     python3 blender/package.py -o glint_gltf.zip
 
-The zip holds the folder glint_gltf/ with its .py files; the same sources give the same bytes
+The zip holds the folder glint_gltf/ with its .py files and EXT_materials_glint's JSON schema (from
+extensions/EXT_materials_glint/schema, which glint writes from its table of the layer's fields: the
+add-on takes its fields' kinds, ranges and defaults from it); the same sources give the same bytes
 (fixed timestamps, sorted names)."""
 
 import argparse
@@ -13,6 +15,8 @@ import sys
 import zipfile
 
 ADDON = pathlib.Path(__file__).resolve().parent / "glint_gltf"
+SCHEMA = (pathlib.Path(__file__).resolve().parent.parent / "extensions" / "EXT_materials_glint" / "schema"
+          / "material.EXT_materials_glint.schema.json")
 
 
 def main():
@@ -22,6 +26,9 @@ def main():
     sources = sorted(ADDON.glob("*.py"))
     if not sources:
         sys.exit("package.py: %s holds no .py files" % ADDON)
+    if not SCHEMA.is_file():
+        sys.exit("package.py: %s is missing" % SCHEMA)
+    sources.append(SCHEMA)
     output.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(output, "w", compression=zipfile.ZIP_DEFLATED) as archive:
         for source in sources:

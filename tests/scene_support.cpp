@@ -100,7 +100,7 @@ scene::Scene texturedTestScene() {
   textured.glint.maxAnisotropy = 12.0f;
   textured.glint.patternSeed = 3000000000u;  // beyond a 32-bit int
   textured.glint.uvScale = 3.0f;
-  textured.glint.randomColours = true;
+  textured.glint.colouredCells = true;
   textured.glint.lod = kernel::GLINT_LOD_CONSISTENT;
   textured.glint.roughnessTexture = 1;
   textured.glint.logDensityRange = glm::vec2(12.0f, 30.0f);

@@ -109,7 +109,7 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     EXPECT_EQ(g.maxAnisotropy, h.maxAnisotropy);
     EXPECT_EQ(g.patternSeed, h.patternSeed);
     EXPECT_EQ(g.uvScale, h.uvScale);
-    EXPECT_EQ(g.randomColours, h.randomColours);
+    EXPECT_EQ(g.colouredCells, h.colouredCells);
     EXPECT_EQ(g.lod, h.lod);
     EXPECT_EQ(g.logDensityRange, h.logDensityRange);
     expectSameTexture(original, g.roughnessTexture, loaded, h.roughnessTexture, "glint roughness");
@@ -214,7 +214,7 @@ TEST(GltfWriter, EveryGlintFieldRoundTripsThroughTheExtension) {
   layer.maxAnisotropy = 12.0f;
   layer.patternSeed = 4294967295u;
   layer.uvScale = 2.5f;
-  layer.randomColours = true;
+  layer.colouredCells = true;
   layer.lod = kernel::GLINT_LOD_CONSISTENT;
   layer.logDensityRange = glm::vec2(12.0f, 33.0f);
   layer.roughnessTexture = 1;  // the linear textures: metallic-roughness, normal, occlusion

@@ -837,7 +837,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromExtras) {
   EXPECT_EQ(g.maxAnisotropy, 16.0f);
   EXPECT_EQ(g.patternSeed, 4000000000u);
   EXPECT_EQ(g.uvScale, 3.0f);
-  EXPECT_TRUE(g.randomColours);
+  EXPECT_TRUE(g.colouredCells);
   EXPECT_EQ(g.lod, kernel::GLINT_LOD_CONSISTENT);
   EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
   EXPECT_EQ(g.logDensityTexture, -1);
@@ -949,7 +949,7 @@ TEST(GltfGlint, ReadsTheGlintLayerFromTheExtension) {
   EXPECT_EQ(g.maxAnisotropy, 16.0f);
   EXPECT_EQ(g.patternSeed, 4000000000u);
   EXPECT_EQ(g.uvScale, 3.0f);
-  EXPECT_TRUE(g.randomColours);
+  EXPECT_TRUE(g.colouredCells);
   EXPECT_EQ(g.logDensityRange, glm::vec2(10.0f, 30.0f));
   // glTF textures 1 (metallic-roughness) and 2 (normal), read as linear data: the very scene
   // textures those slots use, not decoded again.
@@ -1008,9 +1008,9 @@ TEST(GltfGlint, BooleansWrittenAsZeroOrOneAreReadAsBooleans) {
       d["materials"][1]["extensions"]["EXT_materials_glint"] = {{"randomColors", off}, {"multipleScattering", on}};
     });
     const Scene extension = loadGltf(path);
-    EXPECT_TRUE(extension.materials[0].glint.randomColours);
+    EXPECT_TRUE(extension.materials[0].glint.colouredCells);
     EXPECT_FALSE(extension.materials[0].specular.multipleScattering);
-    EXPECT_FALSE(extension.materials[1].glint.randomColours);
+    EXPECT_FALSE(extension.materials[1].glint.colouredCells);
     EXPECT_TRUE(extension.materials[1].specular.multipleScattering);
     editJson(path, [&](json& d) {
       removeGlintExtension(d);
@@ -1018,7 +1018,7 @@ TEST(GltfGlint, BooleansWrittenAsZeroOrOneAreReadAsBooleans) {
       d["materials"][1]["extras"] = {{"glint_specular", {{"multiple_scattering", on}}}};
     });
     const Scene extras = loadGltf(path);
-    EXPECT_TRUE(extras.materials[0].glint.randomColours);
+    EXPECT_TRUE(extras.materials[0].glint.colouredCells);
     EXPECT_FALSE(extras.materials[0].specular.multipleScattering);
     EXPECT_FALSE(extras.materials[1].glint.enabled);
     EXPECT_TRUE(extras.materials[1].specular.multipleScattering);
@@ -1121,7 +1121,7 @@ TEST(GltfGlint, TheSchemasFieldsRangesAndDefaultsAreTheLoaders) {
   EXPECT_EQ(a.maxAnisotropy, b.maxAnisotropy);
   EXPECT_EQ(a.patternSeed, b.patternSeed);
   EXPECT_EQ(a.uvScale, b.uvScale);
-  EXPECT_EQ(a.randomColours, b.randomColours);
+  EXPECT_EQ(a.colouredCells, b.colouredCells);
   EXPECT_EQ(a.lod, b.lod);
   EXPECT_EQ(a.logDensityRange, b.logDensityRange);
 }
@@ -1859,7 +1859,7 @@ TEST(GlintMaterial, PacksEveryFieldOfTheLayerAndTheTarget) {
   layer.maxAnisotropy = 12.0f;
   layer.patternSeed = 0xDEADBEEFu;
   layer.uvScale = 4.0f;
-  layer.randomColours = true;
+  layer.colouredCells = true;
   layer.logDensityTexture = 2;
   layer.logDensityRange = {18.0f, 33.0f};
   const kernel::GlintMaterial m = glintMaterial(layer, kGltfSpecular);

@@ -33,7 +33,7 @@ bool same(const scene::GlintLayer& a, const scene::GlintLayer& b) {
   return a.enabled == b.enabled && same(a.alpha, b.alpha) && same(a.rho, b.rho) && same(a.logDensity, b.logDensity) &&
          same(a.relativeArea, b.relativeArea) && same(a.densityRandomisation, b.densityRandomisation) &&
          same(a.maxAnisotropy, b.maxAnisotropy) && a.patternSeed == b.patternSeed && same(a.uvScale, b.uvScale) &&
-         a.randomColours == b.randomColours && a.lod == b.lod && a.roughnessTexture == b.roughnessTexture &&
+         a.colouredCells == b.colouredCells && a.lod == b.lod && a.roughnessTexture == b.roughnessTexture &&
          a.logDensityTexture == b.logDensityTexture && same(a.logDensityRange, b.logDensityRange) &&
          a.relativeAreaTexture == b.relativeAreaTexture;
 }

@@ -1,9 +1,11 @@
 # The glint layer of a Blender material: its typed properties and their EXT_materials_glint spelling.
-# FIELDS is the one table of the extension's properties (extensions/EXT_materials_glint/README.md):
-# the Blender properties, the panel's order, the exporter's JSON and the importer's checks all come
-# from it.
+# FIELDS is the add-on's table of the extension's properties, their kinds, ranges and defaults taken
+# from the extension's schema (which glint writes from its own table): the Blender properties, the
+# panel's order, the exporter's JSON and the importer's checks all come from it.
 
+import json
 import math
+import pathlib
 import struct
 
 import bpy
@@ -14,95 +16,111 @@ EXTENSION_NAME = "EXT_materials_glint"
 # glint read before the extension.
 LAYER_PROPERTY = "glint_layer"
 
-# The largest 32-bit float: uvScale's upper bound in the extension.
-FLOAT32_MAX = 3.4028234663852886e38
-# The smallest positive 32-bit float (subnormal; Blender's float properties hold subnormals): the
-# extension's minimum of uvScale, and Blender's stand-in for the exclusive minimum 0 of relativeArea
-# (a Blender property has inclusive bounds only).
-FLOAT32_MIN_POSITIVE = 1.401298464324817e-45
 # Blender's integer properties are 32-bit signed; the extension's patternSeed goes to 2^32 - 1.
 BLENDER_INT_MAX = 2**31 - 1
-EXTENSION_SEED_MAX = 2**32 - 1
+
+
+def _load_schema():
+    """EXT_materials_glint's JSON schema, which glint writes from its one table of the layer's
+    fields (`glint extension-schema`): package.py puts it in the zip beside this file; a checkout
+    of the sources has it in extensions/EXT_materials_glint/schema."""
+    here = pathlib.Path(__file__).resolve().parent
+    for candidate in (here / SCHEMA_FILE,
+                      here.parent.parent / "extensions" / EXTENSION_NAME / "schema" / SCHEMA_FILE):
+        if candidate.is_file():
+            with open(candidate, encoding="utf-8") as file:
+                return json.load(file)
+    raise RuntimeError("glint_gltf: %s is missing beside the add-on (package it with blender/package.py)" % SCHEMA_FILE)
+
+
+SCHEMA_FILE = "material.%s.schema.json" % EXTENSION_NAME
+SCHEMA_PROPERTIES = _load_schema()["properties"]
 
 
 class Field:
-    """One property of EXT_materials_glint and the Blender property that holds it."""
+    """One property of EXT_materials_glint and the Blender property that holds it: its kind, range,
+    default and names from the extension's schema, its label and tooltip Blender's."""
 
-    def __init__(self, name, json_name, kind, label, description, minimum=None, maximum=None,
-                 exclusive_minimum=False, default=None, soft_max=None, choices=None):
+    def __init__(self, name, json_name, label, description, default=None, soft_max=None, choice_labels=None):
+        schema = SCHEMA_PROPERTIES[json_name]
+        bounds = schema.get("items", schema)
         self.name = name                  # the Blender property, on Material.glint_layer
         self.json_name = json_name        # the extension's property
-        self.kind = kind                  # number, pair, integer, boolean, choice, texture
+        self.kind = ("texture" if "allOf" in schema else "pair" if schema.get("type") == "array"
+                     else "choice" if schema.get("type") == "string" else schema["type"])
         self.label = label
         self.description = description
-        self.minimum = minimum
-        self.maximum = maximum
-        self.exclusive_minimum = exclusive_minimum
-        self.default = default
+        self.exclusive_minimum = "exclusiveMinimum" in bounds
+        self.minimum = bounds.get("exclusiveMinimum", bounds.get("minimum"))
+        self.maximum = bounds.get("maximum")
+        self.default = default if default is not None else schema.get("default")
+        if self.kind == "pair" and self.default is not None:
+            self.default = tuple(self.default)
         self.soft_max = soft_max
-        self.choices = choices            # choice: [(json value, Blender identifier, label)]
+        # choice: [(json value, Blender identifier, label)]
+        self.choices = ([(value, value.upper().replace("-", "_"), choice_labels[value]) for value in schema["enum"]]
+                        if self.kind == "choice" else None)
 
     def range_text(self):
         low = "(" if self.exclusive_minimum else "["
         return "%s%s, %s]" % (low, _number_text(self.minimum), _number_text(self.maximum))
 
 
-# The defaults are the extension's, so that a layer enabled in Blender and exported with nothing
-# changed reads back as glint reads an empty EXT_materials_glint object, but for alpha: see
-# alpha_from_roughness.
+# The smallest positive 32-bit float (subnormal; Blender's float properties hold subnormals):
+# Blender's stand-in for the exclusive minimum 0 of relativeArea (a Blender property has inclusive
+# bounds only).
+FLOAT32_MIN_POSITIVE = 1.401298464324817e-45
+
+# The Blender side of each field: its property name, label and tooltip (the panel's order). Kinds,
+# ranges and defaults are the schema's, so that a layer enabled in Blender and exported with
+# nothing changed reads back as glint reads an empty EXT_materials_glint object, but for alpha:
+# see alpha_from_roughness.
 FIELDS = [
-    Field("alpha", "alpha", "pair", "Alpha",
+    Field("alpha", "alpha", "Alpha",
           "Roughness of the lobe the glints converge to, along the tangent and the bitangent",
-          0.005, 2.0, default=(0.25, 0.25)),
-    Field("rho", "rho", "number", "Slope Correlation",
-          "Correlation of the target's slopes in the tangent frame: highlights stretch along a diagonal",
-          -0.99, 0.99, default=0.0),
-    Field("log_density", "logDensity", "number", "Log Density",
+          default=(0.25, 0.25)),
+    Field("rho", "rho", "Slope Correlation",
+          "Correlation of the target's slopes in the tangent frame: highlights stretch along a diagonal"),
+    Field("log_density", "logDensity", "Log Density",
           "Natural logarithm of the microfacets per unit area of glint uv: low values sparkle, high ones look smooth",
-          0.0, 100.0, default=27.0, soft_max=40.0),
-    Field("relative_area", "relativeArea", "number", "Relative Area",
-          "Fraction of the cells that hold microfacets (sparse glitter below 1)",
-          0.0, 1.0, exclusive_minimum=True, default=1.0),
-    Field("density_randomization", "densityRandomization", "number", "Density Randomization",
-          "How much the number of microfacets varies from cell to cell (0: the same in every cell)",
-          0.0, 10.0, default=2.0),
-    Field("max_anisotropy", "maxAnisotropy", "number", "Max Anisotropy",
-          "A pixel's footprint is widened until its axes' ratio is at most this",
-          1.0, 64.0, default=8.0),
-    Field("pattern_seed", "patternSeed", "integer", "Pattern Seed",
+          soft_max=40.0),
+    Field("relative_area", "relativeArea", "Relative Area",
+          "Fraction of the cells that hold microfacets (sparse glitter below 1)"),
+    Field("density_randomization", "densityRandomization", "Density Randomization",
+          "How much the number of microfacets varies from cell to cell (0: the same in every cell)"),
+    Field("max_anisotropy", "maxAnisotropy", "Max Anisotropy",
+          "A pixel's footprint is widened until its axes' ratio is at most this"),
+    Field("pattern_seed", "patternSeed", "Pattern Seed",
           "Another realisation of the same statistics: another glint pattern "
-          "(Blender holds 0 to 2147483647 of the extension's 0 to 4294967295)",
-          0, EXTENSION_SEED_MAX, default=0),
-    Field("uv_scale", "uvScale", "number", "UV Scale",
+          "(Blender holds 0 to 2147483647 of the extension's 0 to 4294967295)"),
+    Field("uv_scale", "uvScale", "UV Scale",
           "Glint uv = TEXCOORD_0 times this; raising it by k multiplies the facets per unit of surface by k squared",
-          FLOAT32_MIN_POSITIVE, FLOAT32_MAX, default=1.0, soft_max=100.0),
-    Field("random_colors", "randomColors", "boolean", "Random Colors",
-          "Each cell's glints get a random colour (the flakes of a car paint)", default=False),
-    Field("lod", "lod", "choice", "Level of Detail",
+          soft_max=100.0),
+    Field("random_colors", "randomColors", "Random Colors",
+          "Each cell's glints get a random colour (the flakes of a car paint)"),
+    Field("lod", "lod", "Level of Detail",
           "How a cell's glints relate to the finer level's: the 2020 paper's own glints per cell; a coarse "
           "cell's glints shared out among its children so that fewer glints pop as the surface recedes "
           "(Consistent); or every cell below a level set by the density the mean of its four children, so "
           "that glints stay put (Tree)",
-          default="paper", choices=[("paper", "PAPER", "Paper"), ("consistent", "CONSISTENT", "Consistent"),
-                                   ("tree", "TREE", "Tree")]),
-    Field("ndf", "ndf", "choice", "NDF",
-          "The distribution the glints converge to",
-          default="ggx", choices=[("ggx", "GGX", "GGX"), ("beckmann", "BECKMANN", "Beckmann")]),
-    Field("masking", "masking", "choice", "Masking",
-          "Masking-shadowing of the lobe",
-          default="smith", choices=[("smith", "SMITH", "Smith"), ("v-cavity", "V_CAVITY", "V-Cavity")]),
-    Field("multiple_scattering", "multipleScattering", "boolean", "Multiple Scattering",
-          "A smooth lobe adds back the energy single scattering loses on rough surfaces", default=True),
-    Field("roughness_texture", "roughnessTexture", "texture", "Roughness Texture",
+          choice_labels={"paper": "Paper", "consistent": "Consistent", "tree": "Tree"}),
+    Field("ndf", "ndf", "NDF", "The distribution the glints converge to",
+          choice_labels={"ggx": "GGX", "beckmann": "Beckmann"}),
+    Field("masking", "masking", "Masking", "Masking-shadowing of the lobe",
+          choice_labels={"smith": "Smith", "v-cavity": "V-Cavity"}),
+    Field("multiple_scattering", "multipleScattering", "Multiple Scattering",
+          "A smooth lobe adds back the energy single scattering loses on rough surfaces"),
+    Field("roughness_texture", "roughnessTexture", "Roughness Texture",
           "Its red channel (linear) multiplies alpha"),
-    Field("log_density_texture", "logDensityTexture", "texture", "Log Density Texture",
+    Field("log_density_texture", "logDensityTexture", "Log Density Texture",
           "Its red channel (linear, 0 to 1) maps onto the log density range and replaces the log density"),
-    Field("log_density_range", "logDensityRange", "pair", "Log Density Range",
-          "The log densities the log density texture's 0 and 1 map to",
-          0.0, 100.0, default=(15.0, 35.0)),
-    Field("relative_area_texture", "relativeAreaTexture", "texture", "Relative Area Texture",
+    Field("log_density_range", "logDensityRange", "Log Density Range",
+          "The log densities the log density texture's 0 and 1 map to"),
+    Field("relative_area_texture", "relativeAreaTexture", "Relative Area Texture",
           "Its red channel (linear) multiplies the relative area"),
 ]
+if sorted(f.json_name for f in FIELDS) != sorted(n for n in SCHEMA_PROPERTIES if n not in ("extensions", "extras")):
+    raise RuntimeError("glint_gltf: the add-on's fields are not the schema's properties")
 
 FIELDS_BY_JSON_NAME = {field.json_name: field for field in FIELDS}
 

@@ -19,5 +19,6 @@ void registerLodConsistencyCommand(CLI::App& app);
 void registerAlbedoTablesCommand(CLI::App& app);
 void registerHdriCommand(CLI::App& app);
 void registerShaderBundleCommand(CLI::App& app);
+void registerExtensionSchemaCommand(CLI::App& app);
 
 }  // namespace glint::app

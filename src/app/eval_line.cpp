@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "glint/bsdf.h"
 #include "glint/error.h"
+#include "glint/glint_fields.h"
 
 namespace glint::app {
 
@@ -16,11 +18,20 @@ namespace {
 
 using nlohmann::json;
 
-const std::set<std::string> kFields = {"uv",          "duvdx",         "duvdy",          "wo",
-                                       "wi",          "alpha",         "rho",            "brdf",
-                                       "log_density", "relative_area", "density_randomisation",
-                                       "max_anisotropy", "pattern_seed", "ndf",
-                                       "masking",     "multiple_scattering"};
+// The layer's fields `glint eval` takes, named as extras.glint names them (glint_fields.h); the
+// others are the shading point's and the BRDF's.
+constexpr GlintField kLayerFields[] = {GlintField::Alpha,         GlintField::Rho,
+                                       GlintField::LogDensity,    GlintField::RelativeArea,
+                                       GlintField::DensityRandomization, GlintField::MaxAnisotropy,
+                                       GlintField::PatternSeed,   GlintField::Ndf,
+                                       GlintField::Masking,       GlintField::MultipleScattering};
+const char* name(GlintField field) { return glintField(field).extras; }
+
+bool isKnownField(const std::string& key) {
+  static const std::set<std::string> kPointFields = {"uv", "duvdx", "duvdy", "wo", "wi", "brdf"};
+  return kPointFields.contains(key) ||
+         std::any_of(std::begin(kLayerFields), std::end(kLayerFields), [&](GlintField f) { return key == name(f); });
+}
 
 // An array of N finite numbers, read as T (a float value must be finite as a float).
 template <int N, typename T = float>
@@ -79,27 +90,27 @@ glm::vec3 readDirection(const json& object, const char* field) {
 json evaluate(const json& input, const Dictionary& dictionary) {
   if (!input.is_object()) throw Error("expected a JSON object");
   for (const auto& [key, value] : input.items()) {
-    if (!kFields.contains(key)) throw Error("unknown field '" + key + "'");
+    if (!isKnownField(key)) throw Error("unknown field '" + key + "'");
   }
   GlintParameters parameters = defaultGlintParameters();
-  parameters.alpha = readVector<2>(input, "alpha", parameters.alpha);
-  parameters.rho = readNumber(input, "rho", parameters.rho);
-  parameters.logDensity = readNumber(input, "log_density", parameters.logDensity);
-  parameters.relativeArea = readNumber(input, "relative_area", parameters.relativeArea);
-  parameters.densityRandomisation = readNumber(input, "density_randomisation", parameters.densityRandomisation);
-  parameters.maxAnisotropy = readNumber(input, "max_anisotropy", parameters.maxAnisotropy);
+  parameters.alpha = readVector<2>(input, name(GlintField::Alpha), parameters.alpha);
+  parameters.rho = readNumber(input, name(GlintField::Rho), parameters.rho);
+  parameters.logDensity = readNumber(input, name(GlintField::LogDensity), parameters.logDensity);
+  parameters.relativeArea = readNumber(input, name(GlintField::RelativeArea), parameters.relativeArea);
+  parameters.densityRandomisation = readNumber(input, name(GlintField::DensityRandomization), parameters.densityRandomisation);
+  parameters.maxAnisotropy = readNumber(input, name(GlintField::MaxAnisotropy), parameters.maxAnisotropy);
   // In double, which holds every 32-bit seed exactly (a float rounds those above 2^24).
-  const auto seedField = input.find("pattern_seed");
+  const auto seedField = input.find(name(GlintField::PatternSeed));
   const double seed = seedField == input.end() ? 0.0 : seedField->is_number() ? seedField->get<double>() : -1.0;
   if (!(seed >= 0.0 && seed <= 4294967295.0 && seed == std::floor(seed))) {
     throw Error("field 'pattern_seed' must be an integer in [0, 2^32)");
   }
   parameters.patternSeed = static_cast<std::uint32_t>(seed);
-  if (const std::string ndf = readString(input, "ndf"); !ndf.empty()) parameters.ndf = ndfFromName("field 'ndf'", ndf);
-  if (const std::string masking = readString(input, "masking"); !masking.empty()) {
+  if (const std::string ndf = readString(input, name(GlintField::Ndf)); !ndf.empty()) parameters.ndf = ndfFromName("field 'ndf'", ndf);
+  if (const std::string masking = readString(input, name(GlintField::Masking)); !masking.empty()) {
     parameters.masking = maskingFromName("field 'masking'", masking);
   }
-  parameters.multipleScattering = readBool(input, "multiple_scattering", parameters.multipleScattering);
+  parameters.multipleScattering = readBool(input, name(GlintField::MultipleScattering), parameters.multipleScattering);
   SurfaceFootprint footprint;
   footprint.uv = readVector<2>(input, "uv", footprint.uv);
   footprint.duvdx = readVector<2>(input, "duvdx", footprint.duvdx);

@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
   glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);
   glint::app::registerShaderBundleCommand(app);
+  glint::app::registerExtensionSchemaCommand(app);
   requireDecimalWholeNumbers(app);
   if (const std::string problem = unknownCommand(app, argc, argv); !problem.empty()) {
     std::fprintf(stderr, "glint: error: %s (see glint --help)\n", problem.c_str());

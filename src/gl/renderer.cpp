@@ -270,7 +270,7 @@ int footprintWords(const kernel::GlintFootprintPolicy& policy) {
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
                               int lightCount, int shadowCubes) {
   const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
-  const bool coloured = model == BrdfModel::Glint && material.glint.randomColours;
+  const bool coloured = model == BrdfModel::Glint && material.glint.colouredCells;
   const bool filtered = model == BrdfModel::Glint && settings.antiAliasing != AntiAliasing::None;
   const bool normalMap = material.normalTexture >= 0;
   const bool lean = filtered && normalMap && settings.antiAliasing == AntiAliasing::GgaaLean;

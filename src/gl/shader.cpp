@@ -4,6 +4,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "glint/error.h"
 
@@ -28,34 +29,69 @@ std::string lineDirective(int line, int source) {
   return "#line " + std::to_string(source * kLinesPerSource + line) + " " + std::to_string(source) + "\n";
 }
 
-void expand(const std::string& name, const std::map<std::string, std::string>& sources, std::set<std::string>& stack,
+// What expanding one program has seen: the files on the include stack (an include of one of them is
+// a cycle), the files already written out, and the conditional blocks open at the current line.
+struct ExpansionState {
+  std::set<std::string> stack;
+  std::set<std::string> written;
+  std::vector<bool> openBlocks;  // per open #if: true for an include guard
+};
+
+// True when every open block is an include guard, so that a file written here is compiled for sure
+// (its guards were not yet defined): a later include of it would only expand its guard's empty
+// block, and writes nothing.
+bool unconditional(const ExpansionState& state) {
+  return std::all_of(state.openBlocks.begin(), state.openBlocks.end(), [](bool guard) { return guard; });
+}
+
+void expand(const std::string& name, const std::map<std::string, std::string>& sources, ExpansionState& state,
             ExpandedSource& out) {
   const auto file = sources.find(name);
   if (file == sources.end()) throw Error("shader source '" + name + "' is not embedded");
-  if (!stack.insert(name).second) throw Error("shader source '" + name + "' includes itself");
+  if (!state.stack.insert(name).second) throw Error("shader source '" + name + "' includes itself");
+  if (unconditional(state)) state.written.insert(name);
   static const std::regex quoted(R"re(^\s*#\s*include\s+"(?:[^"]*/)?([^"/]+)"\s*$)re");
   static const std::regex angled(R"(^\s*#\s*include\s+<[^>]*>\s*$)");
   // A #line inside a conditional block that is skipped is itself skipped, while the block's lines
   // still count: after each #else, #elif and #endif the numbering is set again, so that it is right
   // wherever code is compiled, whichever blocks an include sat in.
   static const std::regex conditional(R"(^\s*#\s*(else|elif|endif)\b.*$)");
+  static const std::regex opening(R"(^\s*#\s*if(n?def)?\b\s*(\w*).*$)");
+  static const std::regex closing(R"(^\s*#\s*endif\b.*$)");
+  static const std::regex definition(R"(^\s*#\s*define\s+(\w+)\s*$)");
   const int source = sourceString(name, out.files);
   out.text += lineDirective(1, source);
-  std::istringstream lines(file->second);
+  std::vector<std::string> lines;
+  {
+    std::istringstream stream(file->second);
+    for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  }
   std::smatch match;
-  int number = 0;
-  for (std::string line; std::getline(lines, line);) {
-    ++number;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string& line = lines[i];
+    const int number = static_cast<int>(i) + 1;
     if (std::regex_match(line, match, quoted)) {
-      expand(match[1], sources, stack, out);
+      const std::string included = match[1];
+      // An include guard (the header's own #ifndef) makes every include after the first an empty
+      // block: the file is written once, at its first include outside any other conditional.
+      if (state.stack.count(included) || !state.written.count(included)) expand(included, sources, state, out);
       out.text += lineDirective(number + 1, source);
       continue;
+    }
+    if (std::regex_match(line, match, opening)) {
+      // "#ifndef X" followed by "#define X": an include guard.
+      std::smatch defined;
+      const bool guard = match[1] == "ndef" && i + 1 < lines.size() && std::regex_match(lines[i + 1], defined, definition) &&
+                         defined[1] == match[2];
+      state.openBlocks.push_back(guard);
+    } else if (std::regex_match(line, closing) && !state.openBlocks.empty()) {
+      state.openBlocks.pop_back();
     }
     if (!std::regex_match(line, angled)) out.text += line;
     out.text += '\n';
     if (std::regex_match(line, conditional)) out.text += lineDirective(number + 1, source);
   }
-  stack.erase(name);
+  state.stack.erase(name);
 }
 
 // GL info logs run over several lines; an error message is one.
@@ -99,9 +135,9 @@ constexpr const char* kVersionHeader = "#version 450 core\n";
 }  // namespace
 
 ExpandedSource expandIncludes(const std::string& name, const std::map<std::string, std::string>& sources) {
-  std::set<std::string> stack;
+  ExpansionState state;
   ExpandedSource out;
-  expand(name, sources, stack, out);
+  expand(name, sources, state, out);
   return out;
 }
 

@@ -25,8 +25,9 @@ struct ExpandedSource {
   std::vector<std::string> files;
 };
 
-// Expands `name` from `sources` (every file by name). Throws Error for an unknown name or a file
-// that includes itself.
+// Expands `name` from `sources` (every file by name). A file is written once, at its first include
+// outside any conditional block but include guards; a later include of it is left out (its guard
+// would make it empty). Throws Error for an unknown name or a file that includes itself.
 ExpandedSource expandIncludes(const std::string& name,
                               const std::map<std::string, std::string>& sources = embeddedFiles());
 

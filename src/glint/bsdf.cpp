@@ -5,8 +5,10 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "glint/error.h"
+#include "glint/glint_fields.h"
 #include "glint/kernel/multiple_scattering.h"
 #include "glint/microfacet_sampling.h"
 
@@ -105,17 +107,18 @@ void validateFootprintPolicy(const FootprintPolicy& policy) {
 GlintParameters defaultGlintParameters() {
   GlintParameters p;
   p.alpha = glm::vec2(0.5f);
-  p.rho = 0.0f;
-  p.logDensity = 27.0f;
-  p.relativeArea = 1.0f;
-  p.densityRandomisation = 2.0f;
-  p.maxAnisotropy = 8.0f;
-  p.patternSeed = 0u;
-  p.colouredCells = false;
+  p.rho = glintDefaultFloat(GlintField::Rho);
+  p.logDensity = glintDefaultFloat(GlintField::LogDensity);
+  p.relativeArea = glintDefaultFloat(GlintField::RelativeArea);
+  p.densityRandomisation = glintDefaultFloat(GlintField::DensityRandomization);
+  p.maxAnisotropy = glintDefaultFloat(GlintField::MaxAnisotropy);
+  p.patternSeed = static_cast<std::uint32_t>(glintField(GlintField::PatternSeed).defaultValue);
+  p.colouredCells = glintDefaultBoolean(GlintField::RandomColors);
+  // The 2020 paper's target (glTF's is glint_fields.h's default, scene::kGltfSpecular).
   p.ndf = kernel::GLINT_NDF_BECKMANN;
   p.masking = kernel::GLINT_MASKING_VCAVITY;
-  p.lod = kernel::GLINT_LOD_PAPER;
   p.multipleScattering = false;
+  p.lod = glintDefaultChoice(GlintField::Lod);
   p.footprintPolicy = exactFootprintPolicy();
   return p;
 }
@@ -124,31 +127,37 @@ MicrofacetTarget microfacetTarget(const GlintParameters& parameters) {
   return MicrofacetTarget{parameters.ndf, parameters.masking, parameters.multipleScattering};
 }
 
-int ndfFromName(const std::string& field, const std::string& name) {
-  if (name == "beckmann") return kernel::GLINT_NDF_BECKMANN;
-  if (name == "ggx") return kernel::GLINT_NDF_GGX;
-  throw Error(field + " must be \"beckmann\" or \"ggx\", got \"" + name + "\"");
+namespace {
+
+// "a", "b" or "c", as a message lists a Choice field's names.
+std::string choiceList(GlintField field) {
+  std::vector<std::string> names;
+  for (const char* name : glintField(field).choices) {
+    if (name != nullptr) names.push_back("\"" + std::string(name) + "\"");
+  }
+  std::string list;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return list;
 }
 
+int choiceFromName(GlintField choice, const std::string& field, const std::string& name) {
+  const int value = glintChoiceValue(choice, name);
+  if (value < 0) throw Error(field + " must be " + choiceList(choice) + ", got \"" + name + "\"");
+  return value;
+}
+
+}  // namespace
+
+int ndfFromName(const std::string& field, const std::string& name) { return choiceFromName(GlintField::Ndf, field, name); }
 int maskingFromName(const std::string& field, const std::string& name) {
-  if (name == "v-cavity") return kernel::GLINT_MASKING_VCAVITY;
-  if (name == "smith") return kernel::GLINT_MASKING_SMITH;
-  throw Error(field + " must be \"v-cavity\" or \"smith\", got \"" + name + "\"");
+  return choiceFromName(GlintField::Masking, field, name);
 }
-
-int lodFromName(const std::string& field, const std::string& name) {
-  if (name == "paper") return kernel::GLINT_LOD_PAPER;
-  if (name == "consistent") return kernel::GLINT_LOD_CONSISTENT;
-  if (name == "tree") return kernel::GLINT_LOD_TREE;
-  throw Error(field + " must be \"paper\", \"consistent\" or \"tree\", got \"" + name + "\"");
-}
-
-const char* lodName(int lod) {
-  return lod == kernel::GLINT_LOD_CONSISTENT ? "consistent" : lod == kernel::GLINT_LOD_TREE ? "tree" : "paper";
-}
-
-const char* ndfName(int ndf) { return ndf == kernel::GLINT_NDF_GGX ? "ggx" : "beckmann"; }
-const char* maskingName(int masking) { return masking == kernel::GLINT_MASKING_SMITH ? "smith" : "v-cavity"; }
+int lodFromName(const std::string& field, const std::string& name) { return choiceFromName(GlintField::Lod, field, name); }
+const char* lodName(int lod) { return glintChoiceName(GlintField::Lod, lod); }
+const char* ndfName(int ndf) { return glintChoiceName(GlintField::Ndf, ndf); }
+const char* maskingName(int masking) { return glintChoiceName(GlintField::Masking, masking); }
 
 namespace {
 
@@ -163,29 +172,45 @@ void validateTarget(const MicrofacetTarget& target) {
 
 }  // namespace
 
+namespace {
+
+// `value` within the field's range (glint_fields.h), the message naming it as `name`.
+void requireFieldRange(const char* name, GlintField field, float value) {
+  const GlintFieldSpec& spec = glintField(field);
+  const auto low = static_cast<float>(spec.minimum);
+  const auto high = static_cast<float>(spec.maximum);
+  if (!spec.exclusiveMinimum) {
+    requireRange(name, value, low, high);
+  } else if (!(value > low && value <= high)) {
+    std::ostringstream message;
+    message << name << " must be in (" << low << ", " << high << "], got " << value;
+    throw Error(message.str());
+  }
+}
+
+}  // namespace
+
 void validateRoughness(glm::vec2 alpha) {
-  requireRange("alpha_x", alpha.x, kMinRoughnessAlpha, kMaxRoughnessAlpha);
-  requireRange("alpha_y", alpha.y, kMinRoughnessAlpha, kMaxRoughnessAlpha);
+  requireFieldRange("alpha_x", GlintField::Alpha, alpha.x);
+  requireFieldRange("alpha_y", GlintField::Alpha, alpha.y);
 }
 
 void validateSlopeCorrelation(float rho) {
   // |rho| = 1 is a degenerate Gaussian; the clamp keeps M^-1's 1 / sqrt(1 - rho^2) below 7.1.
-  requireRange("rho", rho, -kMaxSlopeCorrelation, kMaxSlopeCorrelation);
+  requireFieldRange("rho", GlintField::Rho, rho);
 }
 
 void validateGlintParameters(const GlintParameters& p) {
   validateRoughness(p.alpha);
   validateSlopeCorrelation(p.rho);
-  requireRange("log_density", p.logDensity, kMinLogDensity, kMaxLogDensity);
-  if (!(p.relativeArea > 0.0f && p.relativeArea <= 1.0f)) {
-    std::ostringstream message;
-    message << "relative_area must be in (0, 1], got " << p.relativeArea;
-    throw Error(message.str());
-  }
-  requireRange("density_randomisation", p.densityRandomisation, 0.0f, 10.0f);
-  requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
+  // Named as extras.glint and `glint eval` spell them; the glTF reader renames them as its file does.
+  requireFieldRange(glintField(GlintField::LogDensity).extras, GlintField::LogDensity, p.logDensity);
+  requireFieldRange(glintField(GlintField::RelativeArea).extras, GlintField::RelativeArea, p.relativeArea);
+  requireFieldRange(glintField(GlintField::DensityRandomization).extras, GlintField::DensityRandomization,
+                    p.densityRandomisation);
+  requireFieldRange(glintField(GlintField::MaxAnisotropy).extras, GlintField::MaxAnisotropy, p.maxAnisotropy);
   validateTarget(microfacetTarget(p));
-  if (p.lod != kernel::GLINT_LOD_PAPER && p.lod != kernel::GLINT_LOD_CONSISTENT && p.lod != kernel::GLINT_LOD_TREE) {
+  if (glintChoiceName(GlintField::Lod, p.lod)[0] == '\0') {
     throw Error("lod must be paper (0), consistent (1) or tree (2), got " + std::to_string(p.lod));
   }
   validateFootprintPolicy(p.footprintPolicy);

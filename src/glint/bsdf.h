@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/dictionary.h"
+#include "glint/glint_fields.h"
 #include "glint/kernel/glint_brdf.h"
 #include "glint/kernel/zirr_kaplanyan.h"
 
@@ -45,16 +46,15 @@ inline constexpr float kMinFootprintCells = 12.0f;
 GlintParameters defaultGlintParameters();
 // Throws Error naming the first parameter out of range (ranges in docs/conventions.md).
 void validateGlintParameters(const GlintParameters& parameters);
+// The ranges are glint_fields.h's (kGlintFields), for alpha on each axis and for rho.
 void validateRoughness(glm::vec2 alpha);
-// The roughness alpha accepted on each axis.
-inline constexpr float kMinRoughnessAlpha = 0.005f;
-inline constexpr float kMaxRoughnessAlpha = 2.0f;
-// The slope correlation: rho in (-1, 1), at most kMaxSlopeCorrelation in magnitude.
 void validateSlopeCorrelation(float rho);
-inline constexpr float kMaxSlopeCorrelation = 0.99f;
-// The log density's accepted range, D = ln(microfacets per unit uv area).
-inline constexpr float kMinLogDensity = 0.0f;
-inline constexpr float kMaxLogDensity = 100.0f;
+// The same ranges as constants, for sliders and clamps.
+inline constexpr float kMinRoughnessAlpha = static_cast<float>(glintField(GlintField::Alpha).minimum);
+inline constexpr float kMaxRoughnessAlpha = static_cast<float>(glintField(GlintField::Alpha).maximum);
+inline constexpr float kMaxSlopeCorrelation = static_cast<float>(glintField(GlintField::Rho).maximum);
+inline constexpr float kMinLogDensity = static_cast<float>(glintField(GlintField::LogDensity).minimum);
+inline constexpr float kMaxLogDensity = static_cast<float>(glintField(GlintField::LogDensity).maximum);
 
 // Fresnel reflectance at the microfacet: none (F = 1), Schlick, or an exact conductor.
 class Fresnel {

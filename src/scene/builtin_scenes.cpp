@@ -239,7 +239,7 @@ Material carPaint() {
   m.metallic = 1.0f;
   m.roughness = roughnessFor(0.3f);
   m.glint = glintLayer(0.3f, 12.0f, 4.0f);
-  m.glint.randomColours = true;
+  m.glint.colouredCells = true;
   return m;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -17,32 +18,6 @@ namespace glint::scene {
 namespace {
 
 using nlohmann::json;
-
-struct FieldNames {
-  GlintField field;
-  const char* extension;
-  const char* extras;
-};
-
-constexpr std::array<FieldNames, kGlintFieldCount> kFieldNames = {{
-    {GlintField::Ndf, "ndf", "ndf"},
-    {GlintField::Masking, "masking", "masking"},
-    {GlintField::MultipleScattering, "multipleScattering", "multiple_scattering"},
-    {GlintField::Alpha, "alpha", "alpha"},
-    {GlintField::Rho, "rho", "rho"},
-    {GlintField::LogDensity, "logDensity", "log_density"},
-    {GlintField::RelativeArea, "relativeArea", "relative_area"},
-    {GlintField::DensityRandomization, "densityRandomization", "density_randomisation"},
-    {GlintField::MaxAnisotropy, "maxAnisotropy", "max_anisotropy"},
-    {GlintField::PatternSeed, "patternSeed", "pattern_seed"},
-    {GlintField::UvScale, "uvScale", "uv_scale"},
-    {GlintField::RandomColors, "randomColors", "random_colours"},
-    {GlintField::Lod, "lod", "lod"},
-    {GlintField::LogDensityRange, "logDensityRange", "log_density_range"},
-    {GlintField::RoughnessTexture, "roughnessTexture", "roughness_texture"},
-    {GlintField::LogDensityTexture, "logDensityTexture", "log_density_texture"},
-    {GlintField::RelativeAreaTexture, "relativeAreaTexture", "relative_area_texture"},
-}};
 
 // Every glTF object may carry these two (glTF 2.0's glTFProperty): the extension's object and its
 // textureInfo objects accept them, and glint ignores what they hold.
@@ -208,10 +183,7 @@ MicrofacetTarget readTarget(const Reader& reader, MicrofacetTarget target) {
 }  // namespace
 
 const char* glintFieldName(GlintField field, GlintSpelling spelling) {
-  for (const FieldNames& names : kFieldNames) {
-    if (names.field == field) return spelling == GlintSpelling::Extension ? names.extension : names.extras;
-  }
-  return "";  // every field is in the table
+  return spelling == GlintSpelling::Extension ? glintField(field).extension : glintField(field).extras;
 }
 
 GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float roughness, MicrofacetTarget specular,
@@ -219,7 +191,7 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
   if (!fields.is_object()) throw Error("must be an object, got " + describeJsonValue(fields));
   const Reader reader(fields, spelling);
   std::array<GlintField, kGlintFieldCount> every{};
-  for (std::size_t i = 0; i < kGlintFieldCount; ++i) every[i] = kFieldNames[i].field;
+  for (std::size_t i = 0; i < kGlintFieldCount; ++i) every[i] = kGlintFields[i].field;
   // glTF properties may carry extensions and extras; extras.glint is itself inside extras.
   reader.refuseUnknown(every, spelling == GlintSpelling::Extension);
 
@@ -274,7 +246,7 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
         static_cast<std::uint32_t>(wholeField(reader.at(GlintField::PatternSeed), reader.name(GlintField::PatternSeed), 0, 0xffffffffu));
   }
   if (reader.has(GlintField::RandomColors)) {
-    layer.randomColours = booleanField(reader.at(GlintField::RandomColors), reader.name(GlintField::RandomColors));
+    layer.colouredCells = booleanField(reader.at(GlintField::RandomColors), reader.name(GlintField::RandomColors));
   }
   if (reader.has(GlintField::Lod)) {
     const json& lod = reader.at(GlintField::Lod);
@@ -303,6 +275,134 @@ MicrofacetTarget readGlintSpecularTarget(const json& fields, MicrofacetTarget sp
   const Reader reader(fields, GlintSpelling::Extras);
   reader.refuseUnknown(kTargetFields, false);
   return readTarget(reader, specular);
+}
+
+namespace {
+
+// The schema's JSON as glTF's schemas lay it out: four spaces an indent, an object's members one a
+// line, arrays (and the objects inside them) on one line.
+void writeSchemaJson(const nlohmann::ordered_json& value, int depth, bool inline_, std::string& out) {
+  if (value.is_object()) {
+    if (value.empty()) {
+      out += "{ }";
+      return;
+    }
+    const std::string indent(static_cast<std::size_t>(4 * (depth + 1)), ' ');
+    out += inline_ ? "{ " : "{\n";
+    bool first = true;
+    for (const auto& [key, member] : value.items()) {
+      if (!first) out += inline_ ? ", " : ",\n";
+      first = false;
+      if (!inline_) out += indent;
+      out += nlohmann::ordered_json(key).dump();
+      out += ": ";
+      writeSchemaJson(member, depth + 1, inline_ || member.is_array(), out);
+    }
+    if (inline_) {
+      out += " }";
+    } else {
+      out += '\n';
+      out.append(static_cast<std::size_t>(4 * depth), ' ');
+      out += '}';
+    }
+  } else if (value.is_array()) {
+    out += "[ ";
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      if (i > 0) out += ", ";
+      writeSchemaJson(value[i], depth, true, out);
+    }
+    out += " ]";
+  } else if (value.is_number_float()) {
+    // The shortest decimal that reads back as the double, with a point or an exponent (2.0, 0.005,
+    // 1.401298464324817e-45).
+    char text[32];
+    const auto written = std::to_chars(text, text + sizeof text, value.get<double>());
+    std::string number(text, written.ptr);
+    if (number.find_first_of(".e") == std::string::npos) number += ".0";
+    out += number;
+  } else {
+    out += value.dump();
+  }
+}
+
+// A value of a field as the schema writes it: a whole number for integers, a float otherwise.
+nlohmann::ordered_json schemaNumber(const GlintFieldSpec& spec, double value) {
+  if (spec.kind == GlintFieldKind::Integer) return static_cast<std::uint64_t>(value);
+  return value;
+}
+
+nlohmann::ordered_json fieldSchema(const GlintFieldSpec& spec) {
+  using ordered = nlohmann::ordered_json;
+  ordered field = ordered::object();
+  auto range = [&](ordered& into) {
+    into[spec.exclusiveMinimum ? "exclusiveMinimum" : "minimum"] = schemaNumber(spec, spec.minimum);
+    into["maximum"] = schemaNumber(spec, spec.maximum);
+  };
+  switch (spec.kind) {
+    case GlintFieldKind::Choice: {
+      field["type"] = "string";
+      ordered names = ordered::array();
+      for (const char* name : spec.choices) {
+        if (name != nullptr) names.push_back(name);
+      }
+      field["enum"] = names;
+      field["description"] = spec.meaning;
+      field["default"] = glintChoiceName(spec.field, static_cast<int>(spec.defaultValue));
+      break;
+    }
+    case GlintFieldKind::Boolean:
+      field["type"] = "boolean";
+      field["description"] = spec.meaning;
+      field["default"] = spec.defaultValue != 0.0;
+      break;
+    case GlintFieldKind::Number:
+    case GlintFieldKind::Integer:
+      field["type"] = spec.kind == GlintFieldKind::Integer ? "integer" : "number";
+      field["description"] = spec.meaning;
+      if (spec.hasDefault) field["default"] = schemaNumber(spec, spec.defaultValue);
+      range(field);
+      break;
+    case GlintFieldKind::Pair: {
+      field["type"] = "array";
+      field["description"] = spec.meaning;
+      ordered items = ordered::object();
+      items["type"] = "number";
+      range(items);
+      field["items"] = items;
+      field["minItems"] = 2;
+      field["maxItems"] = 2;
+      if (spec.hasDefault) field["default"] = ordered::array({spec.defaultValue, spec.defaultSecond});
+      break;
+    }
+    case GlintFieldKind::Texture:
+      field["allOf"] = ordered::array({ordered::object({{"$ref", "textureInfo.schema.json"}})});
+      field["description"] = spec.meaning;
+      break;
+  }
+  return field;
+}
+
+}  // namespace
+
+std::string glintExtensionSchema() {
+  using ordered = nlohmann::ordered_json;
+  ordered schema = ordered::object();
+  schema["$schema"] = "https://json-schema.org/draft/2020-12/schema";
+  schema["$id"] = std::string("material.") + kGlintExtensionName + ".schema.json";
+  schema["title"] = std::string(kGlintExtensionName) + " glTF Material Extension";
+  schema["type"] = "object";
+  schema["description"] =
+      "glTF extension that gives a material's specular lobe a procedural glint microstructure: discrete microfacets "
+      "that sparkle up close and average to a smooth microfacet lobe from afar.";
+  schema["allOf"] = ordered::array({ordered::object({{"$ref", "glTFProperty.schema.json"}})});
+  ordered properties = ordered::object();
+  for (const GlintFieldSpec& spec : kGlintFields) properties[spec.extension] = fieldSchema(spec);
+  for (const char* member : kPropertyMembers) properties[member] = ordered::object();
+  schema["properties"] = properties;
+  schema["additionalProperties"] = false;
+  std::string out;
+  writeSchemaJson(schema, 0, false, out);
+  return out + "\n";
 }
 
 }  // namespace glint::scene

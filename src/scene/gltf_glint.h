@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "glint/bsdf.h"
+#include "glint/glint_fields.h"
 #include "scene/scene.h"
 
 namespace glint::scene {
@@ -21,29 +22,7 @@ inline constexpr const char* kGlintExtensionName = "EXT_materials_glint";
 // "baseColorFactor"), extras.glint (and extras.glint_specular) in snake_case.
 enum class GlintSpelling { Extension, Extras };
 
-// A glint layer's fields.
-enum class GlintField {
-  Ndf,
-  Masking,
-  MultipleScattering,
-  Alpha,
-  Rho,
-  LogDensity,
-  RelativeArea,
-  DensityRandomization,
-  MaxAnisotropy,
-  PatternSeed,
-  UvScale,
-  RandomColors,
-  Lod,
-  LogDensityRange,
-  RoughnessTexture,
-  LogDensityTexture,
-  RelativeAreaTexture,
-};
-inline constexpr std::size_t kGlintFieldCount = 17;
-
-// The field's name in `spelling` ("relativeArea" or "relative_area").
+// The field's name in `spelling` ("relativeArea" or "relative_area"), from glint_fields.h.
 const char* glintFieldName(GlintField field, GlintSpelling spelling);
 
 // What reading a layer needs of the loader: the file's textures and where to note what it does not
@@ -78,5 +57,10 @@ GltfGlint readGlintLayer(const nlohmann::json& fields, GlintSpelling spelling, f
 // extras.glint_specular: the specular target (ndf, masking, multiple_scattering) of a material
 // without a glint layer. Throws Error as readGlintLayer does.
 MicrofacetTarget readGlintSpecularTarget(const nlohmann::json& fields, MicrofacetTarget specular);
+
+// EXT_materials_glint's JSON schema (draft 2020-12, in the style of glTF's own schemas), written from
+// the one table of the layer's fields (glint_fields.h): `glint extension-schema` writes it, and
+// extensions/EXT_materials_glint/schema/material.EXT_materials_glint.schema.json is its output.
+std::string glintExtensionSchema();
 
 }  // namespace glint::scene

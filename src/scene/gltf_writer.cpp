@@ -65,7 +65,7 @@ tinygltf::Value glintExtension(const GlintLayer& layer, const MicrofacetTarget& 
                                             ? tinygltf::Value(static_cast<int>(layer.patternSeed))
                                             : tinygltf::Value(static_cast<double>(layer.patternSeed));
   glint[name(GlintField::UvScale)] = number(layer.uvScale);
-  glint[name(GlintField::RandomColors)] = tinygltf::Value(layer.randomColours);
+  glint[name(GlintField::RandomColors)] = tinygltf::Value(layer.colouredCells);
   glint[name(GlintField::Lod)] = tinygltf::Value(std::string(lodName(layer.lod)));
   glint[name(GlintField::LogDensityRange)] = pair(layer.logDensityRange);
   const std::pair<GlintField, int> textures[] = {{GlintField::RoughnessTexture, layer.roughnessTexture},

@@ -73,7 +73,7 @@ kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTar
   m.hasLogDensityTexture = layer.logDensityTexture >= 0 ? 1u : 0u;
   m.ndf = target.ndf;
   m.masking = target.masking;
-  m.colouredCells = layer.randomColours ? 1u : 0u;
+  m.colouredCells = layer.colouredCells ? 1u : 0u;
   m.multipleScattering = target.multipleScattering ? 1u : 0u;
   m.enabled = layer.enabled ? 1u : 0u;
   m.lod = layer.lod;

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/bsdf.h"
+#include "glint/glint_fields.h"
 #include "glint/kernel/glint_material.h"
 
 namespace glint::scene {
@@ -46,21 +47,23 @@ struct Texture {
 // Cook-Torrance with the same roughness.
 struct GlintLayer {
   bool enabled = false;
-  glm::vec2 alpha{0.5f};          // roughness alpha_x, alpha_y (x along the tangent)
-  float rho = 0.0f;                // slope correlation of the target Beckmann, in (-1, 1)
-  float logDensity = 27.0f;
-  float relativeArea = 1.0f;
-  float densityRandomisation = 2.0f;
-  float maxAnisotropy = 8.0f;
-  std::uint32_t patternSeed = 0;
-  float uvScale = 1.0f;            // glint uv = mesh uv * uvScale (density is per glint-uv area)
-  bool randomColours = false;      // each cell's glints get a random colour (car paint)
-  int lod = 0;                     // kernel::GLINT_LOD_PAPER or GLINT_LOD_CONSISTENT (docs/method.md 2.7)
+  glm::vec2 alpha{0.5f};  // roughness alpha_x, alpha_y (x along the tangent); a glTF file's default is its roughness^2
+  // The others' defaults and ranges are glint_fields.h's (kGlintFields), their meaning too.
+  float rho = glintDefaultFloat(GlintField::Rho);
+  float logDensity = glintDefaultFloat(GlintField::LogDensity);
+  float relativeArea = glintDefaultFloat(GlintField::RelativeArea);
+  float densityRandomisation = glintDefaultFloat(GlintField::DensityRandomization);
+  float maxAnisotropy = glintDefaultFloat(GlintField::MaxAnisotropy);
+  std::uint32_t patternSeed = static_cast<std::uint32_t>(glintField(GlintField::PatternSeed).defaultValue);
+  float uvScale = glintDefaultFloat(GlintField::UvScale);  // glint uv = mesh uv * uvScale
+  bool colouredCells = glintDefaultBoolean(GlintField::RandomColors);
+  int lod = glintDefaultChoice(GlintField::Lod);  // kernel::GLINT_LOD_PAPER, _CONSISTENT or _TREE (docs/method.md 2.7, 2.8)
   // Optional textures (indices into Scene::textures, -1 for none); each multiplies or replaces
   // the constant above as documented in docs/scenes.md.
   int roughnessTexture = -1;       // R channel multiplies alpha (result clamped to [0.01, 2])
   int logDensityTexture = -1;      // R channel maps linearly onto logDensityRange
-  glm::vec2 logDensityRange{15.0f, 35.0f};
+  glm::vec2 logDensityRange{glintDefaultFloat(GlintField::LogDensityRange),
+                            static_cast<float>(glintField(GlintField::LogDensityRange).defaultSecond)};
   int relativeAreaTexture = -1;    // R channel multiplies relativeArea
 };
 
@@ -117,8 +120,9 @@ struct Material {
 };
 
 // glTF's metallic-roughness specular lobe: GGX, height-correlated Smith, and the compensation of
-// the energy its single scattering loses.
-inline constexpr MicrofacetTarget kGltfSpecular{kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH, true};
+// the energy its single scattering loses: EXT_materials_glint's defaults (glint_fields.h).
+inline constexpr MicrofacetTarget kGltfSpecular{glintDefaultChoice(GlintField::Ndf), glintDefaultChoice(GlintField::Masking),
+                                                glintDefaultBoolean(GlintField::MultipleScattering)};
 
 struct Light {
   enum class Type { Point, Directional, Spot };

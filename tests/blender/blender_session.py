@@ -115,6 +115,30 @@ def import_layers(zip_path, source):
                                "uv_scale": m.glint_layer.uv_scale} for m in bpy.data.materials}))
 
 
+def fields(zip_path):
+    """The Blender properties of the glint layer as Blender holds them: each one's bounds, default and
+    choices, keyed by the extension's name, for the test to hold against the extension's schema."""
+    enable_addon(zip_path)
+    from glint_gltf import layer
+    rna = bpy.types.Material.bl_rna.properties["glint_layer"].fixed_type.bl_rna.properties
+    result = {}
+    for field in layer.FIELDS:
+        prop = rna[field.name]
+        entry = {"type": prop.type}
+        if prop.type in ("FLOAT", "INT"):
+            entry.update(hard_min=prop.hard_min, hard_max=prop.hard_max)
+            entry["default"] = list(prop.default_array) if prop.array_length else prop.default
+        elif prop.type == "BOOLEAN":
+            entry["default"] = prop.default
+        elif prop.type == "ENUM":
+            entry["default"] = prop.default
+            entry["items"] = [item.identifier for item in prop.enum_items]
+        entry["range"] = [field.minimum, field.maximum, field.exclusive_minimum]
+        entry["choices"] = [value for value, _, _ in field.choices] if field.choices else None
+        result[field.json_name] = entry
+    print(json.dumps(result))
+
+
 def luminance(pixels):
     return 0.2126 * pixels[..., 0] + 0.7152 * pixels[..., 1] + 0.0722 * pixels[..., 2]
 
@@ -147,7 +171,7 @@ def main():
     arguments = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     actions = {"roundtrip": (roundtrip, 3), "author": (author, 3),
                "export-without-addon": (export_without_addon, 2), "import-layers": (import_layers, 2),
-               "glint-pixels": (glint_pixels, 2)}
+               "glint-pixels": (glint_pixels, 2), "fields": (fields, 1)}
     if not arguments or arguments[0] not in actions or len(arguments) != actions[arguments[0]][1] + 1:
         fail("usage: blender -b --factory-startup --python blender_session.py -- ACTION ARGS (see the file)")
     action, _ = actions[arguments[0]]

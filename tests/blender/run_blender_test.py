@@ -4,6 +4,7 @@
     run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR roundtrip SCENE
     run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR authored
     run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR import-checks
+    run_blender_test.py --blender BLENDER --glint GLINT --addon-zip ZIP --work DIR --schema SCHEMA fields
 
 roundtrip SCENE: `glint export SCENE -o a.glb`; Blender, with the add-on installed from ZIP, imports
 a.glb and exports b.glb; `glint render` of b.glb matches that of a.glb within ROUNDTRIP_RELATIVE_MSE.
@@ -13,6 +14,8 @@ same .blend exported by Blender without the add-on enabled has no glint layer an
 import-checks: the add-on's importer refuses a value outside the extension's range (one line naming
 the file, the material and the value; the material imported without its layer), takes booleans
 written as 0 and 1, and keeps a pattern seed over Blender's largest integer modulo 2^31, saying so.
+fields: the add-on's Blender properties (bounds, defaults, choices) are those of the extension's
+JSON schema SCHEMA, which glint writes from its one table of the layer's fields.
 
 Each Blender session runs with its user scripts and preferences in DIR (BLENDER_USER_SCRIPTS,
 BLENDER_USER_CONFIG), so that the add-on installs there and nothing of the user's is read or
@@ -24,6 +27,7 @@ import os
 import pathlib
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -246,13 +250,56 @@ def import_checks(h):
           "relativeArea 1e-46 is refused in one line: %s" % warnings)
 
 
+def fields(h, schema_file):
+    """The add-on's Blender properties against EXT_materials_glint's schema in the repository (which
+    glint's own test holds equal to what glint writes from its table): the same properties, bounds
+    (the exclusive minimum 0 as the smallest positive float, the seed's maximum as Blender's largest
+    integer), defaults (alpha's is the roughness 0.5 squared) and choices."""
+    properties = json.loads(pathlib.Path(schema_file).read_text())["properties"]
+    output = h.blender_session("fields", h.zip)
+    held = json.loads(next(l for l in output.splitlines() if l.startswith("{")))
+    names = sorted(n for n in properties if n not in ("extensions", "extras"))
+    check(sorted(held) == names, "the add-on's fields are the schema's properties: %s" % sorted(held))
+    for name in names:
+        schema, blender = properties[name], held[name]
+        bounds = schema.get("items", schema)
+        if "maximum" in bounds:
+            low = bounds.get("exclusiveMinimum", bounds.get("minimum"))
+            exclusive = "exclusiveMinimum" in bounds
+            check(blender["range"] == [low, bounds["maximum"], exclusive],
+                  "%s: the importer's range %s is the schema's" % (name, blender["range"]))
+            float32 = lambda v: struct.unpack("<f", struct.pack("<f", v))[0]
+            expected_low = 1.401298464324817e-45 if exclusive else low
+            expected_high = min(bounds["maximum"], 2**31 - 1) if blender["type"] == "INT" else bounds["maximum"]
+            same = (lambda a, b: a == b) if blender["type"] == "INT" else (lambda a, b: float32(a) == float32(b))
+            check(same(blender["hard_min"], expected_low) and same(blender["hard_max"], expected_high),
+                  "%s: Blender's bounds [%r, %r] are the schema's" % (name, blender["hard_min"], blender["hard_max"]))
+        if "default" in schema:
+            default = schema["default"]
+            if blender["type"] == "ENUM":
+                check(blender["default"] == default.upper().replace("-", "_"), "%s: default %s" % (name, blender["default"]))
+            elif isinstance(default, list):
+                check([float32(v) for v in blender["default"]] == [float32(v) for v in default],
+                      "%s: default %s is the schema's %s" % (name, blender["default"], default))
+            else:
+                check(blender["default"] == default, "%s: default %r is the schema's %r" % (name, blender["default"], default))
+        elif name == "alpha":
+            check(blender["default"] == [0.25, 0.25], "alpha: default %s (the roughness 0.5 squared)" % blender["default"])
+        if "enum" in schema:
+            check(blender["choices"] == schema["enum"] and
+                  blender["items"] == [v.upper().replace("-", "_") for v in schema["enum"]],
+                  "%s: choices %s are the schema's" % (name, blender["choices"]))
+    print("fields: %d properties as the schema gives them" % len(names))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--blender", required=True)
     parser.add_argument("--glint", required=True)
     parser.add_argument("--addon-zip", required=True)
     parser.add_argument("--work", required=True)
-    parser.add_argument("case", choices=["roundtrip", "authored", "import-checks"])
+    parser.add_argument("--schema", help="the extension's JSON schema (case fields)")
+    parser.add_argument("case", choices=["roundtrip", "authored", "import-checks", "fields"])
     parser.add_argument("scene", nargs="?")
     args = parser.parse_args()
     if shutil.which(args.blender) is None:
@@ -266,6 +313,10 @@ def main():
             roundtrip(h, args.scene)
         elif args.case == "authored":
             authored(h)
+        elif args.case == "fields":
+            if not args.schema:
+                parser.error("fields needs --schema")
+            fields(h, args.schema)
         else:
             import_checks(h)
     except Failure as failure:

@@ -85,6 +85,18 @@ foreach(file IN LISTS build_lines)
 endforeach()
 run("build the examples" ${CMAKE_COMMAND} --build ${WORK}/build --parallel 2)
 
+# A consumer that sets no C++ standard (tests/install/no_standard): the compiler's default standard
+# must not be what it builds with, the exported targets bring C++20.
+set(no_standard ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/no_standard -B ${WORK}/no_standard
+    -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF)
+if(EXAMPLE_FLAGS)
+  list(APPEND no_standard "-DCMAKE_CXX_FLAGS=${EXAMPLE_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXAMPLE_FLAGS}")
+endif()
+run("configure a consumer that sets no C++ standard" ${no_standard})
+run("build a consumer that sets no C++ standard" ${CMAKE_COMMAND} --build ${WORK}/no_standard)
+run("run a consumer that sets no C++ standard" ${WORK}/no_standard/glint_no_standard)
+
 # The path tracer: the glinty sphere with the dictionary the installed glint wrote, the smooth one
 # with a dictionary generated at start (which it does not shade with).
 set(tracer ${WORK}/build/path_tracer/glint_path_tracer)

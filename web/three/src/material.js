@@ -3,27 +3,30 @@
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
 import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
+import { EXTENSION_FIELD } from './fields.js';
 import { LAYER_NAME_CHOICES, addGlintLayerToShader } from './shader.js';
 
 // A glint layer's parameters, named as the kernel's GlintMaterial (kernel/glint_material.h) is:
 // this object is the value of the shader's `uniform GlintMaterial glintMaterial`. Defaults are
-// the extension's (alpha's is the core roughness squared: MeshGlintMaterial sets it).
+// the extension's, from its schema (src/fields.js); alpha's is the core roughness squared
+// (MeshGlintMaterial sets it), here that of three's default roughness 0.5.
+const defaultOf = (name) => EXTENSION_FIELD[name].default;
 export class GlintLayer {
   constructor() {
     this.alpha = new Vector2(0.25, 0.25);  // the target's roughness along the tangent and the bitangent
-    this.rho = 0;                          // slope correlation
-    this.logDensity = 27;                  // ln(microfacets per unit glint-uv area)
-    this.relativeArea = 1;                 // the share of cells with microfacets
-    this.densityRandomisation = 2;
-    this.maxAnisotropy = 8;
-    this.patternSeed = 0;                  // an unsigned 32-bit integer
-    this.logDensityRange = new Vector2(15, 35);  // what logDensityTexture's 0 and 1 map to
-    this.uvScale = 1;                      // glint uv = TEXCOORD_0 * uvScale
-    this.ndf = 'ggx';                      // or 'beckmann'
-    this.masking = 'smith';                // or 'v-cavity'
-    this.colouredCells = false;            // EXT_materials_glint's randomColors
-    this.multipleScattering = true;
-    this.lod = 'paper';                    // or 'consistent' (docs/method.md 2.7) or 'tree' (2.8: needs a
+    this.rho = defaultOf('rho');           // slope correlation
+    this.logDensity = defaultOf('logDensity');  // ln(microfacets per unit glint-uv area)
+    this.relativeArea = defaultOf('relativeArea');  // the share of cells with microfacets
+    this.densityRandomisation = defaultOf('densityRandomization');
+    this.maxAnisotropy = defaultOf('maxAnisotropy');
+    this.patternSeed = defaultOf('patternSeed');  // an unsigned 32-bit integer
+    this.logDensityRange = new Vector2(...defaultOf('logDensityRange'));  // what logDensityTexture's 0 and 1 map to
+    this.uvScale = defaultOf('uvScale');   // glint uv = TEXCOORD_0 * uvScale
+    this.ndf = defaultOf('ndf');           // 'ggx' or 'beckmann'
+    this.masking = defaultOf('masking');   // 'smith' or 'v-cavity'
+    this.colouredCells = defaultOf('randomColors');  // EXT_materials_glint's randomColors
+    this.multipleScattering = defaultOf('multipleScattering');
+    this.lod = defaultOf('lod');           // 'paper', 'consistent' (docs/method.md 2.7) or 'tree' (2.8: needs a
                                            // dictionary with tree levels, `glint dict --tree-levels`)
     this.roughnessTexture = null;          // three Textures, their R channel read as data
     this.logDensityTexture = null;

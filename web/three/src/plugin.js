@@ -12,35 +12,21 @@
 // plain MeshPhysicalMaterial.
 import { MeshPhysicalMaterial } from 'three';
 import { GlintLayer, MeshGlintMaterial } from './material.js';
-import { LAYER_NAME_CHOICES } from './shader.js';
+import { EXTENSION_FIELD, EXTENSION_FIELDS } from './fields.js';
 
 export const EXTENSION_NAME = 'EXT_materials_glint';
 
-// The extension's properties: [name in the file, layer field, kind, lower bound, upper bound,
-// bounds inclusive]; the ranges are the schema's (material.EXT_materials_glint.schema.json).
-const NUMBERS = [
-  ['rho', 'rho', -0.99, 0.99],
-  ['logDensity', 'logDensity', 0, 100],
-  ['relativeArea', 'relativeArea', 0, 1, 'exclusive minimum'],
-  ['densityRandomization', 'densityRandomisation', 0, 10],
-  ['maxAnisotropy', 'maxAnisotropy', 1, 64],
-  ['uvScale', 'uvScale', 1.401298464324817e-45, 3.4028234663852886e38],  // positive 32-bit floats
-];
-const PAIRS = [
-  ['alpha', 'alpha', 0.005, 2],
-  ['logDensityRange', 'logDensityRange', 0, 100],
-];
-const BOOLEANS = [
-  ['randomColors', 'colouredCells'],
-  ['multipleScattering', 'multipleScattering'],
-];
-const NAMES = Object.entries(LAYER_NAME_CHOICES).map(([field, names]) => [field, field, names]);  // the same spelling in the file
-const TEXTURES = [
-  ['roughnessTexture', 'roughnessTexture'],
-  ['logDensityTexture', 'logDensityTexture'],
-  ['relativeAreaTexture', 'relativeAreaTexture'],
-];
-const KNOWN = new Set(['patternSeed', 'extensions', 'extras', ...[NUMBERS, PAIRS, BOOLEANS, NAMES, TEXTURES].flat().map((p) => p[0])]);
+// The extension's properties by kind, from its schema (src/fields.js): [name in the file, layer
+// field, lower bound, upper bound, exclusive lower bound] for numbers and pairs, [name, field] for
+// booleans and textures, [name, field, allowed names] for choices.
+const ofKind = (kind) => EXTENSION_FIELDS.filter((f) => f.kind === kind);
+const NUMBERS = ofKind('number').map((f) => [f.name, f.field, f.minimum, f.maximum, f.exclusiveMinimum]);
+const PAIRS = ofKind('pair').map((f) => [f.name, f.field, f.minimum, f.maximum]);
+const BOOLEANS = ofKind('boolean').map((f) => [f.name, f.field]);
+const NAMES = ofKind('choice').map((f) => [f.name, f.field, f.choices]);
+const TEXTURES = ofKind('texture').map((f) => [f.name, f.field]);
+const SEED = EXTENSION_FIELD.patternSeed;
+const KNOWN = new Set(['extensions', 'extras', ...EXTENSION_FIELDS.map((f) => f.name)]);
 
 // The layer of one material's extension object, without its textures. A value outside the
 // extension's range is refused, not clamped (the README's rule), with an Error naming the
@@ -64,8 +50,9 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
     const range = `${exclusive ? '(' : '['}${low}, ${high}]`;
     if (!inRange(value, low, high, exclusive)) fail(`${name} must be a number in ${range}, got ${JSON.stringify(value)}`);
     // The shader holds 32-bit floats: a value no float holds but 0 (1e-46) would be 0, outside an
-    // exclusive minimum of 0, as glint's loader refuses it.
-    if (!inRange(Math.fround(value), low, high, exclusive)) {
+    // exclusive minimum of 0, as glint's loader refuses it. Compared with the bounds as floats too,
+    // as glint's loader compares them: 0.99 is a float a little above 0.99, and rho's maximum.
+    if (!inRange(Math.fround(value), Math.fround(low), Math.fround(high), exclusive)) {
       fail(`${name} ${JSON.stringify(value)} is too small for a 32-bit float and would be 0: ${name} must be in ${range}`);
     }
     layer[field] = value;
@@ -93,7 +80,9 @@ export function glintLayerFromExtension(extension, coreRoughness, where) {
   }
   if (extension.patternSeed !== undefined) {
     const seed = extension.patternSeed;
-    if (!Number.isInteger(seed) || seed < 0 || seed > 4294967295) fail(`patternSeed must be an integer in [0, 4294967295], got ${JSON.stringify(seed)}`);
+    if (!Number.isInteger(seed) || seed < SEED.minimum || seed > SEED.maximum) {
+      fail(`patternSeed must be an integer in [${SEED.minimum}, ${SEED.maximum}], got ${JSON.stringify(seed)}`);
+    }
     layer.patternSeed = seed;
   }
   return layer;

@@ -89,7 +89,7 @@ try {
                 'EXT_materials_glint.relativeArea 1e-46 is too small for a 32-bit float and would be 0: relativeArea must be in (0, 1]');
   check(layer({ rho: -1e-46 })().rho === -1e-46, 'rho -1e-46 is read (0 is in its range)');
   expectRefused('randomColors "yes"', layer({ randomColors: 'yes' }), 'EXT_materials_glint.randomColors must be true or false');
-  expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "ggx" or "beckmann"');
+  expectRefused('ndf "phong"', layer({ ndf: 'phong' }), 'EXT_materials_glint.ndf must be "beckmann" or "ggx"');
   expectRefused('a misspelt property', layer({ logDenisty: 14 }), 'EXT_materials_glint.logDenisty is not a property');
   expectRefused('patternSeed -1', layer({ patternSeed: -1 }), 'EXT_materials_glint.patternSeed must be an integer');
   // lod "tree": drawn with a dictionary that holds tree levels (`glint dict --tree-levels`, format
@@ -231,6 +231,51 @@ try {
   live.onBeforeRender();
   check(afterNumber === version && afterNdf === version + 1 && live.version === afterNdf && live.customProgramCacheKey().startsWith('glint:beckmann:'),
         `changing ndf asks three for another program once, changing a number does not (versions ${version}, ${afterNumber}, ${afterNdf}, ${live.version})`);
+
+  // The layer's fields as the repository's schema gives them (which glint's own test holds equal to
+  // what glint writes from its table): GlintLayer's defaults are the schema's, and the plugin
+  // accepts each range's ends and refuses a value just past them. A default or range written into
+  // the package by hand, and changed in one place only, fails here.
+  {
+    const schemaFile = path.resolve(packageRoot, '..', '..', 'extensions', 'EXT_materials_glint', 'schema',
+                                    'material.EXT_materials_glint.schema.json');
+    const schema = JSON.parse(readFileSync(schemaFile, 'utf8'));
+    const { GlintLayer } = await import('../src/material.js');
+    const layer = new GlintLayer();
+    const layerName = { densityRandomization: 'densityRandomisation', randomColors: 'colouredCells' };
+    const valueOf = (v) => (v && v.isVector2 ? [v.x, v.y] : v);
+    for (const [name, property] of Object.entries(schema.properties)) {
+      if (property.default === undefined) continue;
+      const field = layerName[name] || name;
+      check(JSON.stringify(valueOf(layer[field])) === JSON.stringify(property.default),
+            `GlintLayer.${field} defaults to the schema's ${name} default ${JSON.stringify(property.default)} (got ${JSON.stringify(valueOf(layer[field]))})`);
+    }
+    const accepts = (fields) => {
+      try {
+        glintLayerFromExtension(fields, 0.5, 'schema range');
+        return true;
+      } catch (error) {
+        return false;
+      }
+    };
+    for (const [name, property] of Object.entries(schema.properties)) {
+      const range = property.type === 'array' ? property.items : property;
+      if (range.maximum === undefined) continue;
+      const low = range.exclusiveMinimum !== undefined ? range.exclusiveMinimum : range.minimum;
+      const wrap = (v) => (property.type === 'array' ? { [name]: [v, v] } : { [name]: v });
+      // Just past an end: a step of a millionth of the range's span (an integer's: 1), within a
+      // double's precision at every end of the schema's ranges.
+      const step = property.type === 'integer' ? 1 : Math.min(1e-6 * (range.maximum - low), 1e-6 * Math.max(Math.abs(range.maximum), 1e-30));
+      const atEnds = (range.exclusiveMinimum === undefined ? accepts(wrap(low)) : !accepts(wrap(low))) && accepts(wrap(range.maximum));
+      const pastEnds = !accepts(wrap(low - step)) && !accepts(wrap(range.maximum + step * (range.maximum > 1e30 ? 1e30 : 1)));
+      check(atEnds && pastEnds, `the plugin's ${name} range is the schema's (${range.exclusiveMinimum !== undefined ? '(' : '['}${low}, ${range.maximum}])`);
+    }
+    for (const [name, property] of Object.entries(schema.properties)) {
+      if (!property.enum) continue;
+      const every = property.enum.every((choice) => accepts({ [name]: choice }));
+      check(every && !accepts({ [name]: `${property.enum[0]}-not` }), `the plugin's ${name} names are the schema's (${property.enum.join(', ')})`);
+    }
+  }
 
   // A dictionary that cannot be fetched: its failure comes where the dictionary is used, and not
   // also as an unhandled rejection.
