@@ -37,6 +37,7 @@
 #endif
 #include "glint_brdf.h"
 #include "glint_material_block.glsl"
+#include "surface.h"
 #include "multiple_scattering.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
@@ -123,13 +124,10 @@ vec3 irradiance(vec3 n) {
          uIrradianceSh[7] * (1.092548f * n.x * n.z) + uIrradianceSh[8] * (0.546274f * (n.x * n.x - n.y * n.y));
 }
 
-void main() {
-  // The glint footprint: screen-space derivatives of the glint uv, taken first, in uniform
-  // control flow, before any branch that pixels of a quad could take differently.
-  vec2 glintUv = glintMaterialUv(uGlintMaterial, vUv);
-  vec2 duvdx = dFdx(glintUv);
-  vec2 duvdy = dFdy(glintUv);
-
+// The surface's inputs as this renderer looks them up; the kernel assembles the surface from them
+// (surface.h), as the path tracer assembles its own. Called in uniform control flow: the normal
+// map's moments take derivatives.
+GlintSurfaceSamples surfaceSamples() {
   // Without transforms the lookups take the interpolated uv itself, which llvmpipe differentiates
   // for the mip level more cheaply than a computed one.
 #if TEXTURE_TRANSFORMS
@@ -137,111 +135,97 @@ void main() {
 #else
 #define TEXTURE_UV(transform) vUv
 #endif
-  vec4 baseColour = uBaseColour * texture(uBaseColourTexture, TEXTURE_UV(uBaseColourUv));
+  GlintSurfaceSamples samples;
+  samples.baseColour = uBaseColour * texture(uBaseColourTexture, TEXTURE_UV(uBaseColourUv));
 #if VERTEX_COLOURS
-  baseColour *= vColour;
+  samples.baseColour *= vColour;
 #endif
   vec4 metallicRoughness = texture(uMetallicRoughnessTexture, TEXTURE_UV(uMetallicRoughnessUv));
-  float metallic = uMetallic * metallicRoughness.b;
-  float roughness = clamp(uRoughness * metallicRoughness.g, 0.03f, 1.0f);
-  vec3 emissive = uEmissive * texture(uEmissiveTexture, TEXTURE_UV(uEmissiveUv)).rgb;
-  float occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, TEXTURE_UV(uOcclusionUv)).r - 1.0f);
-
-  // Shading frame: the normal map's normal, the tangent re-orthogonalised against it; sheets seen
-  // from behind (curtains) are shaded on the side facing the camera.
-  vec3 view = normalize(uCameraPoint.xyz - uCameraPoint.w * vPosition);
-  vec3 n = normalize(vNormal);
-  vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
-  vec3 b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
+  samples.metallicRoughness = vec2(uMetallic * metallicRoughness.b, uRoughness * metallicRoughness.g);
+  samples.emission = uEmissive * texture(uEmissiveTexture, TEXTURE_UV(uEmissiveUv)).rgb;
+  samples.occlusion = 1.0f + uOcclusionStrength * (texture(uOcclusionTexture, TEXTURE_UV(uOcclusionUv)).r - 1.0f);
+  samples.normal = vNormal;
+  samples.tangent = vTangent;
+  samples.view = normalize(uCameraPoint.xyz - uCameraPoint.w * vPosition);
+  samples.normalMapCovariance = vec3(0.0f);
 #if GLINT_LEAN
-  // The footprint's mean slope (the moments were made with the normal scale applied); the slopes'
-  // covariance widens the glint layer below.
+  // The normal map's slope moments at the footprint (made with the normal scale applied): their
+  // mean tilts the normal, their covariance widens the glint layer (surface.h).
   vec2 leanUv = TEXTURE_UV(uNormalUv);
   vec3 leanFirst = texture(uLeanFirstMoments, leanUv).xyz;
   vec3 leanSecond = texture(uLeanSecondMoments, leanUv).xyz;
   float leanLambda = glintTextureLevelOfDetail(dFdx(leanUv), dFdy(leanUv), vec2(textureSize(uLeanFirstMoments, 0)));
-  vec3 mapped = glintLeanMeanNormal(leanFirst);
+  samples.mappedNormal = glintLeanMeanNormal(leanFirst);
+  samples.normalMapCovariance = glintLeanSlopeCovariance(leanFirst, leanSecond, leanLambda);
 #else
 #if NORMAL_MAP_FINEST
-  vec3 mapped = textureLod(uNormalTexture, TEXTURE_UV(uNormalUv), 0.0f).xyz * 2.0f - 1.0f;
+  samples.mappedNormal = textureLod(uNormalTexture, TEXTURE_UV(uNormalUv), 0.0f).xyz * 2.0f - 1.0f;
 #else
-  vec3 mapped = texture(uNormalTexture, TEXTURE_UV(uNormalUv)).xyz * 2.0f - 1.0f;
+  samples.mappedNormal = texture(uNormalTexture, TEXTURE_UV(uNormalUv)).xyz * 2.0f - 1.0f;
 #endif
-  mapped.xy *= uNormalScale;
+  samples.mappedNormal.xy *= uNormalScale;
 #endif
-  n = normalize(mat3(t, b, n) * mapped);
-  if (dot(n, view) < 0.0f) {
-    n = -n;
-  }
-  t = normalize(t - n * dot(n, t));
-  b = cross(n, t) * (vTangent.w < 0.0f ? -1.0f : 1.0f);
-  vec3 wo = vec3(dot(view, t), dot(view, b), max(dot(view, n), 1e-4f));
+  samples.glintSamples = vec3(texture(uGlintRoughnessTexture, vUv).r, texture(uGlintLogDensityTexture, vUv).r,
+                              texture(uGlintRelativeAreaTexture, vUv).r);
+  return samples;
+}
 
-  // The glint layer's parameters from its textures' samples (kernel/glint_material.h, as the path
-  // tracer's). Coloured cells, the target and its compensation are the material's own, compiled
-  // in (one program per variant, forwardVariant in src/gl/renderer.cpp): llvmpipe executes both
-  // sides of a branch, so read from the block they would make every glint material pay for the
-  // colours and for every target.
+// The material's glint layer with what the program compiles in: coloured cells, the target and
+// its compensation, the LOD construction (one program per variant, forwardVariant in
+// src/gl/renderer.cpp). llvmpipe executes both sides of a branch, so read from the block they
+// would make every glint material pay for the colours and for every target.
+GlintMaterial compiledGlintMaterial() {
   GlintMaterial material = uGlintMaterial;
   material.colouredCells = uint(GLINT_COLOURED_CELLS);
   material.ndf = GLINT_NDF;
   material.masking = GLINT_MASKING;
   material.multipleScattering = uint(GLINT_MULTIPLE_SCATTERING);
   material.lod = GLINT_LOD_CONSTRUCTION;
-  GlintFootprintPolicy footprintPolicy;
-  footprintPolicy.maxAnisotropy = uGlintFootprintPolicy.x;
-  footprintPolicy.maxCells = uGlintFootprintPolicy.y;
-  footprintPolicy.minBlend = uGlintFootprintPolicy.z;
-  GlintParameters params = glintMaterialParameters(material, texture(uGlintRoughnessTexture, vUv).r,
-                                                   texture(uGlintLogDensityTexture, vUv).r,
-                                                   texture(uGlintRelativeAreaTexture, vUv).r, footprintPolicy);
-#if GLINT_LEAN
-  // The normal map's slope covariance over the footprint, measured in the tangent frame, added to
-  // the glint layer's in the tilted shading frame (a small-tilt approximation, as the authors'),
-  // correlation included. (Filtering the glints by it instead, as by the pixel's own kernel, was
-  // measured and did worse: docs/antialiasing.md, "Normal-map filtering".)
-  vec3 leanRoughness =
-      glintLeanCombinedRoughness(params.alpha, params.rho, glintLeanSlopeCovariance(leanFirst, leanSecond, leanLambda));
-  params.alpha = vec2(leanRoughness.x, leanRoughness.y);
-  params.rho = leanRoughness.z;
-#endif
-  GlintDictionaryView dict = glintDictionary();
+  return material;
+}
 
-  vec3 f0 = mix(vec3(0.04f), baseColour.rgb, metallic);
-  vec3 diffuse = baseColour.rgb * (1.0f - metallic) / GLINT_PI;
-  vec2 specularAlpha = GLINT_LAYER ? params.alpha : vec2(roughness * roughness);
+GlintFootprintPolicy frameFootprintPolicy() {
+  GlintFootprintPolicy policy;
+  policy.maxAnisotropy = uGlintFootprintPolicy.x;
+  policy.maxCells = uGlintFootprintPolicy.y;
+  policy.minBlend = uGlintFootprintPolicy.z;
+  return policy;
+}
 
-  // Each light's direction in the shading frame, its squared distance (1 for a directional one)
-  // and the fraction of its intensity that its cone sends this way and its range lets arrive (1
-  // for a directional light).
-  vec3 lightDirection[GLINT_SLOPE_COUNT];
-  float lightDistance2[GLINT_SLOPE_COUNT];
-  float lightFalloff[GLINT_SLOPE_COUNT];
+// Each light's direction in the shading frame, its squared distance (1 for a directional one) and
+// its falloff: the fraction of its intensity that its cone sends this way, its range lets arrive and
+// its shadow lets through.
+void gatherLights(GlintSurface surface, out vec3 direction[GLINT_SLOPE_COUNT], out float distance2[GLINT_SLOPE_COUNT],
+                  out float falloff[GLINT_SLOPE_COUNT]) {
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 toLight = uLightPosition[i].xyz - vPosition * uLightPosition[i].w;
-    lightDistance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
+    distance2[i] = uLightPosition[i].w > 0.0f ? dot(toLight, toLight) : 1.0f;
     vec3 l = normalize(toLight);
-    lightDirection[i] = vec3(dot(l, t), dot(l, b), dot(l, n));
-    lightFalloff[i] = glintSpotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * glintRangeWindow(lightDistance2[i], uLightInverseRange[i]);
+    direction[i] = vec3(dot(l, surface.t), dot(l, surface.b), dot(l, surface.n));
+    falloff[i] = glintSpotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * glintRangeWindow(distance2[i], uLightInverseRange[i]);
 #if SHADOWS
-    lightFalloff[i] *= shadowVisibility(i, vPosition, normalize(vNormal), l, sqrt(lightDistance2[i]));
+    falloff[i] *= shadowVisibility(i, vPosition, normalize(vNormal), l, sqrt(distance2[i]));
 #endif
   }
+}
 
 #if SPECULAR_MODEL == SPECULAR_GLINT
-  // The glint P-SDF at every light's half vector, from one walk over the footprint's cells. A light
-  // below the horizon, or whose slope is negligible (glintSlopeIsNegligible), reflects nothing; when
-  // no light is left the walk is skipped.
-  GlintSlopeSet glintSlopes;
-  bool glintLit[GLINT_SLOPE_COUNT];
-  bool anyGlintLit = false;
+// The glint P-SDF at every light's half vector, from one walk over the footprint's cells. A light
+// below the horizon, or whose slope is negligible (glintSlopeIsNegligible), reflects nothing (its
+// p22 is 0); when no light is left the walk is skipped. Called in uniform control flow: the
+// anti-aliasing filter takes the slopes' screen derivatives.
+GlintP22Set litGlintP22s(GlintDictionaryView dict, GlintSurface surface, vec3 lightDirection[GLINT_SLOPE_COUNT],
+                         vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+  GlintSlopeSet slopes;
+  bool lit[GLINT_SLOPE_COUNT];
+  bool anyLit = false;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
-    vec2 slope = glintSlopeFromNormal(normalize(wo + lightDirection[i]));
-    glintLit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, params, slope);
+    vec2 slope = glintSlopeFromNormal(normalize(surface.wo + lightDirection[i]));
+    lit[i] = lightDirection[i].z > 0.0f && !glintSlopeIsNegligible(dict, surface.glint, slope);
     // An unlit light's result is discarded; a finite slope keeps its texel reads in range (a light
     // below the horizon can have an infinite one).
-    glintSlopes.slope[i] = glintLit[i] ? slope : vec2(0.0f);
-    glintSlopes.derivatives[i] = vec4(0.0f);
+    slopes.slope[i] = lit[i] ? slope : vec2(0.0f);
+    slopes.derivatives[i] = vec4(0.0f);
 #if GLINT_FILTERED
     // The anti-aliasing filter's input: the slope's screen derivatives, taken here, in uniform
     // control flow (every pixel of a quad runs this loop of constant length, before any branch
@@ -249,69 +233,108 @@ void main() {
     // pixel is left unfiltered.
     vec4 derivatives = vec4(dFdx(slope), dFdy(slope)) * uGlintFilterScale;
     bool finiteDerivatives = !any(isnan(derivatives)) && !any(isinf(derivatives));
-    glintSlopes.derivatives[i] = glintLit[i] && finiteDerivatives ? derivatives : vec4(0.0f);
+    slopes.derivatives[i] = lit[i] && finiteDerivatives ? derivatives : vec4(0.0f);
 #endif
-    anyGlintLit = anyGlintLit || glintLit[i];
+    anyLit = anyLit || lit[i];
   }
-  GlintP22Set glintP22s;
-  if (GLINT_LAYER && anyGlintLit) {
-    glintP22s = glintP22Set(dict, params, glintUv, duvdx, duvdy, glintSlopes);
+  GlintP22Set p22s;
+  for (int i = 0; i < GLINT_SLOPE_COUNT; ++i) {
+    p22s.p22[i] = vec4(0.0f);
   }
+  if (GLINT_LAYER && anyLit) {
+    p22s = glintP22Set(dict, surface.glint, glintUv, duvdx, duvdy, slopes);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+      p22s.p22[i] = lit[i] ? p22s.p22[i] : vec4(0.0f);
+    }
+  }
+  return p22s;
+}
 #endif
 
+// The specular lobe for light direction wi (above the horizon), times Fresnel: the program's model
+// for a glint layer (p22: its P-SDF there, glint programs only), Cook-Torrance without one.
+vec3 specularReflectance(GlintSurface surface, vec3 wi, vec4 p22, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+  vec3 wo = surface.wo;
+  vec3 wh = normalize(wo + wi);
+  vec3 fresnel = glintFresnelSchlick(surface.f0, dot(wo, wh));
+#if SPECULAR_MODEL == SPECULAR_GLINT
+  if (GLINT_LAYER) {
+    vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
+    return fresnel * tint * glintMaskedReflectance(surface.glint, wo, wi, wh, glintNdfFromP22(p22.w, wh.z));
+  }
+  return fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, surface.smoothAlpha, 0.0f, wo, wi);
+#elif ZIRR_KAPLANYAN
+  if (GLINT_LAYER) {
+    // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
+    // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
+#if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE
+    float zirrKaplanyan =
+        glintZirrKaplanyanReferenceReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(surface.glint));
+#else
+    float zirrKaplanyan = glintZirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(surface.glint));
+#endif
+    return fresnel * surface.glint.relativeArea * zirrKaplanyan;
+  }
+  return fresnel * glintCookTorranceReflectance(surface.smoothAlpha, 0.0f, wo, wi);
+#else
+  return fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, surface.smoothAlpha,
+                                                      GLINT_LAYER ? surface.glint.rho : 0.0f, wo, wi);
+#endif
+}
+
+void main() {
+  // The glint footprint: screen-space derivatives of the glint uv, taken first, in uniform
+  // control flow, before any branch that pixels of a quad could take differently.
+  vec2 glintUv = glintMaterialUv(uGlintMaterial, vUv);
+  vec2 duvdx = dFdx(glintUv);
+  vec2 duvdy = dFdy(glintUv);
+
+  GlintSurfaceSamples samples = surfaceSamples();
+  GlintSurface surface = glintSurface(samples, compiledGlintMaterial(), frameFootprintPolicy());
+  vec3 lightDirection[GLINT_SLOPE_COUNT];
+  float lightDistance2[GLINT_SLOPE_COUNT];
+  float lightFalloff[GLINT_SLOPE_COUNT];
+  gatherLights(surface, lightDirection, lightDistance2, lightFalloff);
+#if SPECULAR_MODEL == SPECULAR_GLINT
+  GlintP22Set glintP22s = litGlintP22s(glintDictionary(), surface, lightDirection, glintUv, duvdx, duvdy);
+#endif
 #if GLINT_MULTIPLE_SCATTERING
   // The multiple-scattering compensation (multiple_scattering.h): a smooth lobe, the same for glint
   // and Cook-Torrance programs, with Schlick's average Fresnel.
   vec3 multipleFresnel = glintMultipleScatteringFresnel(
-      glintSchlickAverageFresnel(f0), glintAverageAlbedo(GLINT_NDF, GLINT_MASKING, glintCompensationAlpha(specularAlpha)));
+      glintSchlickAverageFresnel(surface.f0),
+      glintAverageAlbedo(GLINT_NDF, GLINT_MASKING, glintCompensationAlpha(surface.smoothAlpha)));
 #endif
-  vec3 radiance = emissive;
+
+  vec3 radiance = surface.emission;
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 wi = lightDirection[i];
     if (wi.z <= 0.0f) {
       continue;
     }
-    vec3 wh = normalize(wo + wi);
-    vec3 fresnel = glintFresnelSchlick(f0, dot(wo, wh));
-    vec3 specular;
 #if SPECULAR_MODEL == SPECULAR_GLINT
-    if (GLINT_LAYER) {
-      vec4 p22 = glintLit[i] ? glintP22s.p22[i] : vec4(0.0f);
-      vec3 tint = p22.w > 0.0f ? p22.rgb / p22.w : vec3(1.0f);
-      specular = fresnel * tint * glintMaskedReflectance(params, wo, wi, wh, glintNdfFromP22(p22.w, wh.z));
-    } else {
-      specular = fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, 0.0f, wo, wi);
-    }
-#elif ZIRR_KAPLANYAN
-    if (GLINT_LAYER) {
-      // Zirr & Kaplanyan 2016 with the glint layer's parameters mapped (docs/zirr-kaplanyan.md);
-      // it has no relative area, so its mean is scaled by it to match the glint BRDF's.
-#if SPECULAR_MODEL == SPECULAR_ZIRR_KAPLANYAN_REFERENCE
-      float zirrKaplanyan = glintZirrKaplanyanReferenceReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(params));
+    vec4 p22 = glintP22s.p22[i];
 #else
-      float zirrKaplanyan = glintZirrKaplanyanReflectance(glintUv, duvdx, duvdy, wo, wi, glintZirrKaplanyanFromGlint(params));
+    vec4 p22 = vec4(0.0f);
 #endif
-      specular = fresnel * params.relativeArea * zirrKaplanyan;
-    } else {
-      specular = fresnel * glintCookTorranceReflectance(specularAlpha, 0.0f, wo, wi);
-    }
-#else
-    specular = fresnel * glintTargetCookTorranceReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha,
-                                                       GLINT_LAYER ? params.rho : 0.0f, wo, wi);
-#endif
+    vec3 specular = specularReflectance(surface, wi, p22, glintUv, duvdx, duvdy);
 #if GLINT_MULTIPLE_SCATTERING
-    specular += multipleFresnel * glintMultipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, specularAlpha, wo, wi);
+    specular += multipleFresnel * glintMultipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, surface.smoothAlpha, surface.wo, wi);
 #endif
-    radiance += (diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
+    radiance += (surface.diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
   }
-  vec3 reflected = reflect(-view, n);
-  vec3 ambient = diffuse * irradiance(n) +
-                 glintFresnelSchlick(f0, wo.z) * environmentRadiance(reflected, max(specularAlpha.x, specularAlpha.y));
-  radiance += ambient * occlusion;
+
+  // Ambient light, without glints: irradiance by spherical harmonics, the pre-filtered environment
+  // in the reflected direction.
+  vec3 reflected = reflect(-samples.view, surface.n);
+  vec3 ambient = surface.diffuse * irradiance(surface.n) +
+                 glintFresnelSchlick(surface.f0, surface.wo.z) *
+                     environmentRadiance(reflected, max(surface.smoothAlpha.x, surface.smoothAlpha.y));
+  radiance += ambient * surface.occlusion;
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth
   // test only where it ties with the surface behind; it is dropped last, after every derivative.
-  if (baseColour.a < uAlphaCutoff) {
+  if (surface.baseColour.a < uAlphaCutoff) {
     discard;
   }
 #endif

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "glint/kernel/glint_material.h"
 #include "test_support.h"
 
 namespace glint::test {
@@ -35,6 +36,16 @@ std::vector<KernelInput> kernelInputs(const std::vector<KernelCase>& cases);
 // A random footprint policy: the paper's footprint (exact) in a third of the draws, else aniso, cells,
 // drop or all three, over their ranges.
 FootprintPolicy randomFootprintPolicy(Pcg32& rng);
+
+// Uniform in [low, high) from the open-unit draw (never exactly high).
+float uniformIn(Pcg32& rng, float low, float high);
+// A random glint material (kernel/glint_material.h) over the accepted ranges (docs/conventions.md),
+// with alphas and relative areas that the textures' samples push past the clamps, and every flag
+// either way.
+kernel::GlintMaterial randomGlintMaterial(Pcg32& rng);
+// A texture sample: 8-bit values (glTF textures) in half the draws, exactly 0 or 1 in some, any
+// value in [0, 1] otherwise.
+float randomSample(Pcg32& rng);
 
 // Random inputs over the whole parameter space: anisotropic roughness, densities from sparse to
 // smooth, relative areas, footprints from magnified to minified, directions down to grazing, both

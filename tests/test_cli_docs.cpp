@@ -130,7 +130,7 @@ TEST(DocsCli, NamedValuesAreListedInFull) {
     }
   };
   std::vector<std::string> brdfs;
-  for (const gl::BrdfModel model : gl::allBrdfModels()) brdfs.push_back(gl::toString(model));
+  for (const SpecularModel model : allSpecularModels()) brdfs.push_back(toString(model));
   std::vector<std::string> modes;
   for (const gl::AntiAliasing mode : gl::allAntiAliasingModes()) modes.push_back(gl::toString(mode));
   expectRowLists("render", "--brdf", brdfs);

@@ -365,7 +365,7 @@ struct RenderPair {
   ImageRgbF traced;
 };
 
-RenderPair renderBoth(const scene::Scene& s, gl::BrdfModel model, int size, int spp) {
+RenderPair renderBoth(const scene::Scene& s, SpecularModel model, int size, int spp) {
   useGlContext();
   gl::Renderer renderer(s, defaultDictionary());
   gl::FrameSettings frame;
@@ -383,7 +383,7 @@ RenderPair renderBoth(const scene::Scene& s, gl::BrdfModel model, int size, int 
   settings.spp = spp;
   settings.maxDepth = 1;
   settings.pixelCentres = true;
-  settings.brdf = model == gl::BrdfModel::Glint ? trace::SpecularModel::Glint : trace::SpecularModel::CookTorrance;
+  settings.brdf = model;
   settings.camera = frame.camera;
   return {fromRgbaFloat(size, size, rgba.data(), true), trace::PathTracer(s, defaultDictionary(), settings).render()};
 }
@@ -407,7 +407,7 @@ TEST(EnvironmentGl, RasteriserMatchesTheTracerUnderAnHdri) {
     double relMse[2] = {};  // [lights taken out > 0]
     for (const int lights : {4, 0}) {
       environment.rasterLights = lights;
-      const RenderPair pair = renderBoth(sphereUnder(environment, c.material), gl::BrdfModel::CookTorrance, 96, 256);
+      const RenderPair pair = renderBoth(sphereUnder(environment, c.material), SpecularModel::CookTorrance, 96, 256);
       const ImageError error = compareImages(pair.raster, pair.traced);
       std::printf("%s sphere under a sun-sky HDRI, %d lights taken out: relMSE %.3g (RMSE %.3g, mean %.3g)\n", c.name,
                   lights, error.relmse, error.rmse, error.meanReference);
@@ -454,7 +454,7 @@ TEST(EnvironmentGl, BackFacesOfSingleSidedMaterialsAreCulledInBothRenderers) {
     quad.indices = c.clockwise ? std::vector<std::uint32_t>{0, 2, 1, 0, 3, 2} : std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3};
     s.meshes.assign(1, quad);
     s.materials[0].doubleSided = c.doubleSided;
-    const RenderPair pair = renderBoth(s, gl::BrdfModel::CookTorrance, 32, 4);
+    const RenderPair pair = renderBoth(s, SpecularModel::CookTorrance, 32, 4);
     for (const ImageRgbF* image : {&pair.raster, &pair.traced}) {
       double centre = 0.0;
       for (int y = 12; y < 20; ++y) {
@@ -498,8 +498,8 @@ TEST(EnvironmentGl, GlintsSparkleUnderAnHdriSunInBothRenderers) {
   double fractions[2][2];  // [lights taken out][raster, traced]
   for (const int lights : {4, 0}) {
     s.environment.rasterLights = lights;
-    const RenderPair glint = renderBoth(s, gl::BrdfModel::Glint, 128, 64);
-    const RenderPair cookTorrance = renderBoth(s, gl::BrdfModel::CookTorrance, 128, 64);
+    const RenderPair glint = renderBoth(s, SpecularModel::Glint, 128, 64);
+    const RenderPair cookTorrance = renderBoth(s, SpecularModel::CookTorrance, 128, 64);
     fractions[lights > 0][0] = sparkleFraction(glint.raster, cookTorrance.raster);
     fractions[lights > 0][1] = sparkleFraction(glint.traced, cookTorrance.traced);
     std::printf("glint sphere under a sun-sky HDRI, %d lights taken out: pixels above 2x Cook-Torrance: rasteriser "

@@ -140,43 +140,6 @@ MaterialOutput materialOutputOnCpu(const kernel::GlintMaterial& material, const 
   return out;
 }
 
-float uniformIn(Pcg32& rng, float low, float high) {
-  return low + (high - low) * static_cast<float>(rng.nextOpenUnit());
-}
-
-// A random material over the accepted ranges (docs/conventions.md), with alphas and relative areas
-// that the textures' samples push past the clamps, and every flag either way.
-kernel::GlintMaterial randomGlintMaterial(Pcg32& rng) {
-  kernel::GlintMaterial m{};
-  m.alpha = {uniformIn(rng, 0.005f, 2.0f), uniformIn(rng, 0.005f, 2.0f)};
-  m.rho = uniformIn(rng, -0.99f, 0.99f);
-  m.logDensity = uniformIn(rng, 0.0f, 100.0f);
-  m.relativeArea = uniformIn(rng, 1e-5f, 1.0f);
-  m.densityRandomisation = uniformIn(rng, 0.0f, 10.0f);
-  m.maxAnisotropy = uniformIn(rng, 1.0f, 64.0f);
-  m.patternSeed = rng.next();
-  m.logDensityRange = {uniformIn(rng, 0.0f, 100.0f), uniformIn(rng, 0.0f, 100.0f)};
-  m.uvScale = std::exp2(uniformIn(rng, -8.0f, 8.0f));
-  m.hasLogDensityTexture = rng.nextBelow(2);
-  m.ndf = static_cast<int>(rng.nextBelow(2));
-  m.masking = static_cast<int>(rng.nextBelow(2));
-  m.colouredCells = rng.nextBelow(2);
-  m.multipleScattering = rng.nextBelow(2);
-  m.enabled = rng.nextBelow(2);
-  m.lod = static_cast<int>(rng.nextBelow(2));
-  return m;
-}
-
-// A texture sample: 8-bit values (glTF textures) in half the draws, exactly 0 or 1 in some, any
-// value in [0, 1] otherwise.
-float randomSample(Pcg32& rng) {
-  switch (rng.nextBelow(4)) {
-    case 0: return static_cast<float>(rng.nextBelow(256)) / 255.0f;
-    case 1: return static_cast<float>(rng.nextBelow(2));
-    default: return static_cast<float>(rng.nextOpenUnit());
-  }
-}
-
 gl::ShaderProgram glintMaterialProgram() {
   useGlContext();
   return gl::ShaderProgram({{GL_COMPUTE_SHADER, "glint_material_eval.comp"}});

@@ -28,7 +28,7 @@ constexpr int kSize = 256;
 
 // The 2020 model unless told otherwise: the properties below (and the golden images) are the
 // model's; the anti-aliasing's own tests say which mode they render.
-ImageRgbF render(const scene::Scene& scene, gl::BrdfModel brdf, int spp = 1,
+ImageRgbF render(const scene::Scene& scene, SpecularModel brdf, int spp = 1,
                  gl::AntiAliasing antiAliasing = gl::AntiAliasing::None) {
   useGlContext();
   gl::Renderer renderer(scene, defaultDictionary());
@@ -126,7 +126,7 @@ TEST(RenderGl, VeryHighDensityGlintEqualsCookTorrance) {
   // rounding and far below what one glint pixel more or less gives at 256 x 256.
   for (const std::string& name : scene::builtinSceneNames()) {
     const scene::Scene scene = withLogDensity(scene::makeBuiltinScene(name), 80.0f);
-    const ImageError error = compareImages(render(scene, gl::BrdfModel::Glint), render(scene, gl::BrdfModel::CookTorrance));
+    const ImageError error = compareImages(render(scene, SpecularModel::Glint), render(scene, SpecularModel::CookTorrance));
     EXPECT_LT(error.rmse, 0.005 * error.meanReference) << name << ": rmse " << error.rmse << ", mean " << error.meanReference;
     std::printf("%s at log density 80: glint vs Cook-Torrance RMSE / mean = %.2e\n", name.c_str(),
                 error.rmse / error.meanReference);
@@ -148,11 +148,11 @@ TEST(RenderGl, NormalMapFilteringChangesNothingOnAConstantNormalMap) {
       t.rgba[i + 2] = 240;
     }
   }
-  const ImageError constant = compareImages(render(flat, gl::BrdfModel::Glint, 1, gl::AntiAliasing::GgaaLean),
-                                            render(flat, gl::BrdfModel::Glint, 1, gl::AntiAliasing::Ggaa));
+  const ImageError constant = compareImages(render(flat, SpecularModel::Glint, 1, gl::AntiAliasing::GgaaLean),
+                                            render(flat, SpecularModel::Glint, 1, gl::AntiAliasing::Ggaa));
   EXPECT_LT(constant.relmse, 1e-8) << "rmse " << constant.rmse;
-  const ImageError real = compareImages(render(arctic, gl::BrdfModel::Glint, 1, gl::AntiAliasing::GgaaLean),
-                                        render(arctic, gl::BrdfModel::Glint, 1, gl::AntiAliasing::Ggaa));
+  const ImageError real = compareImages(render(arctic, SpecularModel::Glint, 1, gl::AntiAliasing::GgaaLean),
+                                        render(arctic, SpecularModel::Glint, 1, gl::AntiAliasing::Ggaa));
   EXPECT_GT(real.relmse, 1e-3);
   std::printf("ggaa+lean against ggaa: relMSE %.2e on a constant normal map, %.2e on the arctic's\n", constant.relmse,
               real.relmse);
@@ -163,7 +163,7 @@ TEST(RenderGl, DefaultDensityShowsGlints) {
   // above 5% of the mean pixel value (measured: docs/renderer.md).
   for (const std::string& name : scene::builtinSceneNames()) {
     const scene::Scene scene = scene::makeBuiltinScene(name);
-    const ImageError error = compareImages(render(scene, gl::BrdfModel::Glint), render(scene, gl::BrdfModel::CookTorrance));
+    const ImageError error = compareImages(render(scene, SpecularModel::Glint), render(scene, SpecularModel::CookTorrance));
     EXPECT_GT(error.rmse, 0.05 * error.meanReference) << name << ": rmse " << error.rmse << ", mean " << error.meanReference;
     std::printf("%s at its own density: glint vs Cook-Torrance RMSE / mean = %.3f\n", name.c_str(),
                 error.rmse / error.meanReference);
@@ -233,8 +233,8 @@ TEST(RenderGl, NoRadialStreaksAtTheUvSpherePole) {
   camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
   camera.verticalFovDegrees = 2.0f * glm::degrees(std::atan(0.3f));
   scene.cameras["default"] = camera;
-  const ImageRgbF glint = render(scene, gl::BrdfModel::Glint);
-  const ImageRgbF smooth = render(scene, gl::BrdfModel::CookTorrance);
+  const ImageRgbF glint = render(scene, SpecularModel::Glint);
+  const ImageRgbF smooth = render(scene, SpecularModel::CookTorrance);
   auto luminance = [](glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };  // Rec. 709
   std::vector<double> layer(glint.pixels.size());
   for (std::size_t i = 0; i < layer.size(); ++i) layer[i] = luminance(glint.pixels[i]) - luminance(smooth.pixels[i]);
@@ -252,12 +252,12 @@ TEST(RenderGl, EveryBrdfRendersEveryBenchmarkSceneWithoutGlErrors) {
   // model; each frame must render without a GL error and with finite radiance.
   for (const std::string& name : scene::builtinSceneNames()) {
     const scene::Scene scene = scene::makeBuiltinScene(name);
-    for (gl::BrdfModel model : gl::allBrdfModels()) {
+    for (SpecularModel model : allSpecularModels()) {
       const ImageRgbF image = render(scene, model);  // checks glGetError
       const bool finite = std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
         return std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b);
       });
-      EXPECT_TRUE(finite) << name << " with " << gl::toString(model);
+      EXPECT_TRUE(finite) << name << " with " << toString(model);
     }
   }
 }
@@ -290,7 +290,7 @@ TEST(RenderGl, LightsAddUp) {
   gl::FrameSettings frame;
   frame.width = 128;
   frame.height = 128;
-  frame.brdf = gl::BrdfModel::Glint;
+  frame.brdf = SpecularModel::Glint;
   frame.camera = showroom.cameras.at("default");
   auto litBy = [&](std::vector<scene::Light> subset) {
     renderer.lights() = std::move(subset);
@@ -335,7 +335,7 @@ class TopDownPlane {
   TopDownPlane() : scene_(scene::makeBuiltinScene("grazing-smooth")), renderer_(scene_, defaultDictionary()) {
     frame_.width = kSide;
     frame_.height = kSide;
-    frame_.brdf = gl::BrdfModel::Glint;
+    frame_.brdf = SpecularModel::Glint;
     frame_.camera.position = glm::vec3(0.0f, kCameraHeight, 0.0f);
     frame_.camera.target = glm::vec3(0.0f);
     frame_.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
@@ -482,7 +482,7 @@ TEST(RenderGl, OcclusionStrengthScalesTheAmbientLightAsGltfSays) {
     gl::FrameSettings frame;
     frame.width = 64;
     frame.height = 64;
-    frame.brdf = gl::BrdfModel::CookTorrance;
+    frame.brdf = SpecularModel::CookTorrance;
     frame.camera = scene.cameras.at("default");
     ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
@@ -519,7 +519,7 @@ struct Sheet {
 // `edit` changes the scene before it is drawn.
 ImageRgbF renderSheets(const std::vector<Sheet>& sheets, float cameraZ,
                        const std::function<void(scene::Scene&)>& edit = nullptr,
-                       gl::BrdfModel brdf = gl::BrdfModel::Glint, std::vector<std::string>* warnings = nullptr) {
+                       SpecularModel brdf = SpecularModel::Glint, std::vector<std::string>* warnings = nullptr) {
   useGlContext();
   scene::Scene scene = scene::makeBuiltinScene("grazing-smooth");  // for its lights and sky
   scene.meshes.clear();
@@ -583,8 +583,8 @@ TEST(RenderGl, TheNearestSurfaceShowsAndAtEqualDepthTheFirstDrawn) {
   EXPECT_EQ(pixelsShowing(greenFirst, 0), 0);
   // Also when the two are drawn with different programs (a glint material, then one without a
   // glint layer, which every BRDF draws with the Cook-Torrance program): the first still wins.
-  for (const gl::BrdfModel brdf : gl::allBrdfModels()) {
-    SCOPED_TRACE(gl::toString(brdf));
+  for (const SpecularModel brdf : allSpecularModels()) {
+    SCOPED_TRACE(toString(brdf));
     const ImageRgbF mixed = renderSheets({{0.0f, red, false}, {0.0f, green, false}}, 3.0f,
                                          [](scene::Scene& scene) { scene.materials[0].glint.enabled = true; }, brdf);
     EXPECT_GT(pixelsShowing(mixed, 0), 1000);
@@ -666,7 +666,7 @@ TEST(RenderGl, TexturesBeyondTheSizeLimitAreDrawnDownscaledNotBlack) {
     }
     scene.textures.push_back(std::move(wide));
     scene.materials[0].emissiveTexture = static_cast<int>(scene.textures.size()) - 1;
-  }, gl::BrdfModel::Glint, &warnings);
+  }, SpecularModel::Glint, &warnings);
   int red = 0, green = 0;
   for (const glm::vec3& p : image.pixels) {
     red += p.r > 50.0f && p.g < 5.0f;
@@ -716,7 +716,7 @@ TEST(RenderGl, TextureTransformMovesTheTexture) {
 TEST(RenderGl, VertexColourMultipliesTheBaseColour) {
   useGlContext();
   const glm::vec4 colour(0.2f, 0.6f, 0.9f, 1.0f);
-  auto render = [&](glm::vec4 vertexColour, glm::vec4 factor, gl::BrdfModel brdf) {
+  auto render = [&](glm::vec4 vertexColour, glm::vec4 factor, SpecularModel brdf) {
     scene::Scene scene = scene::makeBuiltinScene("sphere");
     for (scene::Material& m : scene.materials) m.baseColour *= factor;
     for (scene::Mesh& mesh : scene.meshes) {
@@ -732,7 +732,7 @@ TEST(RenderGl, VertexColourMultipliesTheBaseColour) {
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
     return image;
   };
-  for (const gl::BrdfModel brdf : gl::allBrdfModels()) {
+  for (const SpecularModel brdf : allSpecularModels()) {
     const glm::vec4 white(1.0f);
     const ImageRgbF byVertices = render(colour, white, brdf);
     const ImageRgbF byFactor = render(white, colour, brdf);
@@ -746,8 +746,8 @@ TEST(RenderGl, VertexColourMultipliesTheBaseColour) {
         colourEffect = std::max(colourEffect, std::abs(uncoloured.pixels[p][c] - byFactor.pixels[p][c]) / reference);
       }
     }
-    EXPECT_LT(largest, 1e-5) << gl::toString(brdf);
-    EXPECT_GT(colourEffect, 0.1) << gl::toString(brdf);
+    EXPECT_LT(largest, 1e-5) << toString(brdf);
+    EXPECT_GT(colourEffect, 0.1) << toString(brdf);
   }
 }
 
@@ -763,7 +763,7 @@ TEST(RenderGl, BackgroundIsTheEnvironmentTheTracerSees) {
   gl::FrameSettings frame;
   frame.width = kSide;
   frame.height = kSide;
-  frame.brdf = gl::BrdfModel::CookTorrance;
+  frame.brdf = SpecularModel::CookTorrance;
   frame.camera = scene.cameras.at("default");
   const ImageRgbF image = gl::renderSupersampled(renderer, frame, 1);
   const trace::ProjectiveCamera camera(frame.camera, kSide, kSide);
@@ -829,7 +829,7 @@ TEST(RenderGl, MultisampledEdgesHalveTheSilhouetteError) {
     gl::Renderer renderer(scene, defaultDictionary());
     const int most = renderer.maxMsaaSamples();
     ASSERT_GE(most, 4) << "this OpenGL multisamples at fewer than 4 samples a pixel";
-    for (const gl::BrdfModel brdf : {gl::BrdfModel::CookTorrance, gl::BrdfModel::Glint}) {
+    for (const SpecularModel brdf : {SpecularModel::CookTorrance, SpecularModel::Glint}) {
       frame.brdf = brdf;
       frame.msaa = 1;
       const ImageRgbF reference = gl::renderSupersampled(renderer, frame, kReferenceFrames);
@@ -855,8 +855,8 @@ TEST(RenderGl, MultisampledEdgesHalveTheSilhouetteError) {
       const double one = edgeError(1);
       const double many = edgeError(most);
       std::printf("%s, %s: edge pixels' relative RMSE against %d frames %.3f at 1 sample, %.3f at %d (%.2fx)\n", name,
-                  gl::toString(brdf), kReferenceFrames, one, many, most, one / many);
-      EXPECT_GT(one, 2.0 * many) << name << ", " << gl::toString(brdf);
+                  toString(brdf), kReferenceFrames, one, many, most, one / many);
+      EXPECT_GT(one, 2.0 * many) << name << ", " << toString(brdf);
     }
   }
 }
@@ -895,8 +895,8 @@ TEST(RenderGl, EditedMaterialsAreDrawnInTheNextFrame) {
 
 TEST(RenderGl, FramesAreIdenticalAcrossRuns) {
   const scene::Scene scene = scene::makeBuiltinScene("sphere");
-  const ImageRgbF a = render(scene, gl::BrdfModel::Glint);
-  const ImageRgbF b = render(scene, gl::BrdfModel::Glint);
+  const ImageRgbF a = render(scene, SpecularModel::Glint);
+  const ImageRgbF b = render(scene, SpecularModel::Glint);
   EXPECT_TRUE(a.pixels == b.pixels);
 }
 
@@ -928,7 +928,7 @@ TEST(RenderGl, PaperScaleScenesRenderFiniteAndGlint) {
     SCOPED_TRACE(c.scene);
     const scene::Scene scene = scene::makeBuiltinScene(c.scene);
     const scene::Scene smoothScene = withLogDensity(scene, 40.0f);
-    auto draw = [&](gl::Renderer& renderer, gl::BrdfModel brdf) {
+    auto draw = [&](gl::Renderer& renderer, SpecularModel brdf) {
       gl::FrameSettings frame;
       frame.width = 256;
       frame.height = 144;
@@ -941,14 +941,14 @@ TEST(RenderGl, PaperScaleScenesRenderFiniteAndGlint) {
       for (std::size_t p = 0; p + 3 < rgba.size(); p += 4) image.pixels.emplace_back(rgba[p], rgba[p + 1], rgba[p + 2]);
       EXPECT_TRUE(std::all_of(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
         return std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b) && glm::all(glm::greaterThanEqual(p, glm::vec3(0.0f)));
-      })) << gl::toString(brdf);
+      })) << toString(brdf);
       return image;
     };
     gl::Renderer renderer(scene, defaultDictionary());
     gl::Renderer smoothRenderer(smoothScene, defaultDictionary());
-    const ImageRgbF smooth = draw(renderer, gl::BrdfModel::CookTorrance);
-    const double share = glintPixelFraction(draw(renderer, gl::BrdfModel::Glint), smooth);
-    const double smoothShare = glintPixelFraction(draw(smoothRenderer, gl::BrdfModel::Glint), smooth);
+    const ImageRgbF smooth = draw(renderer, SpecularModel::CookTorrance);
+    const double share = glintPixelFraction(draw(renderer, SpecularModel::Glint), smooth);
+    const double smoothShare = glintPixelFraction(draw(smoothRenderer, SpecularModel::Glint), smooth);
     std::printf("%s, camera %s: %.5f of the pixels twice Cook-Torrance's luminance; %.5f at log density 40\n", c.scene,
                 c.camera, share, smoothShare);
     EXPECT_GT(share, c.leastShare);
@@ -967,7 +967,7 @@ TEST(RenderGl, BuiltinScenesMatchGoldenImages) {
   const bool update = std::getenv("GLINT_UPDATE_GOLDEN") != nullptr;
   for (const std::string& name : smallBuiltinSceneNames()) {
     const scene::Scene scene = scene::makeBuiltinScene(name);
-    const ImageRgbF radiance = render(scene, gl::BrdfModel::Glint);
+    const ImageRgbF radiance = render(scene, SpecularModel::Glint);
     const auto rendered = temporaryFolder("golden") / (name + ".png");
     writePng(rendered, displayEncode(radiance, scene.exposure));
     if (update) {
@@ -982,7 +982,7 @@ TEST(RenderGl, BuiltinScenesMatchGoldenImages) {
     scene::Scene otherPattern = scene;
     for (scene::Material& m : otherPattern.materials) m.glint.patternSeed += 1;
     const auto other = temporaryFolder("golden_other") / (name + ".png");
-    writePng(other, displayEncode(render(otherPattern, gl::BrdfModel::Glint), scene.exposure));
+    writePng(other, displayEncode(render(otherPattern, SpecularModel::Glint), scene.exposure));
     EXPECT_GT(compareImages(readImage(other), golden).rmse, 0.01) << name << ": the golden check could not tell patterns apart";
   }
   if (update) GTEST_SKIP() << "GLINT_UPDATE_GOLDEN: the golden images were written, nothing was compared";

@@ -148,7 +148,7 @@ ImageRgb8 desktopImage(const PageView& view, int size) {
   frame.width = size;
   frame.height = size;
   frame.camera = scene.cameras.at("default");
-  frame.brdf = gl::brdfModelFromString(view.brdf);
+  frame.brdf = specularModelFromName(view.brdf);
   const gl::QualityPreset& tier = gl::qualityPreset(view.quality);
   frame.footprintPolicy = footprintPolicyFromString(tier.footprint);
   frame.antiAliasing = tier.antiAliasing;

@@ -54,7 +54,7 @@ Frame renderFrame(gl::Renderer& renderer, gl::FrameSettings frame) {
 // The glint layer's radiance: a glint frame minus the Cook-Torrance frame of the same view; where
 // it is not zero, the metrics look.
 Frame glintLayer(gl::Renderer& renderer, gl::FrameSettings frame, const Frame& glint) {
-  frame.brdf = gl::BrdfModel::CookTorrance;
+  frame.brdf = SpecularModel::CookTorrance;
   const Frame smooth = renderFrame(renderer, frame);
   Frame layer = glint;
   for (std::size_t i = 0; i < layer.size(); ++i) layer[i] -= smooth[i];
@@ -149,7 +149,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   gl::FrameSettings frame;
   frame.width = width;
   frame.height = height;
-  frame.brdf = gl::BrdfModel::Glint;
+  frame.brdf = SpecularModel::Glint;
   frame.camera = scene.cameras.at(options.camera);
   frame.filterScale = options.aaKernel;
 

@@ -55,7 +55,7 @@ struct BenchOptions {
 // the environment map (scene::Environment::rasterLights 0), glint-no-env-lights.
 struct Variant {
   std::string label;
-  gl::BrdfModel brdf;
+  SpecularModel brdf;
   gl::AntiAliasing antiAliasing;
   bool gltfTarget = false;
   bool withoutEnvironmentLights = false;
@@ -75,21 +75,21 @@ std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarge
                                    bool featureCost,
                                    const std::vector<std::pair<std::string, FootprintPolicy>>& footprints) {
   std::vector<Variant> variants;
-  for (gl::BrdfModel model : gl::allBrdfModels()) variants.push_back({gl::toString(model), model, antiAliasing});
-  if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", gl::BrdfModel::Glint, gl::AntiAliasing::None});
-  if (gltfTarget) variants.push_back({"glint-gltf", gl::BrdfModel::Glint, antiAliasing, true});
+  for (SpecularModel model : allSpecularModels()) variants.push_back({toString(model), model, antiAliasing});
+  if (antiAliasing != gl::AntiAliasing::None) variants.push_back({"glint-none", SpecularModel::Glint, gl::AntiAliasing::None});
+  if (gltfTarget) variants.push_back({"glint-gltf", SpecularModel::Glint, antiAliasing, true});
   if (compareEnvironmentLights) {
-    variants.push_back({"glint-no-env-lights", gl::BrdfModel::Glint, antiAliasing, false, true});
+    variants.push_back({"glint-no-env-lights", SpecularModel::Glint, antiAliasing, false, true});
   }
   if (featureCost) {
-    variants.push_back({"glint-no-shadows", gl::BrdfModel::Glint, antiAliasing, false, false, true});
-    variants.push_back({"glint-msaa1", gl::BrdfModel::Glint, antiAliasing, false, false, false, true});
-    variants.push_back({"glint-moving-lights", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, true});
-    variants.push_back({"glint-one-cascade", gl::BrdfModel::Glint, antiAliasing, false, false, false, false, false, true});
+    variants.push_back({"glint-no-shadows", SpecularModel::Glint, antiAliasing, false, false, true});
+    variants.push_back({"glint-msaa1", SpecularModel::Glint, antiAliasing, false, false, false, true});
+    variants.push_back({"glint-moving-lights", SpecularModel::Glint, antiAliasing, false, false, false, false, true});
+    variants.push_back({"glint-one-cascade", SpecularModel::Glint, antiAliasing, false, false, false, false, false, true});
   }
   for (Variant& variant : variants) variant.footprint = footprints.front().second;
   for (std::size_t k = 1; k < footprints.size(); ++k) {
-    Variant variant{policyColumn(footprints[k].first), gl::BrdfModel::Glint, antiAliasing};
+    Variant variant{policyColumn(footprints[k].first), SpecularModel::Glint, antiAliasing};
     variant.footprint = footprints[k].second;
     variants.push_back(variant);
   }

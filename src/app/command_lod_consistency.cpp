@@ -233,7 +233,7 @@ std::vector<double> renderSmoothLimit(gl::Renderer& renderer, gl::FrameSettings 
     material.glint.relativeArea = 1.0f;
     material.glint.relativeAreaTexture = -1;
   }
-  frame.brdf = gl::BrdfModel::Glint;
+  frame.brdf = SpecularModel::Glint;
   std::vector<double> smooth = renderLuminance(renderer, frame, 1);
   renderer.materials() = drawn;
   return smooth;
@@ -418,7 +418,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
   for (int t = 0; t < options.frames; ++t) {
     frame.camera = movedCamera(preset, options.move, t, options.frames, options.doublings);
     dolly.views.push_back(makeView(scene, frame.camera, width, height));
-    frame.brdf = gl::BrdfModel::CookTorrance;
+    frame.brdf = SpecularModel::CookTorrance;
     frame.antiAliasing = gl::AntiAliasing::None;
     frame.normalMapFinestLevel = true;
     dolly.referenceSmooth.push_back(renderLuminance(renderer, frame, options.referenceScale, options.referenceFrames));
@@ -438,7 +438,7 @@ nlohmann::json measureScene(const scene::Scene& scene, const Dictionary& diction
     Sequence mode, reference;
     for (int t = 0; t < options.frames; ++t) {
       frame.camera = dolly.views[static_cast<std::size_t>(t)].camera;
-      frame.brdf = gl::BrdfModel::Glint;
+      frame.brdf = SpecularModel::Glint;
       // The reference: the 2020 model (no anti-aliasing) at referenceScale^2 samples a pixel on a
       // regular grid, its footprints that many times smaller: finer levels of detail, averaged.
       frame.antiAliasing = gl::AntiAliasing::None;

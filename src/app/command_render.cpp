@@ -37,7 +37,7 @@ struct RenderOptions {
 
 void runRender(const RenderOptions& options) {
   const auto [width, height] = parseImageSize(options.size);
-  const gl::BrdfModel brdf = gl::brdfModelFromString(options.brdf);
+  const SpecularModel brdf = specularModelFromName(options.brdf);
   const std::string output = options.output.empty() ? options.scene.outputNamedAfterScene(".png") : options.output;
   options.orbit.validate();
   const bool video = isVideoPath(output);
@@ -106,7 +106,7 @@ void runRender(const RenderOptions& options) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string report = frames > 1 ? std::to_string(frames) + " frames " + first + " .. " + last : first;
   std::fprintf(stderr, "glint: wrote %s (%s, %dx%d, %d spp, %s%s, anti-aliasing %s, shadows %s, msaa %d, %.2f s on %s)\n",
-               report.c_str(), options.scene.scene.c_str(), width, height, spp, gl::toString(brdf),
+               report.c_str(), options.scene.scene.c_str(), width, height, spp, toString(brdf),
                footprintNote(frame.footprintPolicy).c_str(), gl::toString(antiAliasing), frame.shadows ? "on" : "off",
                frame.msaa, seconds, gl::currentContextInfo().renderer.c_str());
   if (video && encodeVideo(output, frames)) std::fprintf(stderr, "glint: wrote %s\n", output.c_str());

@@ -42,14 +42,6 @@ struct TraceOptions {
   FootprintOptions footprint;
 };
 
-// The BRDF names are the real-time renderer's (one list of names); the tracer has both models.
-trace::SpecularModel specularModel(const std::string& name) {
-  const gl::BrdfModel model = gl::brdfModelFromString(name);
-  if (model == gl::BrdfModel::Glint) return trace::SpecularModel::Glint;
-  if (model == gl::BrdfModel::CookTorrance) return trace::SpecularModel::CookTorrance;
-  throw Error("--brdf " + name + " is not available in glint trace (choices: glint, cook-torrance)");
-}
-
 // A bar with the percentage done and the time left, redrawn at most ten times a second by
 // whichever worker finishes a tile; only on a terminal (a log gets the summary line alone).
 class ProgressBar {
@@ -94,7 +86,7 @@ void runTrace(const TraceOptions& options) {
   std::tie(settings.width, settings.height) = parseImageSize(options.size);
   settings.spp = options.spp;
   settings.maxDepth = options.maxDepth;
-  settings.brdf = specularModel(options.brdf);
+  settings.brdf = specularModelFromName(options.brdf);
   settings.sampler = trace::glintSamplerFromString(options.sampler);
   settings.directOnly = options.directOnly;
   settings.pixelCentres = options.pixelCentres;
@@ -159,7 +151,7 @@ void runTrace(const TraceOptions& options) {
   written.commit();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double samples = static_cast<double>(settings.width) * settings.height * settings.spp * frames;
-  const std::string brdf = settings.brdf == trace::SpecularModel::Glint
+  const std::string brdf = settings.brdf == SpecularModel::Glint
                                ? options.brdf + footprintNote(settings.footprintPolicy) + ", " +
                                      trace::glintSamplerName(settings.sampler) + " sampler"
                                : options.brdf;
@@ -191,7 +183,7 @@ void registerTraceCommand(CLI::App& app) {
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--spp", options->spp, "Samples per pixel")->capture_default_str();
   command->add_option("--max-depth", options->maxDepth, "Bounces: 1 is direct light (lights and environment) at the first hit")->capture_default_str();
-  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint or cook-torrance")
+  command->add_option("--brdf", options->brdf, "Specular model of glint materials: glint, cook-torrance, zirr-kaplanyan or zirr-kaplanyan-reference (the same images)")
       ->capture_default_str();
   command->add_option("--sampler", options->sampler, "Importance sampling of the glint BRDF: mixture or gaussian")
       ->capture_default_str();

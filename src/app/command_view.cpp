@@ -48,7 +48,7 @@ struct ViewOptions {
 // What the panel edits besides the scene's materials and lights (scene/view_controls.h): how the
 // frame is drawn and shown.
 struct FrameControls {
-  int brdf = 0;          // index into gl::allBrdfModels()
+  int brdf = 0;          // index into allSpecularModels()
   int antiAliasing = 2;  // index into gl::allAntiAliasingModes()
   float exposure = 1.0f;  // times the scene's exposure
   int camera = 0;
@@ -284,7 +284,7 @@ void runView(const ViewOptions& options) {
   frameControls.antiAliasing = static_cast<int>(
       std::find(antiAliasingModes.begin(), antiAliasingModes.end(), initialAntiAliasing) - antiAliasingModes.begin());
   std::vector<std::string> brdfNames;
-  for (gl::BrdfModel model : gl::allBrdfModels()) brdfNames.emplace_back(gl::toString(model));
+  for (SpecularModel model : allSpecularModels()) brdfNames.emplace_back(toString(model));
   std::vector<std::string> antiAliasingNames;
   for (gl::AntiAliasing mode : antiAliasingModes) antiAliasingNames.emplace_back(gl::toString(mode));
   std::vector<std::string> cameraNames;
@@ -311,7 +311,7 @@ void runView(const ViewOptions& options) {
     gl::FrameSettings frame;
     frame.width = width;
     frame.height = height;
-    frame.brdf = gl::allBrdfModels()[static_cast<std::size_t>(frameControls.brdf)];
+    frame.brdf = allSpecularModels()[static_cast<std::size_t>(frameControls.brdf)];
     frame.antiAliasing = antiAliasingModes[static_cast<std::size_t>(frameControls.antiAliasing)];
     frame.camera = viewCamera;
     frame.shadows = frameControls.shadows;

@@ -88,28 +88,6 @@ scene::Texture halvedBeyond(const scene::Texture& t, int limit) {
 
 }  // namespace
 
-std::vector<BrdfModel> allBrdfModels() {
-  return {BrdfModel::Glint, BrdfModel::CookTorrance, BrdfModel::ZirrKaplanyan, BrdfModel::ZirrKaplanyanReference};
-}
-
-BrdfModel brdfModelFromString(const std::string& name) {
-  if (name == "glint") return BrdfModel::Glint;
-  if (name == "cook-torrance") return BrdfModel::CookTorrance;
-  if (name == "zirr-kaplanyan") return BrdfModel::ZirrKaplanyan;
-  if (name == "zirr-kaplanyan-reference") return BrdfModel::ZirrKaplanyanReference;
-  throw Error("unknown BRDF '" + name + "' (choices: glint, cook-torrance, zirr-kaplanyan, zirr-kaplanyan-reference)");
-}
-
-const char* toString(BrdfModel model) {
-  switch (model) {
-    case BrdfModel::Glint: return "glint";
-    case BrdfModel::CookTorrance: return "cook-torrance";
-    case BrdfModel::ZirrKaplanyan: return "zirr-kaplanyan";
-    case BrdfModel::ZirrKaplanyanReference: return "zirr-kaplanyan-reference";
-  }
-  return "unknown";
-}
-
 std::vector<AntiAliasing> allAntiAliasingModes() {
   return {AntiAliasing::None, AntiAliasing::Ggaa, AntiAliasing::GgaaLean};
 }
@@ -194,7 +172,7 @@ glm::mat4 viewProjection(const scene::Camera& camera, int width, int height, glm
 // features most meshes do not use: texture transforms cost 14% of a Cook-Torrance frame's
 // instructions and vertex colours 2% where every pixel paid for them (docs/benchmarks.md, "What made it fast, and why").
 struct ForwardVariant {
-  BrdfModel model;
+  SpecularModel model;
   bool colouredCells;
   bool filtered;   // GLINT_FILTERED: glint programs that anti-alias (AntiAliasing::Ggaa, GgaaLean)
   bool lean;       // GLINT_LEAN: and filter their normal map (AntiAliasing::GgaaLean)
@@ -223,9 +201,9 @@ struct ForwardVariant {
 };
 
 ShaderProgram forwardProgram(ForwardVariant variant) {
-  const char* specular = variant.model == BrdfModel::Glint          ? "SPECULAR_GLINT"
-                         : variant.model == BrdfModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
-                         : variant.model == BrdfModel::ZirrKaplanyan ? "SPECULAR_ZIRR_KAPLANYAN"
+  const char* specular = variant.model == SpecularModel::Glint          ? "SPECULAR_GLINT"
+                         : variant.model == SpecularModel::CookTorrance ? "SPECULAR_COOK_TORRANCE"
+                         : variant.model == SpecularModel::ZirrKaplanyan ? "SPECULAR_ZIRR_KAPLANYAN"
                                                                      : "SPECULAR_ZIRR_KAPLANYAN_REFERENCE";
   return ShaderProgram({{GL_VERTEX_SHADER, "forward.vert"}, {GL_FRAGMENT_SHADER, "forward.frag"}},
                        {{"SPECULAR_MODEL", specular},
@@ -269,9 +247,9 @@ int footprintWords(const kernel::GlintFootprintPolicy& policy) {
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
                               int lightCount, int shadowCubes) {
-  const BrdfModel model = material.glint.enabled ? settings.brdf : BrdfModel::CookTorrance;
-  const bool coloured = model == BrdfModel::Glint && material.glint.colouredCells;
-  const bool filtered = model == BrdfModel::Glint && settings.antiAliasing != AntiAliasing::None;
+  const SpecularModel model = material.glint.enabled ? settings.brdf : SpecularModel::CookTorrance;
+  const bool coloured = model == SpecularModel::Glint && material.glint.colouredCells;
+  const bool filtered = model == SpecularModel::Glint && settings.antiAliasing != AntiAliasing::None;
   const bool normalMap = material.normalTexture >= 0;
   const bool lean = filtered && normalMap && settings.antiAliasing == AntiAliasing::GgaaLean;
   const bool finest = normalMap && !lean && settings.normalMapFinestLevel;
@@ -293,8 +271,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.shadows && lightCount > 0,
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
-                        model == BrdfModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
-                        model == BrdfModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER};
+                        model == SpecularModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
+                        model == SpecularModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER};
 }
 
 // The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),
@@ -534,151 +512,175 @@ int Renderer::maxMsaaSamples() const {
   return powerOfTwo;
 }
 
+// One frame's state, shared by its passes: the projection, the lights as the shaders take them,
+// the shadow maps' lookups.
+struct Renderer::FrameState {
+  glm::mat4 projection{1.0f};
+  GLuint target = 0;
+  // The scene's lights, then those taken out of the environment map; both cast shadows.
+  std::vector<scene::Light> lights;
+  int lightCount = 0;
+  glm::vec4 lightPositions[kMaxLights];  // w = 1: point or spot at xyz; w = 0: unit direction towards the light
+  glm::vec3 lightIntensities[kMaxLights];
+  glm::vec3 spotAxes[kMaxLights];
+  glm::vec2 spotCones[kMaxLights];
+  float inverseRanges[kMaxLights] = {};
+  bool shadows = false;
+  int shadowEntries = 0;  // lightCount * kShadowCascades
+  int shadowCubes = 0;    // bit i: light i has a cube map
+  glm::mat4 shadowMatrices[kMaxLights * kShadowCascades];
+  float shadowLayers[kMaxLights * kShadowCascades] = {};
+  float shadowDepthScales[kMaxLights * kShadowCascades] = {};
+  float shadowTexels[kMaxLights * kShadowCascades] = {};
+};
+
 void Renderer::renderFrame(const FrameSettings& settings) {
+  FrameState frame = beginFrame(settings);
+  shadowPass(settings, frame);
+  depthPrepass(frame);
+  shadingPass(settings, frame);
+  backgroundPass(frame);
+  resolve(settings);
+}
+
+GLuint Renderer::textureOr(int index, GLuint fallback) const {
+  const Gpu& g = *gpu_;
+  return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)] : fallback;
+}
+
+// glTF: back faces of single-sided materials are culled; double-sided ones (curtains) are drawn
+// from both sides.
+void Renderer::setCulling(int material) const {
+  if (materials_[static_cast<std::size_t>(material)].doubleSided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+  }
+}
+
+// The frame's checks, its target cleared, its projection and its lights.
+Renderer::FrameState Renderer::beginFrame(const FrameSettings& settings) {
   Gpu& g = *gpu_;
   if (settings.msaa < 1 || (settings.msaa & (settings.msaa - 1)) != 0 || settings.msaa > maxMsaaSamples()) {
     throw Error("multisampling: " + std::to_string(settings.msaa) + " samples a pixel; this OpenGL takes 1, 2, ... " +
                 std::to_string(maxMsaaSamples()) + " (powers of two)");
   }
+  if (settings.shadowCascades < 1 || settings.shadowCascades > kShadowCascades) {
+    throw Error("shadow cascades: " + std::to_string(settings.shadowCascades) + "; from 1 to " +
+                std::to_string(kShadowCascades));
+  }
   validateFootprintPolicy(settings.footprintPolicy);
   g.glintMaterials.update(materials_);  // those the viewer edited since the last frame
   g.resizeTarget(settings.width, settings.height, settings.msaa);
-  const GLuint target = g.drawFramebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, target);
+  FrameState frame;
+  frame.target = g.drawFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.target);
   glViewport(0, 0, settings.width, settings.height);
   glEnable(GL_DEPTH_TEST);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
   const float clear[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-  glClearNamedFramebufferfv(target, GL_COLOR, 0, clear);
-  glClearNamedFramebufferfi(target, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glClearNamedFramebufferfv(frame.target, GL_COLOR, 0, clear);
+  glClearNamedFramebufferfi(frame.target, GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
-  const glm::mat4 projection = viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
-                                              scene_.boundsMin(), scene_.boundsMax());
-  glm::vec4 lightPositions[kMaxLights];
-  glm::vec3 lightIntensities[kMaxLights];
-  glm::vec3 spotAxes[kMaxLights];
-  glm::vec2 spotCones[kMaxLights];
-  float inverseRanges[kMaxLights];
-  // The scene's lights, then those taken out of the environment map; both cast shadows.
-  std::vector<scene::Light> drawnLights(lights_);
-  drawnLights.insert(drawnLights.end(), environmentLights_.begin(), environmentLights_.end());
-  if (drawnLights.size() > static_cast<std::size_t>(kMaxLights)) drawnLights.resize(kMaxLights);
-  const int lightCount = static_cast<int>(drawnLights.size());
-  for (int i = 0; i < lightCount; ++i) {
-    const scene::Light& light = drawnLights[static_cast<std::size_t>(i)];
-    lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
-                                           : glm::vec4(-glm::normalize(light.direction), 0.0f);
-    lightIntensities[i] = light.intensity;
-    spotAxes[i] = light.spotAxis();
-    spotCones[i] = light.coneScaleOffset();
-    inverseRanges[i] = light.inverseRange();
+  frame.projection = viewProjection(settings.camera, settings.width, settings.height, settings.jitter,
+                                    scene_.boundsMin(), scene_.boundsMax());
+  frame.lights = lights_;
+  frame.lights.insert(frame.lights.end(), environmentLights_.begin(), environmentLights_.end());
+  if (frame.lights.size() > static_cast<std::size_t>(kMaxLights)) frame.lights.resize(kMaxLights);
+  frame.lightCount = static_cast<int>(frame.lights.size());
+  for (int i = 0; i < frame.lightCount; ++i) {
+    const scene::Light& light = frame.lights[static_cast<std::size_t>(i)];
+    frame.lightPositions[i] = light.positional() ? glm::vec4(light.position, 1.0f)
+                                                 : glm::vec4(-glm::normalize(light.direction), 0.0f);
+    frame.lightIntensities[i] = light.intensity;
+    frame.spotAxes[i] = light.spotAxis();
+    frame.spotCones[i] = light.coneScaleOffset();
+    frame.inverseRanges[i] = light.inverseRange();
   }
-  auto texture = [&](int index, GLuint fallback) {
-    return index >= 0 && index < static_cast<int>(g.textures.size()) ? g.textures[static_cast<std::size_t>(index)]
-                                                                      : fallback;
-  };
-  // glTF: back faces of single-sided materials are culled; double-sided ones (curtains) are drawn
-  // from both sides.
-  auto setCulling = [&](const GpuMesh& mesh) {
-    if (materials_[static_cast<std::size_t>(mesh.material)].doubleSided) {
-      glDisable(GL_CULL_FACE);
-    } else {
-      glEnable(GL_CULL_FACE);
+  frame.shadows = settings.shadows && frame.lightCount > 0;
+  frame.shadowEntries = frame.lightCount * kShadowCascades;
+  return frame;
+}
+
+// Every mesh's depth, alpha masks applied: the pre-pass's (culled as shaded), or a shadow map's
+// (both sides: linearDepth for positional lights, shadow_maps.h).
+void Renderer::drawDepths(const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale,
+                          bool cull) {
+  Gpu& g = *gpu_;
+  for (const GpuMesh& mesh : g.meshes) {
+    const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
+    std::unique_ptr<ShaderProgram>& program = g.depthPrepass[(isMasked(m) ? 1 : 0) + (linearDepth ? 2 : 0)];
+    if (!program) program = std::make_unique<ShaderProgram>(depthPrepassProgram(isMasked(m), linearDepth));
+    glUseProgram(program->id());
+    glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &viewProjection[0][0]);
+    if (linearDepth) {
+      glUniform3fv(program->uniform("uDepthOrigin"), 1, &origin.x);
+      glUniform1f(program->uniform("uDepthScale"), depthScale);
     }
-  };
-  // Every mesh's depth, alpha masks applied: the pre-pass's (culled as shaded), or a shadow map's
-  // (both sides: linearDepth for positional lights, shadow_maps.h).
-  auto drawDepths = [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale,
-                        bool cull) {
-    for (const GpuMesh& mesh : g.meshes) {
-      const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-      std::unique_ptr<ShaderProgram>& program = g.depthPrepass[(isMasked(m) ? 1 : 0) + (linearDepth ? 2 : 0)];
-      if (!program) program = std::make_unique<ShaderProgram>(depthPrepassProgram(isMasked(m), linearDepth));
-      glUseProgram(program->id());
-      glUniformMatrix4fv(program->uniform("uViewProjection"), 1, GL_FALSE, &viewProjection[0][0]);
-      if (linearDepth) {
-        glUniform3fv(program->uniform("uDepthOrigin"), 1, &origin.x);
-        glUniform1f(program->uniform("uDepthScale"), depthScale);
-      }
-      if (isMasked(m)) {
-        glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
-        setUvTransform(*program, "uBaseColourUv", m.baseColourUv);
-        glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
-        glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
-      }
-      if (cull) setCulling(mesh);
-      glBindVertexArray(mesh.vertexArray);
-      glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+    if (isMasked(m)) {
+      glUniform4fv(program->uniform("uBaseColour"), 1, &m.baseColour.x);
+      setUvTransform(*program, "uBaseColourUv", m.baseColourUv);
+      glUniform1f(program->uniform("uAlphaCutoff"), m.alphaCutoff);
+      glBindTextureUnit(1, textureOr(m.baseColourTexture, g.white));
     }
-  };
-  // The lights' shadow maps, drawn again only when what they depend on has changed: the lights,
-  // the alpha masks (the meshes do not move) and, for a directional light's cascades, the camera
-  // (shadow_maps.h): its frustum without the frame's jitter, so that the jittered frames of one
-  // image share their maps.
-  const bool shadows = settings.shadows && lightCount > 0;
-  if (settings.shadowCascades < 1 || settings.shadowCascades > kShadowCascades) {
-    throw Error("shadow cascades: " + std::to_string(settings.shadowCascades) + "; from 1 to " +
-                std::to_string(kShadowCascades));
+    if (cull) setCulling(mesh.material);
+    glBindVertexArray(mesh.vertexArray);
+    glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
   }
-  constexpr int kShadowEntries = kMaxLights * kShadowCascades;
-  glm::mat4 shadowMatrices[kShadowEntries];
-  float shadowLayers[kShadowEntries] = {};
-  float shadowDepthScales[kShadowEntries] = {};
-  float shadowTexels[kShadowEntries] = {};
-  const int shadowEntries = lightCount * kShadowCascades;
-  if (shadows) {
-    std::vector<float> key;
-    for (const scene::Light& l : drawnLights) {
-      key.insert(key.end(), {static_cast<float>(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
-                             l.direction.y, l.direction.z, l.outerConeAngle});
-    }
-    for (const scene::Material& m : materials_) {
-      key.insert(key.end(), {static_cast<float>(m.alphaMode), m.alphaCutoff, m.baseColour.a,
-                             static_cast<float>(m.baseColourTexture)});
-    }
-    ShadowView shadowView;
-    shadowView.viewProjection = viewProjection(settings.camera, settings.width, settings.height, glm::vec2(0.0f),
-                                               scene_.boundsMin(), scene_.boundsMax());
-    shadowView.cameraPosition = settings.camera.position;
-    shadowView.cascades = settings.shadowCascades;
-    g.shadowMaps.update(drawnLights, scene_.boundsMin(), scene_.boundsMax(), shadowView, key,
-                        [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
-                          drawDepths(viewProjection, linearDepth, origin, depthScale, false);
-                        });
-    for (int i = 0; i < shadowEntries; ++i) {
-      const ShadowLookup& lookup = g.shadowMaps.lookups()[static_cast<std::size_t>(i)];
-      shadowMatrices[i] = lookup.matrix;
-      shadowLayers[i] = static_cast<float>(lookup.layer);
-      shadowDepthScales[i] = lookup.depthScale;
-      shadowTexels[i] = lookup.texel;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, target);
-    glViewport(0, 0, settings.width, settings.height);
+}
+
+// The lights' shadow maps, drawn again only when what they depend on has changed: the lights,
+// the alpha masks (the meshes do not move) and, for a directional light's cascades, the camera
+// (shadow_maps.h): its frustum without the frame's jitter, so that the jittered frames of one
+// image share their maps.
+void Renderer::shadowPass(const FrameSettings& settings, FrameState& frame) {
+  if (!frame.shadows) return;
+  Gpu& g = *gpu_;
+  std::vector<float> key;
+  for (const scene::Light& l : frame.lights) {
+    key.insert(key.end(), {static_cast<float>(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
+                           l.direction.y, l.direction.z, l.outerConeAngle});
   }
-  const int shadowCubes = shadows ? g.shadowMaps.cubeMask() : 0;
-  // Depth pre-pass: every mesh's depth first, without colour, so that the shading passes below run
-  // the forward shader only for the fragment that stays visible in each pixel. Without it every
-  // fragment that passes the depth test when it is drawn gets shaded, hidden or not, and a glint
-  // fragment costs several times a Cook-Torrance one (docs/benchmarks.md, "What made it fast, and
-  // why").
+  for (const scene::Material& m : materials_) {
+    key.insert(key.end(), {static_cast<float>(m.alphaMode), m.alphaCutoff, m.baseColour.a,
+                           static_cast<float>(m.baseColourTexture)});
+  }
+  ShadowView shadowView;
+  shadowView.viewProjection = viewProjection(settings.camera, settings.width, settings.height, glm::vec2(0.0f),
+                                             scene_.boundsMin(), scene_.boundsMax());
+  shadowView.cameraPosition = settings.camera.position;
+  shadowView.cascades = settings.shadowCascades;
+  g.shadowMaps.update(frame.lights, scene_.boundsMin(), scene_.boundsMax(), shadowView, key,
+                      [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
+                        drawDepths(viewProjection, linearDepth, origin, depthScale, false);
+                      });
+  for (int i = 0; i < frame.shadowEntries; ++i) {
+    const ShadowLookup& lookup = g.shadowMaps.lookups()[static_cast<std::size_t>(i)];
+    frame.shadowMatrices[i] = lookup.matrix;
+    frame.shadowLayers[i] = static_cast<float>(lookup.layer);
+    frame.shadowDepthScales[i] = lookup.depthScale;
+    frame.shadowTexels[i] = lookup.texel;
+  }
+  frame.shadowCubes = g.shadowMaps.cubeMask();
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.target);
+  glViewport(0, 0, settings.width, settings.height);
+}
+
+// Depth pre-pass: every mesh's depth first, without colour, so that the shading pass runs the
+// forward shader only for the fragment that stays visible in each pixel. Without it every fragment
+// that passes the depth test when it is drawn gets shaded, hidden or not, and a glint fragment
+// costs several times a Cook-Torrance one (docs/benchmarks.md, "What made it fast, and why").
+void Renderer::depthPrepass(const FrameState& frame) {
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  drawDepths(projection, false, glm::vec3(0.0f), 0.0f, true);
+  drawDepths(frame.projection, false, glm::vec3(0.0f), 0.0f, true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  // Shading pass: a fragment is shaded where its depth is the one the pre-pass kept and no fragment
-  // of that pixel has been shaded yet (stencil 0, then 1). Where several fragments share the
-  // nearest depth the first one drawn wins, as it did under GL_LESS without a pre-pass, so the
-  // images are those of a single pass, bit for bit.
-  glDepthFunc(GL_EQUAL);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_EQUAL, 0, 0xFF);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+}
 
-  // The meshes in the scene's order whatever the BRDF, so that a tie in depth goes to the same
-  // mesh in every frame; each with its material's program (ForwardVariant), switched when it
-  // changes, and the frame's uniforms set at each switch.
+// The frame's uniforms of a forward program: camera, lights, environment, footprint, shadows.
+void Renderer::setFrameUniforms(const ShaderProgram& p, const FrameSettings& settings, const FrameState& frame) const {
+  const Gpu& g = *gpu_;
   // The point the shaders' view vectors point to, homogeneous: a perspective camera's position, or
   // for an orthographic one the point at infinity up its view axis (every view vector the same).
   const scene::Camera& camera = settings.camera;
@@ -686,90 +688,112 @@ void Renderer::renderFrame(const FrameSettings& settings) {
                                     ? glm::vec4(glm::normalize(camera.position - camera.target), 0.0f)
                                     : glm::vec4(camera.position, 1.0f);
   const glm::vec2 environmentRotation(std::cos(scene_.environment.rotation), std::sin(scene_.environment.rotation));
-  auto setFrameUniforms = [&](const ShaderProgram& p) {
-    glUseProgram(p.id());
-    g.dictionary->bind(p);
-    glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &projection[0][0]);
-    glUniform4fv(p.uniform("uCameraPoint"), 1, &cameraPoint.x);
-    glUniform4fv(p.uniform("uLightPosition"), lightCount, &lightPositions[0].x);
-    glUniform3fv(p.uniform("uLightIntensity"), lightCount, &lightIntensities[0].x);
-    glUniform3fv(p.uniform("uSpotAxis"), lightCount, &spotAxes[0].x);
-    glUniform2fv(p.uniform("uSpotCone"), lightCount, &spotCones[0].x);
-    glUniform1fv(p.uniform("uLightInverseRange"), lightCount, inverseRanges);
-    glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
-    glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
-    glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
-                settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
-    glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
-    glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
-    glUniform2fv(p.uniform("uEnvironmentRotation"), 1, &environmentRotation.x);
-    glBindTextureUnit(9, g.environment);
-    if (shadows) {
-      g.shadowMaps.bind();
-      glUniform1i(p.uniform("uShadowCascades"), g.shadowMaps.cascades());
-      glUniformMatrix4fv(p.uniform("uShadowMatrix"), shadowEntries, GL_FALSE, &shadowMatrices[0][0][0]);
-      glUniform1fv(p.uniform("uShadowLayer"), shadowEntries, shadowLayers);
-      glUniform1fv(p.uniform("uShadowDepthScale"), shadowEntries, shadowDepthScales);
-      glUniform1fv(p.uniform("uShadowTexel"), shadowEntries, shadowTexels);
+  glUseProgram(p.id());
+  g.dictionary->bind(p);
+  glUniformMatrix4fv(p.uniform("uViewProjection"), 1, GL_FALSE, &frame.projection[0][0]);
+  glUniform4fv(p.uniform("uCameraPoint"), 1, &cameraPoint.x);
+  glUniform4fv(p.uniform("uLightPosition"), frame.lightCount, &frame.lightPositions[0].x);
+  glUniform3fv(p.uniform("uLightIntensity"), frame.lightCount, &frame.lightIntensities[0].x);
+  glUniform3fv(p.uniform("uSpotAxis"), frame.lightCount, &frame.spotAxes[0].x);
+  glUniform2fv(p.uniform("uSpotCone"), frame.lightCount, &frame.spotCones[0].x);
+  glUniform1fv(p.uniform("uLightInverseRange"), frame.lightCount, frame.inverseRanges);
+  glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
+  glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
+  glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
+              settings.footprintPolicy.maxCells, settings.footprintPolicy.minBlend);
+  glUniform1f(p.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
+  glUniform1f(p.uniform("uEnvironmentMaxLod"), g.environmentMaxLod);
+  glUniform2fv(p.uniform("uEnvironmentRotation"), 1, &environmentRotation.x);
+  glBindTextureUnit(9, g.environment);
+  if (frame.shadows) {
+    g.shadowMaps.bind();
+    glUniform1i(p.uniform("uShadowCascades"), g.shadowMaps.cascades());
+    glUniformMatrix4fv(p.uniform("uShadowMatrix"), frame.shadowEntries, GL_FALSE, &frame.shadowMatrices[0][0][0]);
+    glUniform1fv(p.uniform("uShadowLayer"), frame.shadowEntries, frame.shadowLayers);
+    glUniform1fv(p.uniform("uShadowDepthScale"), frame.shadowEntries, frame.shadowDepthScales);
+    glUniform1fv(p.uniform("uShadowTexel"), frame.shadowEntries, frame.shadowTexels);
+  }
+}
+
+// A mesh's material: its uniforms and textures (the glint layer's block bound by range).
+void Renderer::bindMaterial(const ShaderProgram& p, int material, bool alphaMask, bool normalMapMoments) {
+  Gpu& g = *gpu_;
+  const scene::Material& m = materials_[static_cast<std::size_t>(material)];
+  const scene::GlintLayer& glint = m.glint;
+  glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
+  glUniform1f(p.uniform("uMetallic"), m.metallic);
+  glUniform1f(p.uniform("uRoughness"), m.roughness);
+  glUniform1f(p.uniform("uNormalScale"), m.normalScale);
+  glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
+  glUniform1f(p.uniform("uOcclusionStrength"), m.occlusionStrength);
+  setUvTransform(p, "uBaseColourUv", m.baseColourUv);
+  setUvTransform(p, "uMetallicRoughnessUv", m.metallicRoughnessUv);
+  setUvTransform(p, "uNormalUv", m.normalUv);
+  setUvTransform(p, "uEmissiveUv", m.emissiveUv);
+  setUvTransform(p, "uOcclusionUv", m.occlusionUv);
+  if (alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
+  g.glintMaterials.bind(material);
+  glBindTextureUnit(1, textureOr(m.baseColourTexture, g.white));
+  glBindTextureUnit(2, textureOr(m.metallicRoughnessTexture, g.white));
+  glBindTextureUnit(3, textureOr(m.normalTexture, g.flatNormal));
+  glBindTextureUnit(4, textureOr(m.emissiveTexture, g.white));
+  glBindTextureUnit(5, textureOr(m.occlusionTexture, g.white));
+  glBindTextureUnit(6, textureOr(glint.roughnessTexture, g.white));
+  glBindTextureUnit(7, textureOr(glint.logDensityTexture, g.white));
+  glBindTextureUnit(8, textureOr(glint.relativeAreaTexture, g.white));
+  if (normalMapMoments) {
+    auto moments = g.leanMoments.find(material);
+    if (moments == g.leanMoments.end()) {
+      const scene::NormalMapMoments m0 =
+          scene::normalMapMoments(scene_.textures[static_cast<std::size_t>(m.normalTexture)], m.normalScale);
+      const std::array<GLuint, 2> made = {
+          makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.first.data(), true, true),
+          makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.second.data(), true, true)};
+      moments = g.leanMoments.emplace(material, made).first;
     }
-  };
+    glBindTextureUnit(11, moments->second[0]);
+    glBindTextureUnit(12, moments->second[1]);
+  }
+}
+
+// Shading pass: a fragment is shaded where its depth is the one the pre-pass kept and no fragment
+// of that pixel has been shaded yet (stencil 0, then 1). Where several fragments share the nearest
+// depth the first one drawn wins, as it did under GL_LESS without a pre-pass, so the images are
+// those of a single pass, bit for bit. The meshes in the scene's order whatever the BRDF, so that a
+// tie in depth goes to the same mesh in every frame; each with its material's program
+// (ForwardVariant), switched when it changes, and the frame's uniforms set at each switch.
+void Renderer::shadingPass(const FrameSettings& settings, const FrameState& frame) {
+  Gpu& g = *gpu_;
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 0, 0xFF);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings, m, mesh, lightCount, shadowCubes);
+    const ForwardVariant variant = forwardVariant(settings, m, mesh, frame.lightCount, frame.shadowCubes);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;
     if (&p != current) {
       current = &p;
-      setFrameUniforms(p);
+      setFrameUniforms(p, settings, frame);
     }
-    const scene::GlintLayer& glint = m.glint;
-    glUniform4fv(p.uniform("uBaseColour"), 1, &m.baseColour.x);
-    glUniform1f(p.uniform("uMetallic"), m.metallic);
-    glUniform1f(p.uniform("uRoughness"), m.roughness);
-    glUniform1f(p.uniform("uNormalScale"), m.normalScale);
-    glUniform3fv(p.uniform("uEmissive"), 1, &m.emissive.x);
-    glUniform1f(p.uniform("uOcclusionStrength"), m.occlusionStrength);
-    setUvTransform(p, "uBaseColourUv", m.baseColourUv);
-    setUvTransform(p, "uMetallicRoughnessUv", m.metallicRoughnessUv);
-    setUvTransform(p, "uNormalUv", m.normalUv);
-    setUvTransform(p, "uEmissiveUv", m.emissiveUv);
-    setUvTransform(p, "uOcclusionUv", m.occlusionUv);
-    if (variant.alphaMask) glUniform1f(p.uniform("uAlphaCutoff"), m.alphaCutoff);
-    g.glintMaterials.bind(mesh.material);
-    glBindTextureUnit(1, texture(m.baseColourTexture, g.white));
-    glBindTextureUnit(2, texture(m.metallicRoughnessTexture, g.white));
-    glBindTextureUnit(3, texture(m.normalTexture, g.flatNormal));
-    glBindTextureUnit(4, texture(m.emissiveTexture, g.white));
-    glBindTextureUnit(5, texture(m.occlusionTexture, g.white));
-    glBindTextureUnit(6, texture(glint.roughnessTexture, g.white));
-    glBindTextureUnit(7, texture(glint.logDensityTexture, g.white));
-    glBindTextureUnit(8, texture(glint.relativeAreaTexture, g.white));
-    if (variant.lean) {
-      auto moments = g.leanMoments.find(mesh.material);
-      if (moments == g.leanMoments.end()) {
-        const scene::NormalMapMoments m0 =
-            scene::normalMapMoments(scene_.textures[static_cast<std::size_t>(m.normalTexture)], m.normalScale);
-        const std::array<GLuint, 2> made = {
-            makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.first.data(), true, true),
-            makeTexture(m0.width, m0.height, GL_RGB32F, GL_RGB, GL_FLOAT, m0.second.data(), true, true)};
-        moments = g.leanMoments.emplace(mesh.material, made).first;
-      }
-      glBindTextureUnit(11, moments->second[0]);
-      glBindTextureUnit(12, moments->second[1]);
-    }
-    setCulling(mesh);
+    bindMaterial(p, mesh.material, variant.alphaMask, variant.lean);
+    setCulling(mesh.material);
     glBindVertexArray(mesh.vertexArray);
     glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
   }
-
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_CULL_FACE);
+}
 
-  // The environment where no mesh was drawn (shaders/background.frag): at the far plane, the
-  // triangle passes the depth test only where the depth is still the cleared 1, so meshes hide it
-  // before it is shaded.
+// The environment where no mesh was drawn (shaders/background.frag): at the far plane, the
+// triangle passes the depth test only where the depth is still the cleared 1, so meshes hide it
+// before it is shaded.
+void Renderer::backgroundPass(const FrameState& frame) {
+  Gpu& g = *gpu_;
   if (!g.background) {
     g.background = std::make_unique<ShaderProgram>(
         std::vector<std::pair<GLenum, std::string>>{{GL_VERTEX_SHADER, "fullscreen.vert"},
@@ -778,7 +802,8 @@ void Renderer::renderFrame(const FrameSettings& settings) {
     glCreateVertexArrays(1, &g.emptyVertexArray);
   }
   const ShaderProgram& background = *g.background;
-  const glm::mat4 inverseProjection = glm::inverse(projection);
+  const glm::mat4 inverseProjection = glm::inverse(frame.projection);
+  const glm::vec2 environmentRotation(std::cos(scene_.environment.rotation), std::sin(scene_.environment.rotation));
   glUseProgram(background.id());
   glUniformMatrix4fv(background.uniform("uInverseViewProjection"), 1, GL_FALSE, &inverseProjection[0][0]);
   glUniform1f(background.uniform("uEnvironmentIntensity"), scene_.environment.intensity);
@@ -792,11 +817,14 @@ void Renderer::renderFrame(const FrameSettings& settings) {
   glDepthFunc(GL_LESS);
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (settings.msaa > 1) {
-    // The resolve: each pixel the mean of its samples.
-    glBlitNamedFramebuffer(g.multisampleFramebuffer, g.framebuffer, 0, 0, settings.width, settings.height, 0, 0,
-                           settings.width, settings.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  }
+}
+
+// With several samples a pixel, each pixel the mean of its samples.
+void Renderer::resolve(const FrameSettings& settings) {
+  if (settings.msaa <= 1) return;
+  const Gpu& g = *gpu_;
+  glBlitNamedFramebuffer(g.multisampleFramebuffer, g.framebuffer, 0, 0, settings.width, settings.height, 0, 0,
+                         settings.width, settings.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 ImageRgbF renderSupersampled(Renderer& renderer, FrameSettings frame, int spp, const std::function<void(int)>& onSample) {

@@ -13,9 +13,12 @@
 #include "glint/bsdf.h"
 #include "glint/dictionary.h"
 #include "glint/image_io.h"
+#include "glint/specular_model.h"
 #include "scene/scene.h"
 
 namespace glint::gl {
+
+class ShaderProgram;
 
 // The most lights the rasteriser draws (the first ones of the scene): a forward program is
 // compiled per light count (LIGHT_COUNT). The path tracer draws them all.
@@ -28,14 +31,6 @@ constexpr int kShadowCascades = 4;
 // (shaders/glint_material_block.glsl): each mesh's draw binds its material's range of the
 // renderer's buffer of all materials there.
 constexpr GLuint kGlintMaterialBinding = 0;
-
-// ZirrKaplanyanReference: the same images as ZirrKaplanyan on the reference shader's schedule, slower
-// (kernel/zirr_kaplanyan.h, docs/zirr-kaplanyan.md "Cost"), so that benchmarks measure against both.
-enum class BrdfModel { Glint, CookTorrance, ZirrKaplanyan, ZirrKaplanyanReference };
-// Every model, in the order tables list them.
-std::vector<BrdfModel> allBrdfModels();
-BrdfModel brdfModelFromString(const std::string& name);  // throws Error naming the choices
-const char* toString(BrdfModel model);
 
 // Glint anti-aliasing (docs/antialiasing.md): None is the 2020 model, each pixel's P-SDF at one
 // half vector; Ggaa filters it by the half vector's variation over the pixel (Chermain et al.
@@ -63,7 +58,7 @@ const QualityPreset& qualityPreset(const std::string& name);
 struct FrameSettings {
   int width = 512;
   int height = 512;
-  BrdfModel brdf = BrdfModel::Glint;
+  SpecularModel brdf = SpecularModel::Glint;
   AntiAliasing antiAliasing = AntiAliasing::GgaaLean;
   // Normal maps read at their finest level instead of the footprint's (the anti-aliasing
   // reference protocol: its jittered frames resolve the normal map themselves).
@@ -123,6 +118,22 @@ class Renderer {
 
  private:
   struct Gpu;
+  struct FrameState;
+  // The frame's passes, in the order renderFrame runs them (docs/renderer.md, "Passes").
+  FrameState beginFrame(const FrameSettings& settings);
+  void shadowPass(const FrameSettings& settings, FrameState& frame);
+  void depthPrepass(const FrameState& frame);
+  void shadingPass(const FrameSettings& settings, const FrameState& frame);
+  void backgroundPass(const FrameState& frame);
+  void resolve(const FrameSettings& settings);
+  // Their parts.
+  void drawDepths(const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale, bool cull);
+  void setFrameUniforms(const ShaderProgram& program, const FrameSettings& settings, const FrameState& frame) const;
+  // A mesh's material (alphaMask: its cutoff; normalMapMoments: its normal map's slope moments).
+  void bindMaterial(const ShaderProgram& program, int material, bool alphaMask, bool normalMapMoments);
+  void setCulling(int material) const;
+  GLuint textureOr(int texture, GLuint fallback) const;  // the scene texture's name, else `fallback`
+
   const scene::Scene& scene_;
   std::vector<scene::Material> materials_;
   std::vector<scene::Light> lights_;

@@ -595,17 +595,31 @@ void validateZirrKaplanyanParameters(const ZirrKaplanyanParameters& p) {
   requireRange("max_anisotropy", p.maxAnisotropy, 1.0f, 64.0f);
 }
 
+namespace {
+
+// The Beckmann lobe of the model's macro roughness, within the roughness the CPU BSDFs accept.
+CookTorranceBsdf zirrKaplanyanProposal(const ZirrKaplanyanParameters& parameters) {
+  return CookTorranceBsdf(glm::clamp(parameters.roughness, glm::vec2(kMinRoughnessAlpha), glm::vec2(kMaxRoughnessAlpha)));
+}
+
+ZirrKaplanyanParameters validatedMapping(const GlintParameters& parameters) {
+  validateGlintParameters(parameters);
+  return kernel::glintZirrKaplanyanFromGlint(parameters);
+}
+
+}  // namespace
+
 ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const GlintParameters& parameters, const SurfaceFootprint& footprint,
                                      Fresnel fresnel, Spectrum reflectance)
-    : footprint_(footprint), fresnel_(fresnel), reflectance_(reflectance) {
-  validateGlintParameters(parameters);
-  validateFootprint(footprint);
-  parameters_ = kernel::glintZirrKaplanyanFromGlint(parameters);
-}
+    : ZirrKaplanyanBsdf(validatedMapping(parameters), footprint, fresnel, reflectance) {}
 
 ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
                                      Fresnel fresnel, Spectrum reflectance)
-    : parameters_(parameters), footprint_(footprint), fresnel_(fresnel), reflectance_(reflectance) {
+    : parameters_(parameters),
+      footprint_(footprint),
+      fresnel_(fresnel),
+      reflectance_(reflectance),
+      proposal_(zirrKaplanyanProposal(parameters)) {
   validateZirrKaplanyanParameters(parameters);
   validateFootprint(footprint);
 }
@@ -616,5 +630,15 @@ Spectrum ZirrKaplanyanBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
   if (value == 0.0f) return Spectrum(0.0f);
   return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
 }
+
+std::optional<BsdfSample> ZirrKaplanyanBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  std::optional<BsdfSample> drawn = proposal_.sample(wo, uChoice, u);
+  if (!drawn) return std::nullopt;
+  drawn->f = f(wo, drawn->wi);
+  drawn->weight = drawn->f * (std::abs(drawn->wi.z) / drawn->pdf);
+  return drawn;
+}
+
+float ZirrKaplanyanBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const { return proposal_.pdf(wo, wi); }
 
 }  // namespace glint

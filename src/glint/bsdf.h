@@ -213,6 +213,12 @@ class ZirrKaplanyanBsdf {
   ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
                     Fresnel fresnel = Fresnel::none(), Spectrum reflectance = Spectrum(1.0f));
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
+  // Directions from the visible normals of the Beckmann lobe of the model's macro roughness, the
+  // smooth lobe its microdetails scatter around (spec 1.2): the model itself has no sampler. f is
+  // the model's and pdf that lobe's, so sample()'s weight f |cos| / pdf is the model's, unbiased
+  // wherever the lobe's density is positive (everywhere above the horizon).
+  std::optional<BsdfSample> sample(glm::vec3 wo, float uChoice, glm::vec2 u) const;
+  float pdf(glm::vec3 wo, glm::vec3 wi) const;
   const ZirrKaplanyanParameters& parameters() const { return parameters_; }
 
  private:
@@ -220,6 +226,7 @@ class ZirrKaplanyanBsdf {
   SurfaceFootprint footprint_;
   Fresnel fresnel_;
   Spectrum reflectance_;
+  CookTorranceBsdf proposal_;  // the sampler's lobe
 };
 
 // The Shadertoy's snow material (spec 2.2): r = 0.6, mu = 0.024 r, c = 0.01, v = 100, R = 50000,

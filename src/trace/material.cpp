@@ -4,18 +4,11 @@
 #include <cmath>
 
 #include "glint/kernel/normal_map_filtering.h"
+#include "glint/kernel/surface.h"
 #include "scene/normal_map_moments.h"
 #include "trace/sampling.h"
 
 namespace glint::trace {
-
-namespace {
-
-// The smallest alpha the CPU BSDFs accept (validateRoughness); the shader's roughness clamp at
-// 0.03 allows alpha = 0.0009, which only glTF materials with roughness below 0.07 reach.
-constexpr float kMinimumAlpha = 0.005f;
-
-}  // namespace
 
 SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo)
     : diffuse_(diffuse), specular_(std::move(specular)) {
@@ -130,86 +123,62 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const scene::GlintLayer& layer = m.glint;
   const glm::vec2 uv = point.uv;
 
-  // glTF metal-roughness inputs, as forward.frag reads them.
-  const glm::vec3 baseColour =
-      glm::vec3(m.baseColour) * texture(m.baseColourTexture, m.baseColourUv, uv, footprint) * glm::vec3(point.colour);
+  // The surface's inputs as this renderer looks them up (its mip chains at the ray footprint); the
+  // surface is assembled from them by the kernel (kernel/surface.h), as the rasteriser assembles its own.
+  kernel::GlintSurfaceSamples samples;
+  samples.baseColour = m.baseColour * glm::vec4(texture(m.baseColourTexture, m.baseColourUv, uv, footprint), 1.0f) * point.colour;
   const glm::vec3 metallicRoughness = texture(m.metallicRoughnessTexture, m.metallicRoughnessUv, uv, footprint);
-  const float metallic = m.metallic * metallicRoughness.b;
-  const float roughness = std::clamp(m.roughness * metallicRoughness.g, 0.03f, 1.0f);
-  const Spectrum emitted = emission(point, footprint, towardsViewer);
-
-  // Shading frame: the normal map's normal, the tangent re-orthogonalised against it, the normal
-  // turned towards the viewer for sheets seen from behind.
-  const glm::vec3 view = towardsViewer;
-  glm::vec3 n = point.normal;
-  const glm::vec3 tangent(point.tangent);
-  glm::vec3 t = tangent - n * glm::dot(n, tangent);
-  if (glm::dot(t, t) < 1e-12f) {
-    // No usable tangent (degenerate mesh data): any direction perpendicular to n.
-    t = glm::cross(std::abs(n.x) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), n);
-  }
-  t = glm::normalize(t);
-  const float handedness = point.tangent.w < 0.0f ? -1.0f : 1.0f;
-  glm::vec3 b = glm::cross(n, t) * handedness;
+  samples.metallicRoughness = {m.metallic * metallicRoughness.b, m.roughness * metallicRoughness.g};
+  samples.emission = emission(point, footprint, towardsViewer);
+  samples.occlusion = 1.0f;  // ambient occlusion is the rasteriser's stand-in for what a path tracer traces
+  samples.normal = point.normal;
+  samples.tangent = point.tangent;
+  samples.view = towardsViewer;
+  samples.mappedNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+  samples.normalMapCovariance = glm::vec3(0.0f);
   const std::optional<NormalMapMoments>& moments = normalMapMoments_[static_cast<std::size_t>(point.material)];
-  glm::vec3 leanCovariance(0.0f);
   if (moments) {
-    // Normal-map filtering, as forward.frag's GLINT_LEAN: the moments at the footprint, through the
-    // normal texture's transform.
+    // Normal-map filtering: the slope moments at the footprint, through the normal texture's transform.
     const TransformedLookup at = transformedLookup(m.normalUv, uv, footprint);
     const glm::vec2 dx = at.footprint.duvdx;
     const glm::vec2 dy = at.footprint.duvdy;
     const glm::vec3 first = moments->first.sample(at.uv, dx, dy);
     const glm::vec3 second = moments->second.sample(at.uv, dx, dy);
-    leanCovariance = kernel::glintLeanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
-    const glm::vec3 mapped = kernel::glintLeanMeanNormal(first);
-    n = glm::normalize(t * mapped.x + b * mapped.y + n * mapped.z);
+    samples.mappedNormal = kernel::glintLeanMeanNormal(first);
+    samples.normalMapCovariance = kernel::glintLeanSlopeCovariance(first, second, moments->first.levelOfDetail(dx, dy));
   } else if (m.normalTexture >= 0) {
-    glm::vec3 mapped = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
-    mapped.x *= m.normalScale;
-    mapped.y *= m.normalScale;
-    const glm::vec3 perturbed = t * mapped.x + b * mapped.y + n * mapped.z;
-    if (glm::dot(perturbed, perturbed) > 0.0f) n = glm::normalize(perturbed);
+    samples.mappedNormal = texture(m.normalTexture, m.normalUv, uv, footprint) * 2.0f - 1.0f;
+    samples.mappedNormal.x *= m.normalScale;
+    samples.mappedNormal.y *= m.normalScale;
   }
-  if (glm::dot(n, view) < 0.0f) n = -n;
-  glm::vec3 t2 = t - n * glm::dot(n, t);
-  t = glm::dot(t2, t2) > 1e-12f ? glm::normalize(t2) : t;
-  b = glm::cross(n, t) * handedness;
-  const ShadingFrame frame{t, b, n};
-  const glm::vec3 wo(glm::dot(view, t), glm::dot(view, b), std::max(glm::dot(view, n), 1e-4f));
-
-  const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), baseColour, metallic);
-  const Spectrum diffuse = baseColour * (1.0f - metallic) / kPi;
-  const Fresnel fresnel = Fresnel::schlick(glm::clamp(f0, 0.0f, 1.0f));
-  const Spectrum specularAlbedo = fresnel.evaluate(wo.z);
-
-  if (!layer.enabled) {
-    const CookTorranceBsdf specular(glm::vec2(std::max(roughness * roughness, kMinimumAlpha)), 0.0f, fresnel,
-                                    Spectrum(1.0f), m.specular);
-    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
-  }
-
-  // The glint layer's parameters from its textures' samples (1 where it has none), by the kernel's
-  // mapping, the shader's.
+  samples.glintSamples = {texture(layer.roughnessTexture, uv, footprint).r, texture(layer.logDensityTexture, uv, footprint).r,
+                          texture(layer.relativeAreaTexture, uv, footprint).r};
   const kernel::GlintMaterial material = scene::glintMaterial(layer, m.specular);
-  GlintParameters params = kernel::glintMaterialParameters(
-      material, texture(layer.roughnessTexture, uv, footprint).r, texture(layer.logDensityTexture, uv, footprint).r,
-      texture(layer.relativeAreaTexture, uv, footprint).r, footprintPolicy_);
-  const glm::vec3 leanRoughness = kernel::glintLeanCombinedRoughness(params.alpha, params.rho, leanCovariance);
-  params.alpha = glm::vec2(leanRoughness);
-  params.rho = leanRoughness.z;
-  if (model_ == SpecularModel::CookTorrance) {
-    const CookTorranceBsdf specular(params.alpha, params.rho, fresnel, Spectrum(1.0f), m.specular);
-    return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
+  const kernel::GlintSurface surface = kernel::glintSurface(samples, material, footprintPolicy_);
+
+  const ShadingFrame frame{surface.t, surface.b, surface.n};
+  const Fresnel fresnel = Fresnel::schlick(surface.f0);
+  const Spectrum specularAlbedo = fresnel.evaluate(surface.wo.z);
+  auto shaded = [&](SurfaceMaterial::Specular specular) {
+    return ShadedPoint{frame, surface.wo, surface.emission, SurfaceMaterial(surface.diffuse, std::move(specular), specularAlbedo)};
+  };
+  if (!layer.enabled || model_ == SpecularModel::CookTorrance) {
+    // The smooth lobe, at least as rough as the CPU BSDFs accept (a glTF roughness below 0.07).
+    return shaded(CookTorranceBsdf(glm::max(surface.smoothAlpha, glm::vec2(kMinRoughnessAlpha)), surface.smoothRho, fresnel,
+                                   Spectrum(1.0f), m.specular));
   }
   // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives. Coloured cells
-  // (params.colouredCells, the layer's random colours) are the BSDF's own tint.
+  // (the layer's random colours) are the BSDF's own tint.
   SurfaceFootprint glintFootprint;
   glintFootprint.uv = kernel::glintMaterialUv(material, uv);
   glintFootprint.duvdx = kernel::glintMaterialUv(material, footprint.duvdx);
   glintFootprint.duvdy = kernel::glintMaterialUv(material, footprint.duvdy);
-  const GlintBsdf specular(dictionary_, params, glintFootprint, fresnel, Spectrum(1.0f), sampler_);
-  return {frame, wo, emitted, SurfaceMaterial(diffuse, specular, specularAlbedo)};
+  if (model_ == SpecularModel::ZirrKaplanyan || model_ == SpecularModel::ZirrKaplanyanReference) {
+    // The layer's parameters mapped (docs/zirr-kaplanyan.md); it has no relative area, so its mean
+    // is scaled by it to match the glint BRDF's, as the rasteriser scales it.
+    return shaded(ZirrKaplanyanBsdf(surface.glint, glintFootprint, fresnel, Spectrum(surface.glint.relativeArea)));
+  }
+  return shaded(GlintBsdf(dictionary_, surface.glint, glintFootprint, fresnel, Spectrum(1.0f), sampler_));
 }
 
 }  // namespace glint::trace

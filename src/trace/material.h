@@ -1,13 +1,12 @@
-// Per-hit material evaluation of the path tracer: the real-time renderer's shading model
-// (shaders/forward.frag, docs/renderer.md "Shading") turned into a BSDF that can be sampled.
-//   - glTF metal-roughness inputs (textures times factors), the normal map in the tangent frame,
-//     the tangent re-orthogonalised, a sheet seen from behind shaded on its visible side;
+// Per-hit material evaluation of the path tracer: the surface the kernel assembles from the
+// textures' samples (kernel/surface.h, the rasteriser's too) turned into a BSDF that can be sampled:
 //   - Lambertian diffuse baseColour (1 - metallic) / pi;
 //   - plus a specular lobe times Schlick's Fresnel with F0 = mix(0.04, baseColour, metallic): the
 //     glint BRDF when the material has a glint layer and the glint model is selected (coloured
-//     cells tint it, inside GlintBsdf), else Cook-Torrance with the layer's alpha, or alpha = roughness^2 without one.
-// Everything the shader computes per fragment happens once, in SceneMaterials::shade; what the
-// integrator asks of a material (f, sample, pdf over its lobes) is in SurfaceMaterial.
+//     cells tint it, inside GlintBsdf), Zirr & Kaplanyan 2016 when that model is, else Cook-Torrance
+//     with the layer's alpha, or alpha = roughness^2 without one.
+// SceneMaterials::shade looks the textures up and builds the BSDF once per hit; what the integrator
+// asks of a material (f, sample, pdf over its lobes) is in SurfaceMaterial.
 #pragma once
 
 #include <optional>
@@ -17,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/bsdf.h"
+#include "glint/specular_model.h"
 #include "scene/scene.h"
 #include "trace/geometry.h"
 #include "trace/texture.h"
@@ -25,11 +25,8 @@ namespace glint::trace {
 
 using scene::luminance;
 
-// The specular lobe of materials with a glint layer (`--brdf`); the real-time renderer's BrdfModel.
-enum class SpecularModel { Glint, CookTorrance };
-
 // Shading frame: n the shading normal, t the tangent (alpha_x), b = cross(n, t) times the
-// tangent's handedness, as the shader builds it (so the frame may be left-handed).
+// tangent's handedness (kernel/surface.h; so the frame may be left-handed).
 struct ShadingFrame {
   glm::vec3 t{1, 0, 0};
   glm::vec3 b{0, 1, 0};
@@ -50,7 +47,7 @@ struct MaterialSample {
 // proportion to estimates of their albedos, and pdf() is the mixture's (one-sample MIS over lobes).
 class SurfaceMaterial {
  public:
-  using Specular = std::variant<CookTorranceBsdf, GlintBsdf>;
+  using Specular = std::variant<CookTorranceBsdf, GlintBsdf, ZirrKaplanyanBsdf>;
   // `specularAlbedo`: an estimate of the specular lobe's reflectance (Fresnel at wo), to split
   // samples between the lobes.
   SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo);

@@ -97,6 +97,31 @@ run("configure a consumer that sets no C++ standard" ${no_standard})
 run("build a consumer that sets no C++ standard" ${CMAKE_COMMAND} --build ${WORK}/no_standard)
 run("run a consumer that sets no C++ standard" ${WORK}/no_standard/glint_no_standard)
 
+# The recipes of docs/integration.md ("Recipes"), word for word as the document has them
+# (tests/install/recipes copies them out at configure): the C++ recipe built from the prefix alone
+# and run with the installed glint's dictionary (it checks its own figures), the GLSL recipe compiled
+# by glslangValidator for OpenGL and Vulkan with the installed shader folder as its include path
+# (one line says so where there is no glslangValidator).
+set(recipes ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/recipes -B ${WORK}/recipes
+    -DCMAKE_BUILD_TYPE=${BUILD_TYPE} -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF
+    -DGLINT_INTEGRATION_DOC=${SOURCE_DIR}/docs/integration.md)
+if(EXAMPLE_FLAGS)
+  list(APPEND recipes "-DCMAKE_CXX_FLAGS=${EXAMPLE_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXAMPLE_FLAGS}")
+endif()
+run("configure the recipes of docs/integration.md" ${recipes})
+string(REGEX MATCHALL "glint recipe [^\n]*" recipe_lines "${run_output}")
+foreach(line IN LISTS recipe_lines)
+  message(STATUS "${line}")
+endforeach()
+file(STRINGS ${WORK}/recipes/CMakeCache.txt glint_dir REGEX "^glint_DIR:")
+if(NOT glint_dir STREQUAL "glint_DIR:PATH=${prefix}/lib/cmake/glint")
+  message(FATAL_ERROR "the recipes found glint elsewhere than in the prefix: ${glint_dir}")
+endif()
+run("build the recipes of docs/integration.md" ${CMAKE_COMMAND} --build ${WORK}/recipes)
+run("run the C++ recipe of docs/integration.md" ${WORK}/recipes/glint_integration_recipe ${WORK}/dictionary.gdict)
+message(STATUS "${run_output}")
+
 # The path tracer: the glinty sphere with the dictionary the installed glint wrote, the smooth one
 # with a dictionary generated at start (which it does not shade with).
 set(tracer ${WORK}/build/path_tracer/glint_path_tracer)

@@ -181,7 +181,7 @@ EMSCRIPTEN_KEEPALIVE int glint_read_frame(std::uint8_t* out) {
 // Frame settings: the BRDF (glint, cook-torrance, zirr-kaplanyan), the anti-aliasing (none, ggaa,
 // ggaa+lean), the exposure multiplier.
 EMSCRIPTEN_KEEPALIVE int glint_set_brdf(const char* name) {
-  return guarded([&] { page.frame.brdf = gl::brdfModelFromString(name); });
+  return guarded([&] { page.frame.brdf = specularModelFromName(name); });
 }
 EMSCRIPTEN_KEEPALIVE int glint_set_antialiasing(const char* name) {
   return guarded([&] { page.frame.antiAliasing = gl::antiAliasingFromString(name); });

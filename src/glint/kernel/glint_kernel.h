@@ -1,11 +1,13 @@
 // The whole kernel in one include, for a host's shader or C++ code and for
 // `glint shader-bundle` (docs/integration.md): the 2020 model (glint_brdf.h) with the 2021
-// anti-aliasing (glint_antialiasing.h), a material's parameters (glint_material.h), the smooth
-// targets and masking (microfacet.h, microfacet_targets.h), multiple scattering
+// anti-aliasing (glint_antialiasing.h), a material's parameters (glint_material.h), a glTF surface
+// assembled from its textures' samples (surface.h), the smooth targets and masking (microfacet.h,
+// microfacet_targets.h), multiple scattering
 // (multiple_scattering.h, albedo_tables.h), normal-map filtering (normal_map_filtering.h), lights
-// (lights.h), display encoding (tonemap.h), the procedural dictionary (procedural_dictionary.h)
-// and the Zirr & Kaplanyan 2016 baseline (zirr_kaplanyan.h). Before calling into it, a shading
-// language host defines the dictionary hook (prelude.h).
+// (lights.h), display encoding (tonemap.h) and the procedural dictionary (procedural_dictionary.h).
+// Before calling into it, a shading language host defines the dictionary hook (prelude.h). The
+// Zirr & Kaplanyan 2016 baseline (zirr_kaplanyan.h), which glint measures itself against, is not
+// part of it: a host that wants it includes that header too.
 #ifndef GLINT_KERNEL_GLINT_KERNEL_H
 #define GLINT_KERNEL_GLINT_KERNEL_H
 
@@ -18,10 +20,10 @@
 #include "glint_antialiasing.h"
 #include "glint_brdf.h"
 #include "glint_material.h"
+#include "surface.h"
 #include "normal_map_filtering.h"
 #include "lights.h"
 #include "tonemap.h"
 #include "procedural_dictionary.h"
-#include "zirr_kaplanyan.h"
 
 #endif
