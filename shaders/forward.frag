@@ -29,7 +29,7 @@
 #ifndef GLINT_MASKING
 #define GLINT_MASKING 0
 #endif
-// The glint layer's LOD construction (glint_brdf.h, glintLodCell), compiled in likewise: the
+// The glint layer's LOD construction (glint_lod.h, glintLodCell), compiled in likewise: the
 // paper's unless the host defines GLINT_LOD_CONSTRUCTION as another (GLINT_LOD_CONSISTENT 1,
 // GLINT_LOD_TREE 2).
 #ifndef GLINT_LOD_CONSTRUCTION

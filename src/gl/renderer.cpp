@@ -194,7 +194,7 @@ struct ForwardVariant {
   // glintPixelFootprint), compiled in so that each policy pays for its own words only and exact for
   // none; their values come from uGlintFootprintPolicy.
   int footprintWords;
-  // GLINT_LOD_CONSTRUCTION: the LOD construction of the material's glint layer (kernel/glint_brdf.h,
+  // GLINT_LOD_CONSTRUCTION: the LOD construction of the material's glint layer (kernel/glint_lod.h,
   // glintLodCell), compiled in so that the paper's pays nothing for the others.
   int lodConstruction;
   auto operator<=>(const ForwardVariant&) const = default;

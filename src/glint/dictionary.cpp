@@ -85,9 +85,9 @@ float DictionaryParameters::texelSpacing() const { return slopeDomain() / static
 
 void DictionaryParameters::validate() const {
   // 16 levels at most: the kernel's 32-bit cell seed holds 2^16 level-0 cells per axis
-  // (kernel/glint_brdf.h, GLINT_CELL_INDEX_MASK), and its level draw has room for 16 thresholds.
+  // (kernel/glint_parameters.h, GLINT_CELL_INDEX_MASK), and its level draw has room for 16 thresholds.
   requireInRange("levels", numLevels, 1, kernel::GLINT_MAX_DICTIONARY_LEVELS);
-  // Distributions are picked from 16-bit hash halves (kernel/glint_brdf.h, glintCellDistributions).
+  // Distributions are picked from 16-bit hash halves (kernel/glint_cell.h, glintCellDistributions).
   requireInRange("distributions", numDistributions, 1, 4096);
   requireInRange("texels", texelsPerDistribution, 2, 4096);
   requireInRange("alpha", alpha, 0.01f, 2.0f);

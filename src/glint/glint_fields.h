@@ -7,7 +7,7 @@
 // output, tested equal). The three.js package and the Blender add-on check their field tables
 // against that schema in their own tests.
 //
-// Adding a parameter: a row here, a member in the kernel's GlintParameters (kernel/glint_brdf.h)
+// Adding a parameter: a row here, a member in the kernel's GlintParameters (kernel/glint_parameters.h)
 // and GlintMaterial (kernel/glint_material.h) and where the kernel uses it (docs/architecture.md,
 // "Adding a material parameter").
 #pragma once

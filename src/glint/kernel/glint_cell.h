@@ -1,0 +1,255 @@
+// One cell of the 2020 glint model (Chermain et al. 2020; method.md 2.5): its hash, its
+// dictionary level drawn from its expected number of microfacets with the density randomisation,
+// its random rotation and pair of dictionary distributions, the slope scaling to the material's
+// roughness, and its random colour (coloured cells).
+// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+#ifndef GLINT_KERNEL_GLINT_CELL_H
+#define GLINT_KERNEL_GLINT_CELL_H
+
+#include "prelude.h"
+#include "random.h"
+#include "dictionary_lookup.h"
+#include "glint_parameters.h"
+
+GLINT_KERNEL_BEGIN
+
+// A cell's random colour (the paper's "cheap iridescence"), as its offset from white in the
+// chroma plane, the colours whose channels average 1: white + a U + b V, with U and V the plane's
+// orthonormal axes (glintTintedP22). (a, b) is uniform on a square of half-width 0.85, so the
+// expected colour is white and the mean appearance that of uncoloured glints; at two of the
+// square's corners the weakest channel is 1 - 0.85 (1 / sqrt 6 + 1 / sqrt 2) = 0.05, never below 0.
+// It reads the bits the model's draws leave (glintHashToUnitOpen takes the top 24 of a lane): the
+// low 8 of the first two lanes, so the draws stay untouched and there is no second hash. Being
+// linear in (a, b), a footprint's colour sums two numbers a slope, not three. With a second hash
+// and a hue wheel, the coloured car paint's fragment shader ran 8% more instructions than the
+// uncoloured one; now 3% (docs/benchmarks.md, "What made it fast, and why").
+GLINT_FN vec2 glintCellChroma(uvec4 h) {
+  return vec2(float(h.x & 0xFFu) - 127.5f, float(h.y & 0xFFu) - 127.5f) * (0.85f / 127.5f);
+}
+
+// The colour-weighted P22 of a footprint from its P22 sum and its chroma sum (the P22-weighted sum
+// of its cells' glintCellChroma): white times the P22 plus the chroma along the plane's axes
+// U = (2, -1, -1) / sqrt 6 and V = (0, 1, -1) / sqrt 2.
+GLINT_FN vec3 glintTintedP22(float p22, vec2 chroma) {
+  return glintSplat3(p22) + chroma.x * vec3(0.81649658f, -0.40824829f, -0.40824829f) +
+         chroma.y * vec3(0.0f, 0.70710678f, -0.70710678f);
+}
+
+// The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
+// below and the importance sampler of the host (src/glint/microfacet_sampling.cpp) both call these.
+//
+// Coherent index: the level-0 index of the cell's first child, so that a cell and its descendants
+// draw the same random numbers (method.md 2.5). Masked to the period, the pair is a collision-free
+// seed; glintPcg4d's four lanes are the cell's four draws.
+GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
+  uint s = (uint(cellX) << uint(level)) & GLINT_CELL_INDEX_MASK;
+  uint t = (uint(cellY) << uint(level)) & GLINT_CELL_INDEX_MASK;
+  return glintPcg4d(uvec4(s, t, params.patternSeed, 0u));
+}
+
+// Microfacet relative area: the cell holds microfacets with probability MRA (method.md 2.5).
+GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
+  return !(glintHashToUnitOpen(h.x) > params.relativeArea);
+}
+
+// Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
+// log4(n) randomised by a normal of std zeta (method.md 2.5), rounded, and the top level L means "so
+// many microfacets that the smooth Beckmann limit holds": round(log4(n) + zeta N) clamped to [0, L],
+// N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u.
+//
+// The same draw without inverting the normal per cell: the level reaches j exactly when
+// log4(n) + 1/2 + zeta N >= j, that is when u >= Phi((j - log4(n) - 1/2) / zeta). The L thresholds
+// depend on the footprint level only, so glintLevelDraw computes them once per footprint and a
+// cell's level is the number of thresholds its u passes, found by a binary search of five
+// comparisons, instead of a logarithm and two polynomials per cell (the inverse error function was
+// 19% of the glint shader's instructions). Thresholds past the dictionary's L are above every u,
+// so the search has a fixed length.
+GLINT_CONST int GLINT_MAX_DICTIONARY_LEVELS = 16;  // the largest L a Dictionary accepts
+
+struct GlintLevelDraw {
+  float threshold[GLINT_MAX_DICTIONARY_LEVELS];  // threshold[j - 1]: the u from which the level is >= j
+};
+
+// The threshold from which a cell of this footprint level reaches dictionary level j. The margin
+// j - log4(n) - 1/2 is an exact integer minus a part that is the same at every level, so the
+// thresholds of level + 1 are bit for bit those of level shifted by one (glintNextLevelDraw).
+GLINT_FN float glintLevelThreshold(GlintDictionaryView dict, GlintParameters params, float logDensity, int level, int j) {
+  if (j > dict.numLevels) {
+    return 2.0f;  // never: u < 2
+  }
+  float margin = float(j + (dict.numLevels - 1) - level) - (logDensity * GLINT_INV_LN4 + 0.5f);
+  if (params.densityRandomisation > 0.0f) {
+    return glintNormalCdf(margin / params.densityRandomisation);  // the normal must reach margin / zeta
+  }
+  return margin <= 0.0f ? 0.0f : 2.0f;  // no randomisation: round(log4(n)) itself
+}
+
+GLINT_FN GlintLevelDraw glintLevelDraw(GlintDictionaryView dict, GlintParameters params, float logDensity, int level) {
+  GlintLevelDraw draw;
+  for (int j = 1; j <= GLINT_MAX_DICTIONARY_LEVELS; ++j) {
+    draw.threshold[j - 1] = glintLevelThreshold(dict, params, logDensity, level, j);
+  }
+  return draw;
+}
+
+// glintLevelDraw(level + 1) from glintLevelDraw(level), with one glintNormalCdf instead of L: the next
+// level's cells are 4 times larger, so log4(n) is one more and its threshold for j is this level's
+// for j - 1.
+GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParameters params, float logDensity, int level,
+                                           GlintLevelDraw draw) {
+  GlintLevelDraw next;
+  next.threshold[0] = glintLevelThreshold(dict, params, logDensity, level + 1, 1);
+  for (int j = 2; j <= GLINT_MAX_DICTIONARY_LEVELS; ++j) {
+    next.threshold[j - 1] = j > dict.numLevels ? 2.0f : draw.threshold[j - 2];
+  }
+  return next;
+}
+
+GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
+  float u = glintHashToUnitOpen(h.y);
+  // The thresholds rise with j, so the count is a binary search over the GLINT_MAX_DICTIONARY_LEVELS
+  // = 16 of them: four comparisons, each against a threshold chosen by the ones before (selects of
+  // constant indices, no indexed read), and the last threshold's. Exact: the same count as 16
+  // comparisons; the car's fragment shader runs 0.8% fewer instructions (docs/benchmarks.md, item 10 of
+  // "What made it fast").
+  bool b8 = u >= draw.threshold[7];
+  bool b4 = u >= (b8 ? draw.threshold[11] : draw.threshold[3]);
+  float t2 = b8 ? (b4 ? draw.threshold[13] : draw.threshold[9]) : (b4 ? draw.threshold[5] : draw.threshold[1]);
+  bool b2 = u >= t2;
+  float t1 = b8 ? (b4 ? (b2 ? draw.threshold[14] : draw.threshold[12]) : (b2 ? draw.threshold[10] : draw.threshold[8]))
+                : (b4 ? (b2 ? draw.threshold[6] : draw.threshold[4]) : (b2 ? draw.threshold[2] : draw.threshold[0]));
+  bool b1 = u >= t1;
+  return (b8 ? 8 : 0) + (b4 ? 4 : 0) + (b2 ? 2 : 0) + (b1 ? 1 : 0) + (u >= draw.threshold[15] ? 1 : 0);
+}
+
+// The cell's random rotation theta = 2 pi hash (method.md 2.5), as (cos theta, sin theta). The
+// angle is reduced to [-pi/4, pi/4] in quarter turns, exactly (hash * 4 and its rounding are exact),
+// and cos and sin there are Cephes' single-precision minimax polynomials (cosf, sinf; error below
+// 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
+// their own: the pair was 12% of the glint shader's instructions, this is about a third of that.
+GLINT_FN vec2 glintCellRotation(uvec4 h) {
+  float quarterTurns = 4.0f * glintHashToUnitOpen(h.z);
+  float quadrant = floor(quarterTurns + 0.5f);
+  float phi = (quarterTurns - quadrant) * 1.57079633f;
+  float phi2 = phi * phi;
+  float s = phi + phi * phi2 * (-1.6666654611e-1f + phi2 * (8.3321608736e-3f + phi2 * -1.9515295891e-4f));
+  float c = 1.0f - 0.5f * phi2 +
+            phi2 * phi2 * (4.166664568298827e-2f + phi2 * (-1.388731625493765e-3f + phi2 * 2.443315711809948e-5f));
+  int quarter = int(quadrant) & 3;
+  vec2 rotation = (quarter & 1) != 0 ? vec2(-s, c) : vec2(c, s);  // a quarter turn: (c, s) -> (-s, c)
+  return quarter >= 2 ? -rotation : rotation;                     // a half turn
+}
+
+// The cell's two distributions (i, j) from the 16-bit halves of the last lane: exact integer
+// arithmetic, the same in both languages.
+GLINT_FN ivec2 glintCellDistributions(GlintDictionaryView dict, uvec4 h) {
+  uint n = uint(dict.numDistributions);
+  return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
+}
+
+// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5), in two steps: undo
+// the roughness scaling and correlation M (the same for every cell of a pixel; with rho = 0 the
+// 2020 model's S = alpha / alpha_d) ...
+GLINT_FN vec2 glintUnscaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
+  return glintCorrelatedUnscale(slope, params.alpha, params.rho, dict.alpha);
+}
+
+// ... whose inverse takes a dictionary-space slope, rotated back, to the target's slopes.
+GLINT_FN vec2 glintScaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 unscaled) {
+  return glintCorrelatedScale(unscaled, params.alpha, params.rho, dict.alpha);
+}
+
+// ... then the cell's rotation.
+GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
+  float x = rotation.x * unscaled.x + rotation.y * unscaled.y;
+  float y = -rotation.y * unscaled.x + rotation.x * unscaled.y;
+  return vec2(x, y);
+}
+
+// Jacobian of the scaling, det(M^-1) (method.md 2.5; with correlation, glintCorrelatedJacobian).
+GLINT_FN float glintScalingJacobian(GlintDictionaryView dict, GlintParameters params) {
+  return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
+}
+
+// Whether an unscaled slope (glintUnscaledSlope) lies beyond the circumradius of the dictionary's
+// square support, 4 sigma_d sqrt 2: outside it at every cell rotation.
+GLINT_FN bool glintBeyondEveryRotatedSupport(GlintDictionaryView dict, vec2 unscaled) {
+  float fourSigma = glintDictionaryDomain(dict);
+  return dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma;
+}
+
+// The real-time renderer's one approximation (docs/renderer.md, "Cost"): beyond every rotated
+// support no dictionary cell reflects, and the smooth cells' Beckmann P22 there is below exp(-16)
+// = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for
+// that light, and skips the walk of the footprint's cells when no light is left. The CPU BSDF
+// keeps the exact value: its sampler can draw such a slope from a smooth cell and must find a
+// non-zero pdf there. With the GGX target the widest cell reaches GLINT_GGX_WIDEST_CELL = 10 times
+// further, a slope of 40 alpha, where the smooth GGX P22 (and its remainder) is below
+// (1 + 1600)^-2 = 3.9e-7 of its peak.
+GLINT_FN bool glintSlopeIsNegligible(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
+  return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / glintTargetWidestCell(params.ndf));
+}
+
+// One cell's contribution to P22 (method.md 2.5), split so that what is the same for every cell of
+// the footprint is computed once per footprint (glintLevelP22), not once per cell, and what is the
+// same for every slope once per cell: a cell is empty, in the smooth limit (its P22 is the Beckmann
+// P22 at the slope), or reads the dictionary (its P22 is the tensor product of two marginals at its
+// rotated slope, times the scaling Jacobian).
+struct GlintCell {
+  uvec4 hash;
+  bool readsDictionary;
+  bool smoothLimit;
+  bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
+  int dictionaryLevel;  // when it reads the dictionary: the level of the tables it reads (glintTreeTableLevel)
+  // Its two distributions (i, j): glintCellDistributions of its hash, but under the tree LOD
+  // construction those its descent from its own cell chose (glintLodCell).
+  ivec2 distributions;
+  // Consistent LOD (glintLodCell): 1 on an axis whose marginal is the lobes that dictionary level
+  // dictionaryLevel + 1 adds to level dictionaryLevel (glintBlockMarginal), 0 where it is the level
+  // itself. Always 0 under GLINT_LOD_PAPER and GLINT_LOD_TREE.
+  ivec2 complement;
+  // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
+  // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
+  float scalePrecision;
+  float unscale;
+  // The share of the cell's area its microfacets cover, which multiplies its P22 (so its P-NDF
+  // integrates to it): 1 but under the tree LOD construction, which carries the relative area
+  // down an own cell's subtree as coverage instead of drawing it (glintTreeOwnCell).
+  float coverage;
+};
+
+GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, GlintLevelDraw draw, int cellX, int cellY,
+                             int level) {
+  GlintCell cell;
+  cell.hash = glintCellHash(params, cellX, cellY, level);
+  cell.readsDictionary = false;
+  cell.smoothLimit = false;
+  cell.ggxTail = false;
+  cell.dictionaryLevel = 0;
+  cell.distributions = ivec2(0, 0);
+  cell.complement = ivec2(0, 0);
+  cell.scalePrecision = 1.0f;
+  cell.unscale = 1.0f;
+  cell.coverage = 1.0f;
+  if (glintCellHasMicrofacets(params, cell.hash)) {
+    cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
+    cell.distributions = glintCellDistributions(dict, cell.hash);  // read only where it reads the dictionary
+    // So many microfacets that the smooth limit holds: their colours average out to white too.
+    cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
+    cell.readsDictionary = !cell.smoothLimit;
+    if (params.ndf == GLINT_NDF_GGX && cell.readsDictionary) {
+      // The GGX scale mixture (microfacet_targets.h): glints of roughness alpha / sqrt(w), or the
+      // smooth remainder below the cut.
+      float w = glintCellPrecision(cell.hash);
+      cell.ggxTail = w < GLINT_GGX_TAIL_PRECISION;
+      cell.readsDictionary = !cell.ggxTail;
+      cell.scalePrecision = w;
+      cell.unscale = sqrt(w);
+    }
+  }
+  return cell;
+}
+
+GLINT_KERNEL_END
+
+#endif
