@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "glint/albedo_tables.h"
+#include "glint/albedo_table_generator.h"
 #include "glint/kernel/multiple_scattering.h"
 #include "test_support.h"
 

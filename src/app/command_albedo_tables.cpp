@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "glint/albedo_tables.h"
+#include "glint/albedo_table_generator.h"
 #include "commands.h"
 #include "glint/file_io.h"
 

@@ -53,6 +53,13 @@ foreach(file IN ITEMS include/glint/bsdf.h include/glint/dictionary.h include/gl
   endif()
 endforeach()
 
+# Only the API: the library's own headers (binary16 conversion, the albedo tables' generator) stay home.
+foreach(file IN ITEMS include/glint/half.h include/glint/albedo_table_generator.h)
+  if(EXISTS ${prefix}/${file})
+    message(FATAL_ERROR "cmake --install wrote ${file}, a header of the library's own")
+  endif()
+endforeach()
+
 run("glint --version" ${prefix}/bin/glint --version)
 if(NOT run_output STREQUAL "glint ${VERSION}\n")
   message(FATAL_ERROR "the installed glint --version printed '${run_output}', expected 'glint ${VERSION}'")
