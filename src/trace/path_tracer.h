@@ -1,8 +1,8 @@
 // `glint trace`: a CPU Monte Carlo path tracer of a scene::Scene with the glint BSDF (docs/trace.md).
-// Unidirectional path tracing with next-event estimation: point and directional lights (delta
+// Unidirectional path tracing with next-event estimation: point, spot and directional lights (delta
 // lights, no MIS), the environment and emissive triangles (importance-sampled, each combined with
 // BSDF sampling by the power heuristic); Russian roulette after depth 3. Direct light matches the
-// real-time renderer's shading (shaders/forward.frag) with the footprint of each camera ray from
+// real-time renderer's shading (both assemble the surface with kernel/surface.h) with the footprint of each camera ray from
 // its ray differentials.
 // Deterministic: every sample draws from its own PCG32 stream seeded by (pixel, sample), so the
 // image is the same for any number of threads.
