@@ -57,9 +57,15 @@ class Field:
         if self.kind == "pair" and self.default is not None:
             self.default = tuple(self.default)
         self.soft_max = soft_max
-        # choice: [(json value, Blender identifier, label)]
-        self.choices = ([(value, value.upper().replace("-", "_"), choice_labels[value]) for value in schema["enum"]]
-                        if self.kind == "choice" else None)
+        # choice: [(json value, Blender identifier, label)] in choice_labels' order, which is also the
+        # number Blender stores in a .blend file for each (so it never changes for a value), and the
+        # schema's names, which must be the same set.
+        self.choices = None
+        if self.kind == "choice":
+            if sorted(choice_labels) != sorted(schema["enum"]):
+                raise RuntimeError("glint_gltf: %s's choices %s are not the schema's %s"
+                                   % (json_name, sorted(choice_labels), sorted(schema["enum"])))
+            self.choices = [(value, value.upper().replace("-", "_"), label) for value, label in choice_labels.items()]
 
     def range_text(self):
         low = "(" if self.exclusive_minimum else "["
@@ -150,7 +156,8 @@ def _blender_property(field):
     if field.kind == "boolean":
         return bpy.props.BoolProperty(default=field.default, **common)
     if field.kind == "choice":
-        items = [(identifier, label, "") for _, identifier, label in field.choices]
+        # Numbered: a .blend file stores the number, so each value keeps its own.
+        items = [(identifier, label, "", number) for number, (_, identifier, label) in enumerate(field.choices)]
         default = next(identifier for value, identifier, _ in field.choices if value == field.default)
         return bpy.props.EnumProperty(items=items, default=default, **common)
     if field.kind == "texture":

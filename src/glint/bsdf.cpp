@@ -611,7 +611,11 @@ ZirrKaplanyanParameters validatedMapping(const GlintParameters& parameters) {
 
 ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const GlintParameters& parameters, const SurfaceFootprint& footprint,
                                      Fresnel fresnel, Spectrum reflectance)
-    : ZirrKaplanyanBsdf(validatedMapping(parameters), footprint, fresnel, reflectance) {}
+    : ZirrKaplanyanBsdf(validatedMapping(parameters), footprint, fresnel, reflectance) {
+  target_ = microfacetTarget(parameters);
+  alpha_ = parameters.alpha;
+  compensationFresnel_ = compensationFresnel(target_, alpha_, fresnel);
+}
 
 ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, const SurfaceFootprint& footprint,
                                      Fresnel fresnel, Spectrum reflectance)
@@ -627,8 +631,9 @@ ZirrKaplanyanBsdf::ZirrKaplanyanBsdf(const ZirrKaplanyanParameters& parameters, 
 Spectrum ZirrKaplanyanBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
   const float value = kernel::glintZirrKaplanyanReflectance(footprint_.uv, footprint_.duvdx, footprint_.duvdy, wo, wi,
                                                        parameters_);
-  if (value == 0.0f) return Spectrum(0.0f);
-  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value;
+  const Spectrum multiple = compensation(target_, alpha_, compensationFresnel_, Spectrum(1.0f), wo, wi);
+  if (value == 0.0f) return multiple;
+  return reflectance_ * fresnel_.evaluate(glm::dot(wo, glm::normalize(wo + wi))) * value + multiple;
 }
 
 std::optional<BsdfSample> ZirrKaplanyanBsdf::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {

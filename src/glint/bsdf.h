@@ -227,6 +227,11 @@ class ZirrKaplanyanBsdf {
   Fresnel fresnel_;
   Spectrum reflectance_;
   CookTorranceBsdf proposal_;  // the sampler's lobe
+  // Built from glint parameters: their smooth target's multiple-scattering compensation lobe, added
+  // as the rasteriser adds it to every model (not scaled by the relative area); none otherwise.
+  MicrofacetTarget target_;
+  glm::vec2 alpha_{0.0f};
+  Spectrum compensationFresnel_{0.0f};
 };
 
 // The Shadertoy's snow material (spec 2.2): r = 0.6, mu = 0.024 r, c = 0.01, v = 100, R = 50000,

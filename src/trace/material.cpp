@@ -72,7 +72,8 @@ SceneMaterials::SceneMaterials(const scene::Scene& scene, const Dictionary& dict
   normalMapMoments_.resize(scene.materials.size());
   for (std::size_t i = 0; i < scene.materials.size() && normalMapFiltering; ++i) {
     const scene::Material& m = scene.materials[i];
-    if (m.normalTexture < 0 || !m.glint.enabled || model == SpecularModel::CookTorrance) continue;
+    // Only the glint model filters normal maps, in both renderers.
+    if (m.normalTexture < 0 || !m.glint.enabled || model != SpecularModel::Glint) continue;
     scene::NormalMapMoments moments =
         scene::normalMapMoments(scene.textures[static_cast<std::size_t>(m.normalTexture)], m.normalScale);
     normalMapMoments_[i] = NormalMapMoments{MipTexture(moments.width, moments.height, std::move(moments.first)),

@@ -133,6 +133,7 @@ def fields(zip_path):
         elif prop.type == "ENUM":
             entry["default"] = prop.default
             entry["items"] = [item.identifier for item in prop.enum_items]
+            entry["numbers"] = {item.identifier: item.value for item in prop.enum_items}
         entry["range"] = [field.minimum, field.maximum, field.exclusive_minimum]
         entry["choices"] = [value for value, _, _ in field.choices] if field.choices else None
         result[field.json_name] = entry

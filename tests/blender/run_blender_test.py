@@ -286,9 +286,15 @@ def fields(h, schema_file):
         elif name == "alpha":
             check(blender["default"] == [0.25, 0.25], "alpha: default %s (the roughness 0.5 squared)" % blender["default"])
         if "enum" in schema:
-            check(blender["choices"] == schema["enum"] and
-                  blender["items"] == [v.upper().replace("-", "_") for v in schema["enum"]],
+            check(sorted(blender["choices"]) == sorted(schema["enum"]) and
+                  sorted(blender["items"]) == sorted(v.upper().replace("-", "_") for v in schema["enum"]),
                   "%s: choices %s are the schema's" % (name, blender["choices"]))
+    # The numbers a .blend file stores for the choices, as the add-on has always numbered them: a
+    # file saved before reads its NDF and masking back unchanged.
+    numbers = {"ndf": {"GGX": 0, "BECKMANN": 1}, "masking": {"SMITH": 0, "V_CAVITY": 1},
+               "lod": {"PAPER": 0, "CONSISTENT": 1, "TREE": 2}}
+    for name, expected in numbers.items():
+        check(held[name]["numbers"] == expected, "%s: stored numbers %s" % (name, held[name]["numbers"]))
     print("fields: %d properties as the schema gives them" % len(names))
 
 

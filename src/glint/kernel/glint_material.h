@@ -45,7 +45,7 @@ struct GlintMaterial {
   uint colouredCells;          // 1: each cell reflects a random colour
   uint multipleScattering;     // 1: the smooth target's compensation lobe is added
   uint enabled;                // 1: the material has a glint layer (0: Cook-Torrance of its own roughness)
-  int lod;                     // GLINT_LOD_PAPER, GLINT_LOD_CONSISTENT or GLINT_LOD_TREE (glint_brdf.h)
+  int lod;                     // GLINT_LOD_PAPER, GLINT_LOD_CONSISTENT or GLINT_LOD_TREE (glint_parameters.h)
   uint padding1;
   uint padding2;
 };

@@ -124,7 +124,7 @@
 //   GLINT_FILTERED 1: the P-SDF's walk filters (glint_antialiasing.h; C++ decides per call);
 //   GLINT_MULTIPLE_SCATTERING 1: the albedo tables and the compensation lobe (multiple_scattering.h);
 //   GLINT_SLOPE_COUNT: the slopes of one walk (glint_brdf.h, 1 by default);
-//   GLINT_FOOTPRINT_POLICY: the footprint policy's words the walk applies (glint_brdf.h, all).
+//   GLINT_FOOTPRINT_POLICY: the footprint policy's words the walk applies (glint_footprint.h, all).
 #ifndef GLINT_FILTERED
 #define GLINT_FILTERED 0
 #endif

@@ -21,7 +21,9 @@
 GLINT_KERNEL_BEGIN
 
 // The perceptual roughness range both renderers shade a glTF surface's smooth lobe with: at least
-// 0.03 (alpha 0.0009), below which a lobe is narrower than the renderers' sampling of it.
+// 0.03 (alpha 0.0009), below which a lobe is narrower than the renderers' sampling of it. The path
+// tracer's CPU BSDFs take alpha from 0.005 (roughness 0.07; glint_fields.h), and it raises a
+// smoother lobe to that.
 GLINT_CONST float GLINT_SURFACE_MIN_ROUGHNESS = 0.03f;
 
 // What a renderer looked up at a shading point, in world space.

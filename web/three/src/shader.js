@@ -43,7 +43,7 @@ const VERTEX_MAIN = /* glsl */ `
 // The kernel's compile-time choices for one material (one program each, as in glint's rasteriser):
 // the smooth target and masking by the kernel's own constant names, coloured cells, the
 // multiple-scattering lobe, the LOD construction (only the one the material asks for is compiled:
-// GLINT_LOD_PAPER 0, GLINT_LOD_CONSISTENT 1, GLINT_LOD_TREE 2 in kernel/glint_brdf.h), and the
+// GLINT_LOD_PAPER 0, GLINT_LOD_CONSISTENT 1, GLINT_LOD_TREE 2 in kernel/glint_parameters.h), and the
 // smooth lobe in place of the glints.
 export const LOD_CONSTRUCTIONS = ['paper', 'consistent', 'tree'];  // the index is the kernel's constant
 // The names a layer's ndf and masking take (the extension's), each with the kernel's constant.
