@@ -127,10 +127,8 @@ MicrofacetTarget microfacetTarget(const GlintParameters& parameters) {
   return MicrofacetTarget{parameters.ndf, parameters.masking, parameters.multipleScattering};
 }
 
-namespace {
-
 // "a", "b" or "c", as a message lists a Choice field's names.
-std::string choiceList(GlintField field) {
+std::string glintChoiceList(GlintField field) {
   std::vector<std::string> names;
   for (const char* name : glintField(field).choices) {
     if (name != nullptr) names.push_back("\"" + std::string(name) + "\"");
@@ -142,9 +140,11 @@ std::string choiceList(GlintField field) {
   return list;
 }
 
+namespace {
+
 int choiceFromName(GlintField choice, const std::string& field, const std::string& name) {
   const int value = glintChoiceValue(choice, name);
-  if (value < 0) throw Error(field + " must be " + choiceList(choice) + ", got \"" + name + "\"");
+  if (value < 0) throw Error(field + " must be " + glintChoiceList(choice) + ", got \"" + name + "\"");
   return value;
 }
 

@@ -115,6 +115,8 @@ const char* maskingName(int masking);
 // extras.glint's "lod" and --lod spell it: "paper" | "consistent" (docs/method.md 2.7) | "tree"
 // (2.8).
 int lodFromName(const std::string& field, const std::string& name);
+// A Choice field's names as a message lists them: "paper", "consistent" or "tree" (glint_fields.h).
+std::string glintChoiceList(GlintField field);
 const char* lodName(int lod);
 
 // Cook-Torrance with the target's NDF (roughness alpha, slope correlation rho) and masking:

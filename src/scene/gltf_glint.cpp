@@ -165,12 +165,16 @@ constexpr std::array kTargetFields = {GlintField::Ndf, GlintField::Masking, Glin
 MicrofacetTarget readTarget(const Reader& reader, MicrofacetTarget target) {
   if (reader.has(GlintField::Ndf)) {
     const json& ndf = reader.at(GlintField::Ndf);
-    if (!ndf.is_string()) throw Error(std::string(reader.name(GlintField::Ndf)) + " must be \"beckmann\" or \"ggx\"");
+    if (!ndf.is_string()) {
+      throw Error(std::string(reader.name(GlintField::Ndf)) + " must be " + glintChoiceList(GlintField::Ndf));
+    }
     target.ndf = ndfFromName(reader.name(GlintField::Ndf), ndf.get<std::string>());
   }
   if (reader.has(GlintField::Masking)) {
     const json& masking = reader.at(GlintField::Masking);
-    if (!masking.is_string()) throw Error(std::string(reader.name(GlintField::Masking)) + " must be \"v-cavity\" or \"smith\"");
+    if (!masking.is_string()) {
+      throw Error(std::string(reader.name(GlintField::Masking)) + " must be " + glintChoiceList(GlintField::Masking));
+    }
     target.masking = maskingFromName(reader.name(GlintField::Masking), masking.get<std::string>());
   }
   if (reader.has(GlintField::MultipleScattering)) {
@@ -250,7 +254,9 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
   }
   if (reader.has(GlintField::Lod)) {
     const json& lod = reader.at(GlintField::Lod);
-    if (!lod.is_string()) throw Error(std::string(reader.name(GlintField::Lod)) + " must be \"paper\", \"consistent\" or \"tree\"");
+    if (!lod.is_string()) {
+      throw Error(std::string(reader.name(GlintField::Lod)) + " must be " + glintChoiceList(GlintField::Lod));
+    }
     layer.lod = lodFromName(reader.name(GlintField::Lod), lod.get<std::string>());
   }
   if (reader.has(GlintField::LogDensityRange)) {
