@@ -126,6 +126,7 @@ Dictionary::Dictionary(const DictionaryParameters& parameters, std::span<const f
   checkNormalised();
   appendTreeLevels();
   buildMipChain();
+  buildCumulativeTables();
 }
 
 // Tree level k >= 1 of distribution i is the mean of tree level k - 1 of i and of its partner
@@ -258,9 +259,31 @@ float Dictionary::mipTexel(int mip, int level, int distribution, int texel) cons
       .x;
 }
 
+void Dictionary::buildCumulativeTables() {
+  // The integrals of the kernel's linear interpolation (glintMarginal): texel k spans slopes
+  // [k, k + 1] spacing, its density p[k] + (p[k + 1] - p[k]) s at s in [0, 1], falling to 0 past
+  // the last texel. Each texel's share of the integral of p and of slope times p, in double.
+  const std::size_t texels = static_cast<std::size_t>(parameters_.texelsPerDistribution);
+  const double spacing = static_cast<double>(kernel::glintDictionaryDomain(view())) / static_cast<double>(texels);
+  cumulative_.assign(2 * values_.size(), 0.0f);
+  for (std::size_t row = 0; row < values_.size() / texels; ++row) {
+    const float* p = values_.data() + row * texels;
+    double mass = 0.0;
+    double moment = 0.0;
+    for (std::size_t k = 0; k < texels; ++k) {
+      cumulative_[2 * (row * texels + k)] = static_cast<float>(mass);
+      cumulative_[2 * (row * texels + k) + 1] = static_cast<float>(moment);
+      const double a = p[k];
+      const double rise = (k + 1 < texels ? p[k + 1] : 0.0) - a;
+      mass += spacing * (a + 0.5 * rise);
+      moment += spacing * spacing * (static_cast<double>(k) * (a + 0.5 * rise) + 0.5 * a + rise / 3.0);
+    }
+  }
+}
+
 kernel::GlintDictionaryView Dictionary::view() const {
   return {values_.data(),   parameters_.numLevels, parameters_.numDistributions, parameters_.texelsPerDistribution,
-          parameters_.alpha, filteredValues_.data(), numMips_, mipRowLength_};
+          parameters_.alpha, filteredValues_.data(), numMips_, mipRowLength_, cumulative_.data()};
 }
 
 std::vector<std::uint16_t> Dictionary::halfTexelPairs() const {

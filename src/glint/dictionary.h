@@ -80,6 +80,13 @@ class Dictionary {
   float mipTexel(int mip, int level, int distribution, int texel) const;
   std::span<const std::uint16_t> filteredHalfTexels() const { return filteredHalves_; }  // for GPU upload
 
+  // The cumulative tables that glints under extended lights integrate the marginals with
+  // (docs/dictionary.md, "Cumulative tables"; kernel glintDictionaryCumulativeTexels): for every
+  // table and texel k, (C[k], M[k]), the integrals of the interpolated marginal and of slope times
+  // it from slope 0 to texel k's slope, summed in double from the binary16 texels and kept as
+  // 32-bit floats (differences of binary16 sums would lose a narrow region's mass); two a texel.
+  std::span<const float> cumulativeTexels() const { return cumulative_; }
+
   // The versioned binary file (docs/dictionary.md, "File format"): the L levels (version 1), or with
   // the tree levels after them (version 2) for hosts that upload the file as it is. Loading reads
   // both, and refuses stored tree levels that are not the ones level 0 makes.
@@ -99,10 +106,12 @@ class Dictionary {
   int mipRowLength_ = 0;
   std::vector<std::uint16_t> filteredHalves_;
   std::vector<float> filteredValues_;  // filteredHalves_ converted back
+  std::vector<float> cumulative_;
 
   void checkNormalised() const;
   void appendTreeLevels();
   void buildMipChain();
+  void buildCumulativeTables();
 };
 
 // Generates a dictionary (method.md section 1) in parallel with oneTBB. The result depends only on

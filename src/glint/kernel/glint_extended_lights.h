@@ -1,0 +1,409 @@
+// glint's extension of the 2020 glint model (Chermain et al. 2020) to extended lights: the mass of
+// the footprint's P-NDF over the half vectors that send the view into a light's solid angle, the
+// same cells, weights and draws as the P-SDF (glint_brdf.h), so that an area light or a region of
+// an environment lights the very flakes a path tracer of the same microstructure shows
+// (docs/method.md, "Extended lights").
+//
+// With slopes s = -h.xy / h.z, D(h) dw_h = P22(s) / cos(theta_h) ds, so a light's reflected radiance
+// is about L F G2 |wo.h| / (|n.wo| cos(theta_h)) times M = the integral of P22 over the light's
+// region of slope space (docs/method.md, Eq. EL-2). A dictionary cell's P22 is J p_i(x') p_j(y'),
+// (x', y') its rotated, unscaled slope and J the Jacobian of that map, so over a region its mass is
+// the integral of p_i(x') p_j(y') over the region's image in the cell's frame, the Jacobian gone:
+// over a box, a product of two differences of the marginals' cumulative tables. The region, a
+// quadrilateral in slope space (the half vectors of a light's four corners), is cut into
+// GLINT_REGION_STRIPS strips across the cell's x' axis, each a box whose y' extent is the
+// quadrilateral's at the strip's middle. The smooth cells (Beckmann) are Gaussian in the unscaled
+// frame: the same strips with the normal CDF. GGX's remainder and target, whose slope density is
+// not separable, take each strip's area times the density at its centre.
+// The anti-aliasing filter of 2021 is not applied here: a region's integral is itself a box filter
+// of the P-NDF, wider than the filter wherever a light covers more than a few texels of a lobe.
+// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+#ifndef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
+#define GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
+
+#include "prelude.h"
+#include "glint_brdf.h"
+
+GLINT_KERNEL_BEGIN
+
+// The regions evaluated by one walk over the footprint's cells, a compile-time constant as
+// GLINT_SLOPE_COUNT is; and the strips each of the three pieces of a region between its corners
+// is cut into in a cell's frame (glintRegionStrip).
+#ifndef GLINT_REGION_COUNT
+#define GLINT_REGION_COUNT 1
+#endif
+#ifndef GLINT_REGION_STRIPS
+#define GLINT_REGION_STRIPS 1
+#endif
+
+// A region of slope space: a quadrilateral, its corners in order around it (either way round).
+struct GlintSlopeRegion {
+  vec2 c0;
+  vec2 c1;
+  vec2 c2;
+  vec2 c3;
+};
+
+struct GlintRegionSet {
+  GlintSlopeRegion region[GLINT_REGION_COUNT];
+};
+
+struct GlintRegionMassSet {
+  vec4 mass[GLINT_REGION_COUNT];        // the P-SDF's mass over each region; .rgb weighted by the cells' colours
+  float targetMass[GLINT_REGION_COUNT];  // the smooth target's mass over the same region, by the same strips
+};
+
+// The slope of the half vector between wo and wi (both in the shading frame, wo above the
+// horizon). A wi below the horizon still has a half vector above it; one that would lie on the
+// horizon is lifted just above it, so that the slope stays finite.
+GLINT_FN vec2 glintHalfVectorSlope(vec3 wo, vec3 wi) {
+  vec3 h = wo + wi;
+  h.z = max(h.z, 1e-3f * length(h) + 1e-6f);
+  return glintSlopeFromNormal(normalize(h));
+}
+
+// The region of slope space that a light of corners wi0..wi3 (unit directions towards them, in the
+// shading frame, in order around the light) sends wo into, as the quadrilateral of their half
+// vectors' slopes (docs/method.md, "Extended lights": exact at the corners, straight between them).
+GLINT_FN GlintSlopeRegion glintLightSlopeRegion(vec3 wo, vec3 wi0, vec3 wi1, vec3 wi2, vec3 wi3) {
+  GlintSlopeRegion region;
+  region.c0 = glintHalfVectorSlope(wo, wi0);
+  region.c1 = glintHalfVectorSlope(wo, wi1);
+  region.c2 = glintHalfVectorSlope(wo, wi2);
+  region.c3 = glintHalfVectorSlope(wo, wi3);
+  return region;
+}
+
+// A region mapped by the linear map of the footprint's unscaling (glintUnscaledSlope).
+GLINT_FN GlintSlopeRegion glintUnscaledRegion(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion region) {
+  GlintSlopeRegion unscaled;
+  unscaled.c0 = glintUnscaledSlope(dict, params, region.c0);
+  unscaled.c1 = glintUnscaledSlope(dict, params, region.c1);
+  unscaled.c2 = glintUnscaledSlope(dict, params, region.c2);
+  unscaled.c3 = glintUnscaledSlope(dict, params, region.c3);
+  return unscaled;
+}
+
+// A region in a cell's frame: scaled by the cell's GGX unscale, then turned by its rotation
+// (glintDictionarySlope).
+GLINT_FN GlintSlopeRegion glintCellRegion(vec2 rotation, float unscale, GlintSlopeRegion unscaled) {
+  GlintSlopeRegion local;
+  local.c0 = glintDictionarySlope(rotation, unscaled.c0 * unscale);
+  local.c1 = glintDictionarySlope(rotation, unscaled.c1 * unscale);
+  local.c2 = glintDictionarySlope(rotation, unscaled.c2 * unscale);
+  local.c3 = glintDictionarySlope(rotation, unscaled.c3 * unscale);
+  return local;
+}
+
+// The region's extent along x: (min, max).
+GLINT_FN vec2 glintRegionXRange(GlintSlopeRegion region) {
+  return vec2(min(min(region.c0.x, region.c1.x), min(region.c2.x, region.c3.x)),
+              max(max(region.c0.x, region.c1.x), max(region.c2.x, region.c3.x)));
+}
+
+GLINT_FN vec2 glintRegionYRange(GlintSlopeRegion region) {
+  return vec2(min(min(region.c0.y, region.c1.y), min(region.c2.y, region.c3.y)),
+              max(max(region.c0.y, region.c1.y), max(region.c2.y, region.c3.y)));
+}
+
+// Where the vertical line at x crosses the edge from a to b: widens (low, high) by its y.
+GLINT_FN vec2 glintEdgeCrossing(vec2 a, vec2 b, float x, vec2 range) {
+  float dx = b.x - a.x;
+  if ((x - a.x) * (x - b.x) <= 0.0f && dx != 0.0f) {
+    float y = a.y + (x - a.x) * (b.y - a.y) / dx;
+    return vec2(min(range.x, y), max(range.y, y));
+  }
+  return range;
+}
+
+// The region's extent along y on the vertical line at x: (low, high), low > high where the line
+// misses it.
+GLINT_FN vec2 glintRegionYAt(GlintSlopeRegion region, float x) {
+  vec2 range = vec2(3.0e38f, -3.0e38f);
+  range = glintEdgeCrossing(region.c0, region.c1, x, range);
+  range = glintEdgeCrossing(region.c1, region.c2, x, range);
+  range = glintEdgeCrossing(region.c2, region.c3, x, range);
+  range = glintEdgeCrossing(region.c3, region.c0, x, range);
+  return range;
+}
+
+// The x positions that cut a region into strips: its corners' x, sorted, clipped to [-reach,
+// reach]. Between two neighbours both of the region's boundaries on the vertical line are straight.
+GLINT_FN vec4 glintRegionBreaks(GlintSlopeRegion region, float reach) {
+  float lowA = min(region.c0.x, region.c1.x);
+  float highA = max(region.c0.x, region.c1.x);
+  float lowB = min(region.c2.x, region.c3.x);
+  float highB = max(region.c2.x, region.c3.x);
+  float middleLow = max(lowA, lowB);
+  float middleHigh = min(highA, highB);
+  vec4 breaks = vec4(min(lowA, lowB), min(middleLow, middleHigh), max(middleLow, middleHigh), max(highA, highB));
+  return clamp(breaks, glintSplat4(-reach), glintSplat4(reach));
+}
+
+// The strips: each of the three pieces between breaks cut into GLINT_REGION_STRIPS equal strips.
+GLINT_CONST int GLINT_REGION_STRIP_COUNT = 3 * GLINT_REGION_STRIPS;
+
+// Strip k's x interval.
+GLINT_FN vec2 glintRegionStrip(vec4 breaks, int k) {
+  int piece = k / GLINT_REGION_STRIPS;
+  int part = k - piece * GLINT_REGION_STRIPS;
+  float start = piece == 0 ? breaks.x : (piece == 1 ? breaks.y : breaks.z);
+  float end = piece == 0 ? breaks.y : (piece == 1 ? breaks.z : breaks.w);
+  float width = (end - start) / float(GLINT_REGION_STRIPS);
+  return vec2(start + float(part) * width, part + 1 == GLINT_REGION_STRIPS ? end : start + float(part + 1) * width);
+}
+
+// The signed cumulative marginal and its first moment: the integrals of table `level`'s marginal
+// of `distribution`, and of the slope times it, from 0 to x: (C(x), M(x)), C odd and M even in x,
+// C +-1/2 beyond the support for a normalised marginal. The interpolation is glintMarginal's,
+// linear between texels, so that these are exactly its integrals: the cumulative texels
+// (glintDictionaryCumulativeTexels) plus texel k's part.
+GLINT_FN vec2 glintCumulativeMarginal(GlintDictionaryView dict, int level, int distribution, float x) {
+  float fourSigma = glintDictionaryDomain(dict);
+  float spacing = fourSigma / float(dict.texelsPerDistribution);
+  float t = min(abs(x), fourSigma) / spacing;
+  int k = min(int(t), dict.texelsPerDistribution - 1);
+  float f = t - float(k);
+  vec2 ab = glintDictionaryTexelPair(dict, level, distribution, k);
+  vec2 base = glintDictionaryCumulativeTexels(dict, level, distribution, k);
+  float rise = ab.y - ab.x;
+  float c = base.x + spacing * f * (ab.x + 0.5f * f * rise);
+  // The integral of (k + s) spacing (a + rise s) spacing ds over [0, f].
+  float m = base.y + spacing * spacing * f * (float(k) * ab.x + 0.5f * f * (float(k) * rise + ab.x) + f * f * rise / 3.0f);
+  return vec2(x < 0.0f ? -c : c, m);
+}
+
+// The same for a cell's marginal on one axis, the level or with `complement` the lobes the next
+// level adds (glintBlockMarginal).
+GLINT_FN vec2 glintCumulativeBlockMarginal(GlintDictionaryView dict, int level, int distribution, int complement, float x) {
+  vec2 prefix = glintCumulativeMarginal(dict, level, distribution, x);
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (complement != 0) {
+    return 2.0f * glintCumulativeMarginal(dict, level + 1, distribution, x) - prefix;
+  }
+#endif
+  return prefix;
+}
+
+// Where in a strip its x marginal's mass lies: its mean over the strip, from the differences of
+// the cumulative marginal and first moment; the strip's middle where it holds no mass.
+GLINT_FN float glintStripCentroid(vec2 strip, vec2 startIntegrals, vec2 endIntegrals) {
+  float mass = endIntegrals.x - startIntegrals.x;
+  float centroid = abs(mass) > 1e-12f ? (endIntegrals.y - startIntegrals.y) / mass : 0.5f * (strip.x + strip.y);
+  return clamp(centroid, strip.x, strip.y);
+}
+
+// A dictionary cell's mass over a region in its own frame (glintCellRegion): per strip, the x
+// marginal's mass over the strip times the y marginal's over the region's y extent at the strip's
+// centroid (the centroid rule: exact where the y marginal's mass varies linearly across the strip).
+GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local) {
+  float fourSigma = glintDictionaryDomain(dict);
+  vec2 yRange = glintRegionYRange(local);
+  vec4 breaks = glintRegionBreaks(local, fourSigma);
+  if (!(breaks.x < breaks.w && yRange.x < fourSigma && yRange.y > -fourSigma)) {
+    return 0.0f;  // the region misses the cell's support (a NaN corner misses it too)
+  }
+  float mass = 0.0f;
+  vec2 start = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, breaks.x);
+  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
+    vec2 strip = glintRegionStrip(breaks, k);
+    vec2 end = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, strip.y);
+    vec2 across = glintRegionYAt(local, glintStripCentroid(strip, start, end));
+    if (across.y > across.x && end.x > start.x) {
+      float yMass = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.y).x -
+                    glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.x).x;
+      mass += (end.x - start.x) * yMass;
+    }
+    start = end;
+  }
+  return mass;
+}
+
+// The standard normal's cumulative integrals at x / sigma, scaled to a normal of std sigma: (CDF
+// minus 1/2, the first moment from 0), as glintCumulativeMarginal's.
+GLINT_FN vec2 glintCumulativeNormal(float x, float sigma) {
+  float z = x / sigma;
+  return vec2(glintNormalCdf(z) - 0.5f, sigma * 0.39894228f * (1.0f - exp(-0.5f * z * z)));
+}
+
+// The mass over an unscaled region of the isotropic Gaussian of standard deviation sigma per axis
+// (the Beckmann target, and the smooth cells, in the unscaled frame, where their sigma is
+// sigma_d), by glintCellRegionMass's strips and centroid rule.
+GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
+  vec4 breaks = glintRegionBreaks(unscaled, 8.0f * sigma);
+  if (!(breaks.x < breaks.w)) {
+    return 0.0f;
+  }
+  float mass = 0.0f;
+  vec2 start = glintCumulativeNormal(breaks.x, sigma);
+  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
+    vec2 strip = glintRegionStrip(breaks, k);
+    vec2 end = glintCumulativeNormal(strip.y, sigma);
+    vec2 across = glintRegionYAt(unscaled, glintStripCentroid(strip, start, end));
+    if (across.y > across.x) {
+      mass += (end.x - start.x) * (glintNormalCdf(across.y / sigma) - glintNormalCdf(across.x / sigma));
+    }
+    start = end;
+  }
+  return mass;
+}
+
+// The midpoint rule over the strips of an unscaled region for a slope density that is not
+// separable: each strip's area times the density at its centre, mapped back to slope space
+// (glintScaledSlope) and divided by the unscaling's Jacobian. `tail` chooses GGX's smooth remainder
+// (glintStudentTailSlopeP22) over the target's P22.
+GLINT_FN float glintMidpointRegionMass(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion unscaled, bool tail) {
+  vec4 breaks = glintRegionBreaks(unscaled, 3.0e38f);
+  vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho);
+  float mass = 0.0f;
+  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
+    vec2 strip = glintRegionStrip(breaks, k);
+    float middle = 0.5f * (strip.x + strip.y);
+    vec2 across = glintRegionYAt(unscaled, middle);
+    if (across.y > across.x && strip.y > strip.x) {
+      vec2 slope = glintScaledSlope(dict, params, vec2(middle, 0.5f * (across.x + across.y)));
+      float p22 = tail ? glintStudentTailSlopeP22(slope, covariance) : glintTargetP22(params.ndf, slope, params.alpha, params.rho);
+      mass += (strip.y - strip.x) * (across.y - across.x) * p22;
+    }
+  }
+  return mass / glintScalingJacobian(dict, params);
+}
+
+// The smooth target's mass over an unscaled region: the Gaussian's strips for Beckmann (exact but
+// for the region's straight edges), the midpoint rule for GGX.
+GLINT_FN float glintTargetRegionMass(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion unscaled) {
+  if (params.ndf != GLINT_NDF_GGX) {
+    return glintGaussianRegionMass(unscaled, 0.70710678f * dict.alpha);
+  }
+  return glintMidpointRegionMass(dict, params, unscaled, false);
+}
+
+// The masses over one footprint level's cells (glintLevelP22's walk, weights and cells, the masses
+// of its regions in place of the P22 at its slopes).
+GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint,
+                                                 vec2 uv, int level, GlintLevelDraw draw, GlintRegionSet unscaled) {
+  GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
+  float dictionarySum[GLINT_REGION_COUNT];
+  vec2 chromaSum[GLINT_REGION_COUNT];
+  // A region that misses the disc holding every rotated support reads no dictionary cell.
+  float reach = glintDictionaryDomain(dict) * 1.41421356f * glintTargetWidestCell(params.ndf);
+  bool inReach[GLINT_REGION_COUNT];
+  bool anyInReach = false;
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    dictionarySum[r] = 0.0f;
+    chromaSum[r] = glintSplat2(0.0f);
+    vec2 xRange = glintRegionXRange(unscaled.region[r]);
+    vec2 yRange = glintRegionYRange(unscaled.region[r]);
+    inReach[r] = xRange.x < reach && xRange.y > -reach && yRange.x < reach && yRange.y > -reach;
+    anyInReach = anyInReach || inReach[r];
+  }
+  GlintLodDraws draws = glintLodDraws(dict, params, footprint.logDensity, level, draw);
+  float weightSum = 0.0f;
+  float smoothWeightSum = 0.0f;
+  float tailWeightSum = 0.0f;
+  GlintCellWalk walk = glintWalkStart(grid);
+  while (glintWalkGoing(grid, walk)) {
+    float weight = glintWalkWeight(grid, walk);
+    ivec2 index = glintCellAt(grid, walk.s, walk.t);
+    walk = glintWalkStep(grid, walk);
+    if (weight > 0.0f) {
+      weightSum += weight;
+      GlintCell cell = glintLodCell(dict, params, draws, index.x, index.y, level);
+      float covered = weight * cell.coverage;
+      smoothWeightSum += cell.smoothLimit ? covered : 0.0f;
+      tailWeightSum += cell.ggxTail ? covered : 0.0f;
+      if (cell.readsDictionary && anyInReach) {
+        vec2 rotation = glintCellRotation(cell.hash);
+        vec2 chroma = params.colouredCells ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
+        for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+          if (inReach[r]) {
+            float weighted = covered * glintCellRegionMass(dict, cell, glintCellRegion(rotation, cell.unscale, unscaled.region[r]));
+            dictionarySum[r] += weighted;
+            if (params.colouredCells) {
+              chromaSum[r] += weighted * chroma;
+            }
+          }
+        }
+      }
+    }
+  }
+  GlintRegionMassSet masses;
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    masses.mass[r] = glintSplat4(0.0f);
+    masses.targetMass[r] = 0.0f;
+    if (weightSum > 0.0f) {
+      vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum[r], chromaSum[r]) : glintSplat3(dictionarySum[r]);
+      masses.mass[r] = vec4(colourWeighted, dictionarySum[r]);
+      if (smoothWeightSum > 0.0f) {
+        masses.mass[r] += glintSplat4(smoothWeightSum * glintGaussianRegionMass(unscaled.region[r], 0.70710678f * dict.alpha));
+      }
+      if (tailWeightSum > 0.0f) {
+        masses.mass[r] += glintSplat4(tailWeightSum * glintMidpointRegionMass(dict, params, unscaled.region[r], true));
+      }
+      masses.mass[r] = masses.mass[r] / weightSum;
+#if GLINT_CONSISTENT_LOD_COMPILED
+      if (params.lod == GLINT_LOD_CONSISTENT) {
+        masses.mass[r] = max(masses.mass[r], glintSplat4(0.0f));
+      }
+#endif
+    }
+  }
+  return masses;
+}
+
+// The P-SDF's mass over each region of slope space, blended between the footprint's two levels as
+// the P-SDF is (glintP22Set), and the smooth target's mass over each. A degenerate footprint is the
+// smooth limit: its mass is the target's.
+GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
+                                               GlintRegionSet regions) {
+  GlintRegionSet unscaled;
+  GlintRegionMassSet masses;
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    unscaled.region[r] = glintUnscaledRegion(dict, params, regions.region[r]);
+  }
+  GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
+  if (footprint.degenerate) {
+    for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+      masses.targetMass[r] = glintTargetRegionMass(dict, params, unscaled.region[r]);
+      masses.mass[r] = glintSplat4(masses.targetMass[r]);
+    }
+    return masses;
+  }
+  vec2 wrapped = glintWrapUv(uv, dict.numLevels);
+  int level = glintLodLevel(footprint);
+  float blend = glintLodBlend(footprint);
+  GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
+  masses = glintLevelRegionMass(dict, params, footprint, wrapped, level, draw, unscaled);
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    masses.mass[r] = (1.0f - blend) * masses.mass[r];
+  }
+  if (blend > 0.0f) {
+    GlintLevelDraw next = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
+    GlintRegionMassSet coarser = glintLevelRegionMass(dict, params, footprint, wrapped, level + 1, next, unscaled);
+    for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+      masses.mass[r] += blend * coarser.mass[r];
+    }
+  }
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    masses.targetMass[r] = glintTargetRegionMass(dict, params, unscaled.region[r]);
+  }
+  return masses;
+}
+
+// The reflected radiance per unit radiance and per unit of slope-space mass for a light whose
+// representative direction is wi (docs/method.md, Eq. EL-2): F G2 |wo.h| / (|n.wo| cos(theta_h)),
+// with the material's masking, Fresnel left to the caller. Times a region's mass and its radiance,
+// the light's reflected radiance; 0 where wi is below the horizon.
+GLINT_FN float glintRegionReflectance(GlintParameters params, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    return 0.0f;
+  }
+  vec3 wh = normalize(wo + wi);
+  // glintMaskedReflectance with D = 1 is G2 / (4 wo.z wi.z); dw_i = 4 |wo.h| dw_h and
+  // D dw_h = P22 ds / cos(theta_h) turn f |n.wi| dw_i into it times 4 wi.z |wo.h| / h.z P22 ds.
+  return glintMaskedReflectance(params, wo, wi, wh, 1.0f) * 4.0f * wi.z * dot(wo, wh) / wh.z;
+}
+
+GLINT_KERNEL_END
+
+#endif
