@@ -36,6 +36,12 @@
 #define GLINT_LOD_CONSTRUCTION 0
 #endif
 #include "glint_brdf.h"
+// The environment's brightest regions, drawn analytically in every program (REGION_COUNT, compiled
+// in like LIGHT_COUNT): glint programs walk the footprint's cells once for all of them.
+#if REGION_COUNT > 0
+#define GLINT_REGION_COUNT REGION_COUNT
+#include "glint_extended_lights.h"
+#endif
 #include "glint_material_block.glsl"
 #include "surface.h"
 #include "multiple_scattering.h"
@@ -251,6 +257,47 @@ GlintP22Set litGlintP22s(GlintDictionaryView dict, GlintSurface surface, vec3 li
 }
 #endif
 
+#if REGION_COUNT > 0
+uniform vec3 uRegionCorner[4 * REGION_COUNT];  // each region's four corners, unit world directions in order around it
+uniform vec3 uRegionRadiance[REGION_COUNT];
+
+// The specular of the environment's brightest regions (docs/method.md, "Extended lights"), which the
+// prefiltered map lacks: each region's radiance times Fresnel and glintRegionReflectance at its
+// centre, times the mass of the lobe over the half vectors it sends the view into: the glint
+// layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's (glintSmoothRegionMass)
+// in the others.
+vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+  GlintRegionSet regions;
+  vec3 centre[REGION_COUNT];
+  for (int r = 0; r < REGION_COUNT; ++r) {
+    vec3 wi[4];
+    for (int k = 0; k < 4; ++k) {
+      vec3 c = uRegionCorner[4 * r + k];
+      wi[k] = vec3(dot(c, surface.t), dot(c, surface.b), dot(c, surface.n));
+    }
+    regions.region[r] = glintLightSlopeRegion(surface.wo, wi[0], wi[1], wi[2], wi[3]);
+    centre[r] = normalize(wi[0] + wi[1] + wi[2] + wi[3]);
+  }
+  float rho = GLINT_LAYER ? surface.glint.rho : 0.0f;
+#if SPECULAR_MODEL == SPECULAR_GLINT
+  GlintRegionMassSet masses = glintRegionMassSet(glintDictionary(), surface.glint, glintUv, duvdx, duvdy, regions);
+#endif
+  vec3 specular = vec3(0.0f);
+  for (int r = 0; r < REGION_COUNT; ++r) {
+    vec3 wi = centre[r];
+    vec3 wh = normalize(surface.wo + wi);
+#if SPECULAR_MODEL == SPECULAR_GLINT
+    vec3 mass = masses.mass[r].rgb;
+#else
+    vec3 mass = vec3(glintSmoothRegionMass(GLINT_NDF, surface.smoothAlpha, rho, regions.region[r]));
+#endif
+    specular += uRegionRadiance[r] * glintFresnelSchlick(surface.f0, dot(surface.wo, wh)) *
+                glintRegionReflectance(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, wi) * mass;
+  }
+  return specular;
+}
+#endif
+
 // The specular lobe for light direction wi (above the horizon), times Fresnel: the program's model
 // for a glint layer (p22: its P-SDF there, glint programs only), Cook-Torrance without one.
 vec3 specularReflectance(GlintSurface surface, vec3 wi, vec4 p22, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
@@ -331,6 +378,10 @@ void main() {
                  glintFresnelSchlick(surface.f0, surface.wo.z) *
                      environmentRadiance(reflected, max(surface.smoothAlpha.x, surface.smoothAlpha.y));
   radiance += ambient * surface.occlusion;
+#if REGION_COUNT > 0
+  // The regions' specular; the prefiltered map less their means can dip below zero around them.
+  radiance = max(radiance + environmentRegionSpecular(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
+#endif
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth
   // test only where it ties with the surface behind; it is dropped last, after every derivative.

@@ -63,4 +63,14 @@ vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level, int dist
 }
 #endif
 
+// The cumulative tables (Dictionary::cumulativeTexels), for programs that include
+// glint_extended_lights.h before this file.
+#ifdef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
+layout(binding = 15) uniform GLINT_TEXEL_BUFFER uGlintCumulativeDictionary;
+
+vec2 glintDictionaryCumulativeTexels(GlintDictionaryView dict, int level, int distribution, int texel) {
+  return GLINT_TEXEL_BUFFER_FETCH(uGlintCumulativeDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
+}
+#endif
+
 #endif

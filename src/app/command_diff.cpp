@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "glint/error.h"
@@ -17,6 +18,7 @@ struct DiffOptions {
   std::string reference;
   std::string output;
   float scale = 0.0f;
+  std::vector<std::string> smooth;  // --glint-ratio: A's and B's smooth images
 };
 
 void runDiff(const DiffOptions& options) {
@@ -26,6 +28,19 @@ void runDiff(const DiffOptions& options) {
   }
   const ImageRgbF test = readImage(options.test);
   const ImageRgbF reference = readImage(options.reference);
+  if (!options.smooth.empty()) {
+    GlintRatioAgreement agreement;
+    try {
+      agreement = glintRatioAgreement(test, readImage(options.smooth[0]), reference, readImage(options.smooth[1]));
+    } catch (const Error& e) {
+      throw Error(options.test + " vs " + options.reference + ": " + e.what());
+    }
+    std::printf("pixels %d\nlog-ratio correlation %.4f\nabove twice the smooth %.5f %.5f\nratio variation %.4f %.4f\n",
+                agreement.pixels, agreement.logCorrelation, agreement.aboveTwiceA, agreement.aboveTwiceB,
+                agreement.variationA, agreement.variationB);
+    std::fflush(stdout);
+    return;
+  }
   ImageError error;
   try {
     error = compareImages(test, reference);
@@ -53,6 +68,13 @@ void registerDiffCommand(CLI::App& app) {
                    "The |A - B| at the top of the colour map (0: the 99th percentile of the differences)")
       ->capture_default_str()
       ->needs(output);
+  command
+      ->add_option("--glint-ratio", options->smooth,
+                   "A_SMOOTH B_SMOOTH: compare A's and B's glints, each image over its smooth one (the same scene "
+                   "with --brdf cook-torrance), pixel for pixel: the log ratios' correlation, the fractions above "
+                   "twice the smooth image and the ratios' coefficients of variation, each for A then B")
+      ->expected(2)
+      ->excludes(output);
   command->callback([options] { runDiff(*options); });
 }
 

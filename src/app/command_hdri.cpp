@@ -18,6 +18,7 @@ namespace {
 struct HdriOptions {
   std::string output;
   std::string size = "512x256";
+  std::string preset = "sun";
   scene::SunSky sky;
 };
 
@@ -41,16 +42,25 @@ void runHdri(const HdriOptions& options) {
   if (extension != ".hdr" && extension != ".exr") {
     throw Error(options.output + ": the output must end in .hdr or .exr");
   }
-  const scene::Environment environment = scene::sunSkyEnvironment(sky);
+  if (options.preset != "sun" && options.preset != "studio" && options.preset != "overcast") {
+    throw Error("--preset must be sun, studio or overcast, got '" + options.preset + "'");
+  }
+  const scene::Environment environment = options.preset == "studio"     ? scene::studioEnvironment(sky.width, sky.height)
+                                         : options.preset == "overcast" ? scene::overcastEnvironment(sky.width, sky.height)
+                                                                        : scene::sunSkyEnvironment(sky);
   const ImageRgbF image{environment.width, environment.height, environment.pixels};
   if (extension == ".hdr") {
     writeRadianceHdr(options.output, image);
   } else {
     writeExr(options.output, image);
   }
-  std::fprintf(stderr, "glint: wrote %s (%dx%d, sun at elevation %g, azimuth %g degrees)\n", options.output.c_str(),
-               sky.width, sky.height, static_cast<double>(sky.sunElevationDegrees),
-               static_cast<double>(sky.sunAzimuthDegrees));
+  if (options.preset == "sun") {
+    std::fprintf(stderr, "glint: wrote %s (%dx%d, sun at elevation %g, azimuth %g degrees)\n", options.output.c_str(),
+                 sky.width, sky.height, static_cast<double>(sky.sunElevationDegrees),
+                 static_cast<double>(sky.sunAzimuthDegrees));
+  } else {
+    std::fprintf(stderr, "glint: wrote %s (%dx%d, %s)\n", options.output.c_str(), sky.width, sky.height, options.preset.c_str());
+  }
 }
 
 }  // namespace
@@ -60,6 +70,10 @@ void registerHdriCommand(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("hdri", "Write the procedural sky with a sun as an equirectangular .hdr or .exr map");
   command->add_option("-o,--output", options->output, "Output file: .hdr (Radiance RGBE) or .exr")->required();
+  command->add_option("--preset", options->preset,
+                      "sun (a sky with a sun, the --sun-* options), studio (four softboxes 12 to 60 degrees wide "
+                      "over a dim backdrop) or overcast (the CIE overcast sky)")
+      ->capture_default_str();
   command->add_option("--size", options->size, "Map size WxH (width twice the height)")->capture_default_str();
   command->add_option("--sun-elevation", options->sky.sunElevationDegrees, "Sun elevation above the horizon, degrees")
       ->capture_default_str();

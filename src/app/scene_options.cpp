@@ -31,6 +31,9 @@ void EnvironmentOptions::addTo(CLI::App& command) {
   command.add_option("--env-rotation", rotationDegrees, "Turn the environment about +y by DEG (counter-clockwise from above)");
   command.add_option("--env-lights", rasterLights,
                      "The rasteriser draws the map's N brightest small regions as directional lights (0-8, default 4)");
+  command.add_option("--env-regions", rasterRegions,
+                     "The rasteriser draws the rest of the map's N brightest regions analytically, with their "
+                     "glints (0-" + std::to_string(gl::kMaxEnvironmentRegions) + ", default 0: none)");
   command.add_flag("--keep-default-lights", keepDefaultLights,
                    "With --env or --sky, keep the point and directional light invented for a glTF file without lights");
 }
@@ -57,14 +60,21 @@ void EnvironmentOptions::applyTo(scene::Scene& scene) const {
   if (rasterLights && !(*rasterLights >= 0 && *rasterLights <= gl::kMaxLights)) {
     throw Error("--env-lights must be in [0, " + std::to_string(gl::kMaxLights) + "], got " + std::to_string(*rasterLights));
   }
+  if (rasterRegions && !(*rasterRegions >= 0 && *rasterRegions <= gl::kMaxEnvironmentRegions)) {
+    throw Error("--env-regions must be in [0, " + std::to_string(gl::kMaxEnvironmentRegions) + "], got " +
+                std::to_string(*rasterRegions));
+  }
   if (!file.empty()) {
     const int lights = scene.environment.rasterLights;
+    const int regions = scene.environment.rasterRegions;
     scene.environment = scene::loadEnvironmentMap(file);
     scene.environment.rasterLights = lights;
+    scene.environment.rasterRegions = regions;
   }
   if (intensity) scene.environment.intensity *= *intensity;
   if (rotationDegrees) scene.environment.rotation += glm::radians(*rotationDegrees);
   if (rasterLights) scene.environment.rasterLights = *rasterLights;
+  if (rasterRegions) scene.environment.rasterRegions = *rasterRegions;
 }
 
 void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {

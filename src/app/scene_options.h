@@ -24,6 +24,7 @@ struct EnvironmentOptions {
   std::optional<float> intensity;    // scales the environment's radiance
   std::optional<float> rotationDegrees;  // turns it about +y
   std::optional<int> rasterLights;   // scene::Environment::rasterLights
+  std::optional<int> rasterRegions;  // scene::Environment::rasterRegions
   bool keepDefaultLights = false;    // keep the invented lights of a file without lights under --env/--sky
 
   void addTo(CLI::App& command);

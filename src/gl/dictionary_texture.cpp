@@ -12,18 +12,19 @@ namespace glint::gl {
 
 namespace {
 
-// A buffer texture over `halves`, `components` binary16 values a texel.
-void createBufferTexture(std::span<const std::uint16_t> halves, int components, GLenum format, const char* what,
-                         GLuint& buffer, GLuint& texture) {
+// A buffer texture over `values` (binary16 or float), `components` values a texel.
+template <typename T>
+void createBufferTexture(std::span<const T> values, int components, GLenum format, const char* what, GLuint& buffer,
+                         GLuint& texture) {
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const std::size_t texels = halves.size() / static_cast<std::size_t>(components);
+  const std::size_t texels = values.size() / static_cast<std::size_t>(components);
   if (static_cast<std::size_t>(maxTexels) < texels) {
     throw Error(std::string(what) + " of " + std::to_string(texels) +
                 " texels exceeds this OpenGL's buffer texture limit (" + std::to_string(maxTexels) + " texels)");
   }
   glCreateBuffers(1, &buffer);
-  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(halves.size() * sizeof(std::uint16_t)), halves.data(), 0);
+  glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(values.size() * sizeof(T)), values.data(), 0);
   glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture);
   glTextureBuffer(texture, format, buffer);
 }
@@ -40,8 +41,11 @@ DictionaryTexture::DictionaryTexture(const Dictionary& dictionary)
   // row and layer stride per pixel, about 100 instructions around each fetch; on a buffer it is a
   // bounds check and a gather (docs/benchmarks.md, "What made it fast, and why"). The mip chain
   // likewise: four values a texel, so that one fetch serves both levels of a filtered lookup.
-  createBufferTexture(pairs, 2, GL_RG16F, "dictionary", buffer_, texture_);
+  createBufferTexture(std::span<const std::uint16_t>(pairs), 2, GL_RG16F, "dictionary", buffer_, texture_);
   createBufferTexture(dictionary.filteredHalfTexels(), 4, GL_RGBA16F, "dictionary mip chain", mipBuffer_, mipTexture_);
+  // The cumulative tables of glints under extended lights, two 32-bit floats a texel.
+  createBufferTexture(dictionary.cumulativeTexels(), 2, GL_RG32F, "dictionary cumulative tables", cumulativeBuffer_,
+                      cumulativeTexture_);
 }
 
 DictionaryTexture::~DictionaryTexture() {
@@ -49,11 +53,14 @@ DictionaryTexture::~DictionaryTexture() {
   glDeleteBuffers(1, &buffer_);
   glDeleteTextures(1, &mipTexture_);
   glDeleteBuffers(1, &mipBuffer_);
+  glDeleteTextures(1, &cumulativeTexture_);
+  glDeleteBuffers(1, &cumulativeBuffer_);
 }
 
 void DictionaryTexture::bind(const ShaderProgram& program) const {
   glBindTextureUnit(0, texture_);
   glBindTextureUnit(10, mipTexture_);
+  glBindTextureUnit(15, cumulativeTexture_);
   glUniform2i(program.uniform("uGlintDictionaryMips"), numMips_, mipRowLength_);
   glUniform3i(program.uniform("uGlintDictionaryShape"), parameters_.numLevels, parameters_.numDistributions,
               parameters_.texelsPerDistribution);

@@ -178,6 +178,7 @@ struct ForwardVariant {
   bool lean;       // GLINT_LEAN: and filter their normal map (AntiAliasing::GgaaLean)
   bool normalMapFinest;  // NORMAL_MAP_FINEST: the normal map at its finest level
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
+  int regionCount;  // REGION_COUNT: the environment's regions drawn analytically (glints in glint programs)
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
   bool vertexColours;      // VERTEX_COLOURS: the mesh has COLOR_0 other than white
@@ -212,6 +213,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"GLINT_LEAN", variant.lean ? "1" : "0"},
                         {"NORMAL_MAP_FINEST", variant.normalMapFinest ? "1" : "0"},
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
+                        {"REGION_COUNT", std::to_string(variant.regionCount)},
                         {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
                         {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
                         {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"},
@@ -246,7 +248,7 @@ int footprintWords(const kernel::GlintFootprintPolicy& policy) {
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
-                              int lightCount, int shadowCubes) {
+                              int lightCount, int regionCount, int shadowCubes) {
   const SpecularModel model = material.glint.enabled ? settings.brdf : SpecularModel::CookTorrance;
   const bool coloured = model == SpecularModel::Glint && material.glint.colouredCells;
   const bool filtered = model == SpecularModel::Glint && settings.antiAliasing != AntiAliasing::None;
@@ -262,6 +264,7 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         lean,
                         finest,
                         lightCount,
+                        regionCount,
                         isMasked(material),
                         transforms,
                         mesh.vertexColours,
@@ -455,13 +458,17 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
   const int freeLightSlots = std::max(0, kMaxLights - static_cast<int>(lights_.size()));
   scene::EnvironmentLights split = scene::extractEnvironmentLights(env, std::min(env.rasterLights, freeLightSlots));
   environmentLights_ = std::move(split.lights);
+  scene::EnvironmentRegions regions =
+      scene::environmentGlintRegions(split.residual, std::min(env.rasterRegions, kMaxEnvironmentRegions));
+  environmentRegions_ = std::move(regions.regions);
   auto uploadEnvironment = [](const scene::Environment& e) {
     if (!e.pixels.empty()) return makeTexture(e.width, e.height, GL_RGBA32F, GL_RGB, GL_FLOAT, e.pixels.data(), true, true);
     const glm::vec3 uniform[4] = {e.uniform, e.uniform, e.uniform, e.uniform};
     return makeTexture(2, 2, GL_RGBA32F, GL_RGB, GL_FLOAT, uniform, false, true);
   };
-  g.environment = uploadEnvironment(split.residual);
-  g.backgroundEnvironment = environmentLights_.empty() ? g.environment : uploadEnvironment(env);
+  // The prefiltered specular lacks the regions too (drawn analytically); the irradiance has them.
+  g.environment = uploadEnvironment(regions.specularResidual);
+  g.backgroundEnvironment = environmentLights_.empty() && environmentRegions_.empty() ? g.environment : uploadEnvironment(env);
   if (!env.pixels.empty()) g.environmentMaxLod = std::floor(std::log2(static_cast<float>(std::max(env.width, env.height))));
   g.irradiance = irradianceSh(split.residual);
   for (const scene::Mesh& mesh : scene.meshes) {
@@ -525,6 +532,10 @@ struct Renderer::FrameState {
   glm::vec3 spotAxes[kMaxLights];
   glm::vec2 spotCones[kMaxLights];
   float inverseRanges[kMaxLights] = {};
+  // The environment's glint regions: four corners each (unit directions), and their radiance.
+  int regionCount = 0;
+  glm::vec3 regionCorners[4 * kMaxEnvironmentRegions];
+  glm::vec3 regionRadiances[kMaxEnvironmentRegions];
   bool shadows = false;
   int shadowEntries = 0;  // lightCount * kShadowCascades
   int shadowCubes = 0;    // bit i: light i has a cube map
@@ -598,6 +609,12 @@ Renderer::FrameState Renderer::beginFrame(const FrameSettings& settings) {
     frame.spotAxes[i] = light.spotAxis();
     frame.spotCones[i] = light.coneScaleOffset();
     frame.inverseRanges[i] = light.inverseRange();
+  }
+  frame.regionCount = static_cast<int>(environmentRegions_.size());
+  for (int r = 0; r < frame.regionCount; ++r) {
+    const scene::EnvironmentRegion& region = environmentRegions_[static_cast<std::size_t>(r)];
+    for (int k = 0; k < 4; ++k) frame.regionCorners[4 * r + k] = region.corners[static_cast<std::size_t>(k)];
+    frame.regionRadiances[r] = region.radiance;
   }
   frame.shadows = settings.shadows && frame.lightCount > 0;
   frame.shadowEntries = frame.lightCount * kShadowCascades;
@@ -697,6 +714,10 @@ void Renderer::setFrameUniforms(const ShaderProgram& p, const FrameSettings& set
   glUniform3fv(p.uniform("uSpotAxis"), frame.lightCount, &frame.spotAxes[0].x);
   glUniform2fv(p.uniform("uSpotCone"), frame.lightCount, &frame.spotCones[0].x);
   glUniform1fv(p.uniform("uLightInverseRange"), frame.lightCount, frame.inverseRanges);
+  if (frame.regionCount > 0) {
+    glUniform3fv(p.uniform("uRegionCorner"), 4 * frame.regionCount, &frame.regionCorners[0].x);
+    glUniform3fv(p.uniform("uRegionRadiance"), frame.regionCount, &frame.regionRadiances[0].x);
+  }
   glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
   glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
   glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
@@ -772,7 +793,7 @@ void Renderer::shadingPass(const FrameSettings& settings, const FrameState& fram
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings, m, mesh, frame.lightCount, frame.shadowCubes);
+    const ForwardVariant variant = forwardVariant(settings, m, mesh, frame.lightCount, frame.regionCount, frame.shadowCubes);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;

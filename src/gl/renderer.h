@@ -14,6 +14,7 @@
 #include "glint/dictionary.h"
 #include "glint/image_io.h"
 #include "glint/specular_model.h"
+#include "scene/environment_map.h"
 #include "scene/scene.h"
 
 namespace glint::gl {
@@ -23,6 +24,8 @@ class ShaderProgram;
 // The most lights the rasteriser draws (the first ones of the scene): a forward program is
 // compiled per light count (LIGHT_COUNT). The path tracer draws them all.
 constexpr int kMaxLights = 8;
+// The most regions of an environment map whose glints a frame draws (scene::environmentGlintRegions).
+constexpr int kMaxEnvironmentRegions = 8;
 // The most cascades of a directional light's shadow maps, and its default
 // (FrameSettings::shadowCascades, shadow_maps.h).
 constexpr int kShadowCascades = 4;
@@ -115,6 +118,10 @@ class Renderer {
   // (scene::extractEnvironmentLights, at most scene::Environment::rasterLights and the slots the
   // scene's lights leave of kMaxLights); the map's specular and irradiance lack their radiance.
   const std::vector<scene::Light>& environmentLights() const { return environmentLights_; }
+  // The rest of the map's brightest regions, whose glints glint programs draw over the prefiltered
+  // specular (scene::environmentGlintRegions, at most scene::Environment::rasterRegions and
+  // kMaxEnvironmentRegions).
+  const std::vector<scene::EnvironmentRegion>& environmentRegions() const { return environmentRegions_; }
 
  private:
   struct Gpu;
@@ -138,6 +145,7 @@ class Renderer {
   std::vector<scene::Material> materials_;
   std::vector<scene::Light> lights_;
   std::vector<scene::Light> environmentLights_;
+  std::vector<scene::EnvironmentRegion> environmentRegions_;
   std::vector<std::string> warnings_;
   std::unique_ptr<Gpu> gpu_;
 };

@@ -457,6 +457,57 @@ ImageError compareImages(const ImageRgbF& test, const ImageRgbF& reference) {
   return ImageError{std::sqrt(squared / samples), relative / samples, referenceSum / samples};
 }
 
+namespace {
+// Rec. 709 luminance (scene::luminance, which this library sits below).
+double rec709Luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+}  // namespace
+
+GlintRatioAgreement glintRatioAgreement(const ImageRgbF& glintA, const ImageRgbF& smoothA, const ImageRgbF& glintB,
+                                        const ImageRgbF& smoothB) {
+  checkSameSize(glintA, smoothA);
+  checkSameSize(glintA, glintB);
+  checkSameSize(glintA, smoothB);
+  std::vector<double> ratioA, ratioB;
+  for (std::size_t i = 0; i < glintA.pixels.size(); ++i) {
+    const double sa = rec709Luminance(smoothA.pixels[i]);
+    const double sb = rec709Luminance(smoothB.pixels[i]);
+    if (!(sa > 1e-6 && sb > 1e-6)) continue;
+    const double a = std::max(rec709Luminance(glintA.pixels[i]), 0.0) / sa;
+    const double b = std::max(rec709Luminance(glintB.pixels[i]), 0.0) / sb;
+    if (std::abs(a - 1.0) < 1e-6 && std::abs(b - 1.0) < 1e-6) continue;
+    ratioA.push_back(a);
+    ratioB.push_back(b);
+  }
+  if (ratioA.size() < 2) throw Error("no pixel has both a glint and a smooth image to compare");
+  GlintRatioAgreement agreement;
+  agreement.pixels = static_cast<int>(ratioA.size());
+  const double n = static_cast<double>(ratioA.size());
+  // Logs of ratios floored at 1e-3: a pixel whose glints reflect nothing is a large negative, not -inf.
+  double meanLogA = 0.0, meanLogB = 0.0, meanA = 0.0, meanB = 0.0;
+  for (std::size_t i = 0; i < ratioA.size(); ++i) {
+    meanLogA += std::log(std::max(ratioA[i], 1e-3)) / n;
+    meanLogB += std::log(std::max(ratioB[i], 1e-3)) / n;
+    meanA += ratioA[i] / n;
+    meanB += ratioB[i] / n;
+    agreement.aboveTwiceA += ratioA[i] > 2.0 ? 1.0 / n : 0.0;
+    agreement.aboveTwiceB += ratioB[i] > 2.0 ? 1.0 / n : 0.0;
+  }
+  double covariance = 0.0, varianceLogA = 0.0, varianceLogB = 0.0, varianceA = 0.0, varianceB = 0.0;
+  for (std::size_t i = 0; i < ratioA.size(); ++i) {
+    const double la = std::log(std::max(ratioA[i], 1e-3)) - meanLogA;
+    const double lb = std::log(std::max(ratioB[i], 1e-3)) - meanLogB;
+    covariance += la * lb;
+    varianceLogA += la * la;
+    varianceLogB += lb * lb;
+    varianceA += (ratioA[i] - meanA) * (ratioA[i] - meanA) / n;
+    varianceB += (ratioB[i] - meanB) * (ratioB[i] - meanB) / n;
+  }
+  agreement.logCorrelation = varianceLogA > 0.0 && varianceLogB > 0.0 ? covariance / std::sqrt(varianceLogA * varianceLogB) : 0.0;
+  agreement.variationA = meanA > 0.0 ? std::sqrt(varianceA) / meanA : 0.0;
+  agreement.variationB = meanB > 0.0 ? std::sqrt(varianceB) / meanB : 0.0;
+  return agreement;
+}
+
 float automaticDifferenceScale(const ImageRgbF& a, const ImageRgbF& b) {
   return percentileScale(meanAbsoluteDifferences(a, b));
 }

@@ -90,6 +90,23 @@ struct ImageError {
 // sizes when they differ, and for empty images. Sums are in double, in a fixed order.
 ImageError compareImages(const ImageRgbF& test, const ImageRgbF& reference);
 
+// How two renderers' glints agree pixel for pixel (docs/method.md, "Extended lights", "Measuring"):
+// each renderer's glint image over its smooth image (the same scene with the smooth target), the
+// per-pixel ratio of luminances, which cancels what the renderers do differently for the smooth
+// part. Pixels where either smooth image is below 1e-6 are left out, and so are those where both
+// ratios are 1 to within 1e-6 (the background, which neither shades with glints).
+struct GlintRatioAgreement {
+  int pixels = 0;                  // compared
+  double logCorrelation = 0.0;     // Pearson correlation of the two log ratios: 1 is flake for flake
+  double aboveTwiceA = 0.0;        // fraction of pixels whose ratio exceeds 2, in A and in B
+  double aboveTwiceB = 0.0;
+  double variationA = 0.0;         // coefficient of variation (std / mean) of the ratio, in A and in B
+  double variationB = 0.0;
+};
+// Throws Error when the four sizes differ or no pixel is left to compare.
+GlintRatioAgreement glintRatioAgreement(const ImageRgbF& glintA, const ImageRgbF& smoothA, const ImageRgbF& glintB,
+                                        const ImageRgbF& smoothB);
+
 // A picture of the per-pixel mean over channels of |a - b|, divided by `scale` and mapped through
 // an approximation of matplotlib's 'inferno' colour map (values beyond `scale` saturate), with a
 // colour bar from 0 to `scale` below it. `scale` 0 picks the 99th percentile of the differences

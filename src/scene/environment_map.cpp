@@ -46,6 +46,43 @@ glm::vec3 skyRadiance(float elevation) {
   return h >= 0.0f ? glm::mix(horizon, zenith, std::sqrt(h)) : glm::mix(horizon, ground, std::min(1.0f, 8.0f * -h));
 }
 
+Environment studioEnvironment(int width, int height) {
+  Environment environment;
+  environment.width = width;
+  environment.height = height;
+  environment.pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y) {
+    const float elevation = 90.0f - 180.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+    for (int x = 0; x < width; ++x) {
+      // The texel's azimuth, to the left of -z: directionFromEquirect's (-sin a cos e, ., -cos a cos e).
+      const glm::vec3 d = directionFromEquirect(glm::vec2((x + 0.5f) / width, (y + 0.5f) / height));
+      const float azimuth = glm::degrees(std::atan2(-d.x, -d.z));
+      glm::vec3 radiance(elevation >= 0.0f ? 0.05f : 0.02f);
+      for (const Softbox& box : kStudioSoftboxes) {
+        const float across = std::remainder(azimuth - box.azimuthDegrees, 360.0f);
+        if (std::abs(across) <= 0.5f * box.widthDegrees && std::abs(elevation - box.elevationDegrees) <= 0.5f * box.heightDegrees) {
+          radiance = glm::vec3(box.radiance);
+        }
+      }
+      environment.pixels[static_cast<std::size_t>(y) * width + x] = radiance;
+    }
+  }
+  return environment;
+}
+
+Environment overcastEnvironment(int width, int height) {
+  Environment environment;
+  environment.width = width;
+  environment.height = height;
+  environment.pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y) {
+    const float elevation = 0.5f * kPiF - kPiF * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+    const float radiance = elevation >= 0.0f ? (1.0f + 2.0f * std::sin(elevation)) / 3.0f : 0.1f;
+    for (int x = 0; x < width; ++x) environment.pixels[static_cast<std::size_t>(y) * width + x] = glm::vec3(radiance);
+  }
+  return environment;
+}
+
 glm::vec3 sunSkyDirection(const SunSky& sky) {
   const float azimuth = glm::radians(sky.sunAzimuthDegrees);
   const float elevation = glm::radians(sky.sunElevationDegrees);
@@ -187,6 +224,151 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, int m
     result.lights.push_back(light);
     result.solidAngles.push_back(region.solidAngle);
     result.powerFractions.push_back(region.power / totalPower);
+  }
+  return result;
+}
+
+}  // namespace glint::scene
+
+namespace glint::scene {
+
+namespace {
+
+// One rectangle of the coarse grid environmentGlintRegions splits the map on, with its sums: solid
+// angle, luminance and squared luminance times solid angle, and radiance times solid angle.
+struct GridRectangle {
+  int x0, y0, x1, y1;  // cells [x0, x1) x [y0, y1)
+  double weight = 0.0;
+  double luminanceSum = 0.0;
+  double squareSum = 0.0;
+  glm::dvec3 radianceSum{0.0};
+  double meanLuminance() const { return weight > 0.0 ? luminanceSum / weight : 0.0; }
+  // The solid-angle weighted squared deviation from the mean luminance: what a split lowers.
+  double spread() const { return weight > 0.0 ? squareSum - luminanceSum * luminanceSum / weight : 0.0; }
+  // The larger of its angular height and its width at its middle row, in radians.
+  double extent(int width, int height) const {
+    const double theta = (0.5 * (y0 + y1) / height) * 3.14159265358979;
+    return std::max((y1 - y0) * 3.14159265358979 / height, (x1 - x0) * 2.0 * 3.14159265358979 / width * std::sin(theta));
+  }
+};
+
+}  // namespace
+
+EnvironmentRegions environmentGlintRegions(const Environment& environment, int maxRegions) {
+  EnvironmentRegions result;
+  result.specularResidual = environment;
+  std::vector<EnvironmentRegion>& regions = result.regions;
+  if (maxRegions <= 0 || environment.pixels.empty() || environment.width <= 0 || environment.height <= 0) return result;
+  // The coarse grid: the map's texels averaged into cells, each cell's sums weighted by the
+  // texels' solid angles.
+  const int gridWidth = std::min(environment.width, kEnvironmentRegionGridWidth);
+  const int gridHeight = std::max(1, std::min(environment.height, kEnvironmentRegionGridWidth / 2));
+  std::vector<GridRectangle> cells(static_cast<std::size_t>(gridWidth * gridHeight));
+  for (int y = 0; y < environment.height; ++y) {
+    const double solidAngle = equirectTexelSolidAngle(y, environment.width, environment.height);
+    const int cy = y * gridHeight / environment.height;
+    for (int x = 0; x < environment.width; ++x) {
+      const int cx = x * gridWidth / environment.width;
+      GridRectangle& c = cells[static_cast<std::size_t>(cy * gridWidth + cx)];
+      const glm::vec3 radiance = environment.pixels[static_cast<std::size_t>(y) * environment.width + x] * environment.intensity;
+      const double l = luminance(radiance);
+      c.weight += solidAngle;
+      c.luminanceSum += l * solidAngle;
+      c.squareSum += l * l * solidAngle;
+      c.radianceSum += glm::dvec3(radiance) * solidAngle;
+    }
+  }
+  auto sums = [&](int x0, int y0, int x1, int y1) {
+    GridRectangle r{x0, y0, x1, y1};
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
+        const GridRectangle& c = cells[static_cast<std::size_t>(y * gridWidth + x)];
+        r.weight += c.weight;
+        r.luminanceSum += c.luminanceSum;
+        r.squareSum += c.squareSum;
+        r.radianceSum += c.radianceSum;
+      }
+    }
+    return r;
+  };
+  // Split in two where the two halves' spreads sum least, across either axis; false when it is one cell.
+  auto bestSplit = [&](const GridRectangle& r, GridRectangle& a, GridRectangle& b) {
+    double best = -1.0;
+    for (int x = r.x0 + 1; x < r.x1; ++x) {
+      GridRectangle left = sums(r.x0, r.y0, x, r.y1), right = sums(x, r.y0, r.x1, r.y1);
+      const double s = left.spread() + right.spread();
+      if (best < 0.0 || s < best) { best = s; a = left; b = right; }
+    }
+    for (int y = r.y0 + 1; y < r.y1; ++y) {
+      GridRectangle top = sums(r.x0, r.y0, r.x1, y), bottom = sums(r.x0, y, r.x1, r.y1);
+      const double s = top.spread() + bottom.spread();
+      if (best < 0.0 || s < best) { best = s; a = top; b = bottom; }
+    }
+    return best >= 0.0;
+  };
+  // 1. A k-d split of the whole map by luminance spread, from eight tiles of 90 x 90 degrees, until
+  //    it has kEnvironmentRegionLeaves rectangles: the regions of nearly constant radiance.
+  std::vector<GridRectangle> leaves;
+  for (int ty = 0; ty < 2; ++ty) {
+    for (int tx = 0; tx < 4; ++tx) {
+      leaves.push_back(sums(tx * gridWidth / 4, ty * gridHeight / 2, (tx + 1) * gridWidth / 4, (ty + 1) * gridHeight / 2));
+    }
+  }
+  while (static_cast<int>(leaves.size()) < kEnvironmentRegionLeaves) {
+    auto widest = std::max_element(leaves.begin(), leaves.end(),
+                                   [](const GridRectangle& a, const GridRectangle& b) { return a.spread() < b.spread(); });
+    GridRectangle a{}, b{};
+    if (widest->spread() <= 0.0 || !bestSplit(*widest, a, b)) break;
+    *widest = a;
+    leaves.push_back(b);
+  }
+  // 2. The brightest rectangles light glints, each at most kEnvironmentRegionMaxExtent across (a
+  //    wider one is halved along its longer side and both halves go back among the candidates), so
+  //    that the quadrilateral of its corners' half vectors stays close to its region of slopes.
+  const double mapMean = [&] {
+    double w = 0.0, l = 0.0;
+    for (const GridRectangle& c : cells) { w += c.weight; l += c.luminanceSum; }
+    return w > 0.0 ? l / w : 0.0;
+  }();
+  auto brighter = [](const GridRectangle& a, const GridRectangle& b) { return a.meanLuminance() > b.meanLuminance(); };
+  std::sort(leaves.begin(), leaves.end(), brighter);
+  std::vector<GridRectangle> chosen;
+  while (!leaves.empty() && static_cast<int>(chosen.size()) < maxRegions) {
+    GridRectangle r = leaves.front();
+    leaves.erase(leaves.begin());
+    if (!(r.meanLuminance() > mapMean)) break;  // no brighter than the map's mean: its glints stay in the smooth lobe
+    if (r.extent(gridWidth, gridHeight) > kEnvironmentRegionMaxExtent && (r.x1 - r.x0 > 1 || r.y1 - r.y0 > 1)) {
+      const double theta = (0.5 * (r.y0 + r.y1) / gridHeight) * 3.14159265358979;
+      const bool acrossX = (r.x1 - r.x0) * 2.0 / gridWidth * std::sin(theta) > (r.y1 - r.y0) * 1.0 / gridHeight || r.y1 - r.y0 == 1;
+      const int cut = acrossX ? (r.x0 + r.x1) / 2 : (r.y0 + r.y1) / 2;
+      leaves.push_back(acrossX ? sums(r.x0, r.y0, cut, r.y1) : sums(r.x0, r.y0, r.x1, cut));
+      leaves.push_back(acrossX ? sums(cut, r.y0, r.x1, r.y1) : sums(r.x0, cut, r.x1, r.y1));
+      std::sort(leaves.begin(), leaves.end(), brighter);
+      continue;
+    }
+    chosen.push_back(r);
+  }
+  for (const GridRectangle& r : chosen) {
+    EnvironmentRegion region;
+    const glm::vec2 uv[4] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}};
+    for (int k = 0; k < 4; ++k) {
+      region.corners[static_cast<std::size_t>(k)] =
+          environment.worldDirection(directionFromEquirect(uv[k] / glm::vec2(gridWidth, gridHeight)));
+    }
+    region.radiance = glm::vec3(r.radianceSum / r.weight);
+    region.solidAngle = r.weight;
+    regions.push_back(region);
+    // The residual loses the region's mean over its texels (those of its grid cells), in the map's
+    // own units (before the environment's intensity, which the rasteriser applies to the map).
+    const glm::vec3 mean = region.radiance / std::max(environment.intensity, 1e-30f);
+    for (int y = 0; y < environment.height; ++y) {
+      const int cy = y * gridHeight / environment.height;
+      if (cy < r.y0 || cy >= r.y1) continue;
+      for (int x = 0; x < environment.width; ++x) {
+        const int cx = x * gridWidth / environment.width;
+        if (cx >= r.x0 && cx < r.x1) result.specularResidual.pixels[static_cast<std::size_t>(y) * environment.width + x] -= mean;
+      }
+    }
   }
   return result;
 }

@@ -3,6 +3,7 @@
 // for its brightest small regions plus the rest (docs/renderer.md, "HDRI environments").
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -40,6 +41,26 @@ struct SunSky {
   float sunIrradiance = 8.0f;
 };
 Environment sunSkyEnvironment(const SunSky& sky);
+// A photo studio: a dim grey backdrop (0.05 above the horizon, 0.02 below) and kStudioSoftboxes
+// uniformly emitting rectangles in azimuth and elevation, 12 to 60 degrees wide, the softboxes of
+// a product shot (docs/cli.md, `glint hdri --preset studio`).
+struct Softbox {
+  float azimuthDegrees;    // the centre, to the left of -z as SunSky's
+  float elevationDegrees;
+  float widthDegrees;      // in azimuth
+  float heightDegrees;     // in elevation
+  float radiance;          // white
+};
+inline constexpr Softbox kStudioSoftboxes[] = {
+    {160.0f, 30.0f, 60.0f, 35.0f, 4.0f},   // key, behind the camera to its left
+    {-145.0f, 15.0f, 40.0f, 30.0f, 2.5f},  // fill, behind the camera to its right
+    {25.0f, 40.0f, 25.0f, 16.0f, 6.0f},    // rim, behind the subject
+    {-70.0f, 62.0f, 12.0f, 12.0f, 10.0f},  // a small top light
+};
+Environment studioEnvironment(int width, int height);
+// An overcast sky: the CIE standard overcast sky's radiance, (1 + 2 sin(elevation)) / 3 of the
+// zenith's (zenith 1), over a dark grey ground (0.1).
+Environment overcastEnvironment(int width, int height);
 glm::vec3 sunSkyDirection(const SunSky& sky);  // unit, towards the sun
 
 // A map split into directional lights for its brightest small regions and the rest.
@@ -68,5 +89,29 @@ struct EnvironmentLights {
   Environment residual;
 };
 EnvironmentLights extractEnvironmentLights(const Environment& environment, int maxLights);
+
+// The rectangles of a map (its residual after extractEnvironmentLights) whose glints the rasteriser
+// draws (docs/method.md, "Extended lights"). The map, averaged on a grid of
+// kEnvironmentRegionGridWidth x half as many cells, is split k-d into kEnvironmentRegionLeaves
+// rectangles, each cut where its two halves' luminance spread (solid-angle weighted squared
+// deviation from their mean) sums least, so that each is of nearly constant radiance; then the
+// brightest of them, up to maxRegions and only those brighter than the map's mean, are taken, a
+// rectangle wider than kEnvironmentRegionMaxExtent halved first. Each carries its mean radiance
+// (times the environment's intensity). The rasteriser lights both lobes of every material with the
+// regions analytically and prefilters `specularResidual`, the map less each region's mean radiance
+// over its texels, so that a region's power is counted once. A uniform environment has none.
+inline constexpr int kEnvironmentRegionGridWidth = 64;
+inline constexpr int kEnvironmentRegionLeaves = 32;
+inline constexpr double kEnvironmentRegionMaxExtent = 0.7;  // radians, 40 degrees
+struct EnvironmentRegion {
+  std::array<glm::vec3, 4> corners;  // unit world directions, in order around the rectangle
+  glm::vec3 radiance{0.0f};          // mean, W/(m^2 sr), the environment's intensity included
+  double solidAngle = 0.0;           // sr
+};
+struct EnvironmentRegions {
+  std::vector<EnvironmentRegion> regions;
+  Environment specularResidual;
+};
+EnvironmentRegions environmentGlintRegions(const Environment& environment, int maxRegions);
 
 }  // namespace glint::scene

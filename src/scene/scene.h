@@ -160,6 +160,9 @@ struct Environment {
   // so that they light glints (scene/environment_map.h, extractEnvironmentLights); the path tracer
   // samples the whole map and ignores it.
   int rasterLights = 4;
+  // How many of the rest's brightest regions light glints in the rasteriser
+  // (scene/environment_map.h, environmentGlintRegions); the path tracer ignores it too.
+  int rasterRegions = 0;
 
   glm::vec3 mapDirection(glm::vec3 world) const;  // world to map: turned by -rotation
   glm::vec3 worldDirection(glm::vec3 map) const;  // map to world: turned by +rotation

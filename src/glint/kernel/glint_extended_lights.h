@@ -189,8 +189,8 @@ GLINT_FN vec2 glintCumulativeBlockMarginal(GlintDictionaryView dict, int level, 
 // the cumulative marginal and first moment; the strip's middle where it holds no mass.
 GLINT_FN float glintStripCentroid(vec2 strip, vec2 startIntegrals, vec2 endIntegrals) {
   float mass = endIntegrals.x - startIntegrals.x;
-  float centroid = abs(mass) > 1e-12f ? (endIntegrals.y - startIntegrals.y) / mass : 0.5f * (strip.x + strip.y);
-  return clamp(centroid, strip.x, strip.y);
+  float mean = abs(mass) > 1e-12f ? (endIntegrals.y - startIntegrals.y) / mass : 0.5f * (strip.x + strip.y);
+  return clamp(mean, strip.x, strip.y);
 }
 
 // A dictionary cell's mass over a region in its own frame (glintCellRegion): per strip, the x
@@ -248,34 +248,42 @@ GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
   return mass;
 }
 
-// The midpoint rule over the strips of an unscaled region for a slope density that is not
-// separable: each strip's area times the density at its centre, mapped back to slope space
-// (glintScaledSlope) and divided by the unscaling's Jacobian. `tail` chooses GGX's smooth remainder
+// The midpoint rule over the strips of a region in the unscaled frame of roughness alpha,
+// correlation rho and dictionary roughness alphaD (glintCorrelatedUnscale) for a slope density that
+// is not separable: each strip's area times the density at its centre, mapped back to slope space
+// and divided by the unscaling's Jacobian. `tail` chooses GGX's smooth remainder
 // (glintStudentTailSlopeP22) over the target's P22.
-GLINT_FN float glintMidpointRegionMass(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion unscaled, bool tail) {
-  vec4 breaks = glintRegionBreaks(unscaled, 3.0e38f);
-  vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho);
+GLINT_FN float glintMidpointRegionMass(int ndf, vec2 alpha, float rho, float alphaD, GlintSlopeRegion unscaled, bool tail) {
+  vec4 breaks = glintRegionBreaks(unscaled, 1.0e6f);
+  vec3 covariance = glintBeckmannSlopeCovariance(alpha, rho);
   float mass = 0.0f;
   for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
     vec2 strip = glintRegionStrip(breaks, k);
     float middle = 0.5f * (strip.x + strip.y);
     vec2 across = glintRegionYAt(unscaled, middle);
     if (across.y > across.x && strip.y > strip.x) {
-      vec2 slope = glintScaledSlope(dict, params, vec2(middle, 0.5f * (across.x + across.y)));
-      float p22 = tail ? glintStudentTailSlopeP22(slope, covariance) : glintTargetP22(params.ndf, slope, params.alpha, params.rho);
+      vec2 slope = glintCorrelatedScale(vec2(middle, 0.5f * (across.x + across.y)), alpha, rho, alphaD);
+      float p22 = tail ? glintStudentTailSlopeP22(slope, covariance) : glintTargetP22(ndf, slope, alpha, rho);
       mass += (strip.y - strip.x) * (across.y - across.x) * p22;
     }
   }
-  return mass / glintScalingJacobian(dict, params);
+  return mass / glintCorrelatedJacobian(alpha, rho, alphaD);
 }
 
-// The smooth target's mass over an unscaled region: the Gaussian's strips for Beckmann (exact but
-// for the region's straight edges), the midpoint rule for GGX.
-GLINT_FN float glintTargetRegionMass(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion unscaled) {
-  if (params.ndf != GLINT_NDF_GGX) {
-    return glintGaussianRegionMass(unscaled, 0.70710678f * dict.alpha);
+// A smooth lobe's mass over a region of slope space (GLINT_NDF_BECKMANN or GLINT_NDF_GGX of
+// roughness alpha and correlation rho): in its unscaled frame (alpha_d = 1) Beckmann is the
+// isotropic Gaussian of sigma 1 / sqrt 2, by the strips; GGX by the midpoint rule. The smooth
+// target of a glint layer, and the specular lobe of every material under extended lights.
+GLINT_FN float glintSmoothRegionMass(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
+  GlintSlopeRegion unscaled;
+  unscaled.c0 = glintCorrelatedUnscale(region.c0, alpha, rho, 1.0f);
+  unscaled.c1 = glintCorrelatedUnscale(region.c1, alpha, rho, 1.0f);
+  unscaled.c2 = glintCorrelatedUnscale(region.c2, alpha, rho, 1.0f);
+  unscaled.c3 = glintCorrelatedUnscale(region.c3, alpha, rho, 1.0f);
+  if (ndf != GLINT_NDF_GGX) {
+    return glintGaussianRegionMass(unscaled, 0.70710678f);
   }
-  return glintMidpointRegionMass(dict, params, unscaled, false);
+  return glintMidpointRegionMass(ndf, alpha, rho, 1.0f, unscaled, false);
 }
 
 // The masses over one footprint level's cells (glintLevelP22's walk, weights and cells, the masses
@@ -338,7 +346,8 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
         masses.mass[r] += glintSplat4(smoothWeightSum * glintGaussianRegionMass(unscaled.region[r], 0.70710678f * dict.alpha));
       }
       if (tailWeightSum > 0.0f) {
-        masses.mass[r] += glintSplat4(tailWeightSum * glintMidpointRegionMass(dict, params, unscaled.region[r], true));
+        masses.mass[r] += glintSplat4(tailWeightSum * glintMidpointRegionMass(params.ndf, params.alpha, params.rho, dict.alpha,
+                                                                               unscaled.region[r], true));
       }
       masses.mass[r] = masses.mass[r] / weightSum;
 #if GLINT_CONSISTENT_LOD_COMPILED
@@ -364,7 +373,7 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   if (footprint.degenerate) {
     for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-      masses.targetMass[r] = glintTargetRegionMass(dict, params, unscaled.region[r]);
+      masses.targetMass[r] = glintSmoothRegionMass(params.ndf, params.alpha, params.rho, regions.region[r]);
       masses.mass[r] = glintSplat4(masses.targetMass[r]);
     }
     return masses;
@@ -385,23 +394,23 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
     }
   }
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-    masses.targetMass[r] = glintTargetRegionMass(dict, params, unscaled.region[r]);
+    masses.targetMass[r] = glintSmoothRegionMass(params.ndf, params.alpha, params.rho, regions.region[r]);
   }
   return masses;
 }
 
 // The reflected radiance per unit radiance and per unit of slope-space mass for a light whose
 // representative direction is wi (docs/method.md, Eq. EL-2): F G2 |wo.h| / (|n.wo| cos(theta_h)),
-// with the material's masking, Fresnel left to the caller. Times a region's mass and its radiance,
+// with the lobe's masking, Fresnel left to the caller. Times a region's mass and its radiance,
 // the light's reflected radiance; 0 where wi is below the horizon.
-GLINT_FN float glintRegionReflectance(GlintParameters params, vec3 wo, vec3 wi) {
+GLINT_FN float glintRegionReflectance(int masking, int ndf, vec2 alpha, float rho, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;
   }
   vec3 wh = normalize(wo + wi);
   // glintMaskedReflectance with D = 1 is G2 / (4 wo.z wi.z); dw_i = 4 |wo.h| dw_h and
   // D dw_h = P22 ds / cos(theta_h) turn f |n.wi| dw_i into it times 4 wi.z |wo.h| / h.z P22 ds.
-  return glintMaskedReflectance(params, wo, wi, wh, 1.0f) * 4.0f * wi.z * dot(wo, wh) / wh.z;
+  return glintMaskedMicrofacetReflectance(masking, ndf, alpha, rho, wo, wi, wh, 1.0f) * 4.0f * wi.z * dot(wo, wh) / wh.z;
 }
 
 GLINT_KERNEL_END
