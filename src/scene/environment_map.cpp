@@ -46,11 +46,19 @@ glm::vec3 skyRadiance(float elevation) {
   return h >= 0.0f ? glm::mix(horizon, zenith, std::sqrt(h)) : glm::mix(horizon, ground, std::min(1.0f, 8.0f * -h));
 }
 
-Environment studioEnvironment(int width, int height) {
+namespace {
+// A width x height map of black texels, for the procedural maps to fill.
+Environment blankEnvironment(int width, int height) {
   Environment environment;
   environment.width = width;
   environment.height = height;
   environment.pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  return environment;
+}
+}  // namespace
+
+Environment studioEnvironment(int width, int height) {
+  Environment environment = blankEnvironment(width, height);
   for (int y = 0; y < height; ++y) {
     const float elevation = 90.0f - 180.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
     for (int x = 0; x < width; ++x) {
@@ -71,10 +79,7 @@ Environment studioEnvironment(int width, int height) {
 }
 
 Environment overcastEnvironment(int width, int height) {
-  Environment environment;
-  environment.width = width;
-  environment.height = height;
-  environment.pixels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  Environment environment = blankEnvironment(width, height);
   for (int y = 0; y < height; ++y) {
     const float elevation = 0.5f * kPiF - kPiF * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
     const float radiance = elevation >= 0.0f ? (1.0f + 2.0f * std::sin(elevation)) / 3.0f : 0.1f;
