@@ -275,8 +275,9 @@ vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, v
       vec3 c = uRegionCorner[4 * r + k];
       wi[k] = vec3(dot(c, surface.t), dot(c, surface.b), dot(c, surface.n));
     }
-    regions.region[r] = glintLightSlopeRegion(surface.wo, wi[0], wi[1], wi[2], wi[3]);
-    centre[r] = normalize(wi[0] + wi[1] + wi[2] + wi[3]);
+    GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
+    regions.region[r] = glintLightSlopeRegion(surface.wo, light);
+    centre[r] = glintClippedLightCentre(light);
   }
   float rho = GLINT_LAYER ? surface.glint.rho : 0.0f;
 #if SPECULAR_MODEL == SPECULAR_GLINT
@@ -284,15 +285,19 @@ vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, v
 #endif
   vec3 specular = vec3(0.0f);
   for (int r = 0; r < REGION_COUNT; ++r) {
-    vec3 wi = centre[r];
-    vec3 wh = normalize(surface.wo + wi);
 #if SPECULAR_MODEL == SPECULAR_GLINT
     vec3 mass = masses.mass[r].rgb;
+    vec2 meanSlope = masses.targetMeanSlope[r];
 #else
-    vec3 mass = vec3(glintSmoothRegionMass(GLINT_NDF, surface.smoothAlpha, rho, regions.region[r]));
+    vec3 moments = glintSmoothRegionMoments(GLINT_NDF, surface.smoothAlpha, rho, regions.region[r]);
+    vec3 mass = vec3(moments.x);
+    vec2 meanSlope = moments.yz;
 #endif
-    specular += uRegionRadiance[r] * glintFresnelSchlick(surface.f0, dot(surface.wo, wh)) *
-                glintRegionReflectance(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, wi) * mass;
+    // The light's reflectance where the smooth lobe's mass over it lies (glintRegionReflectanceAt),
+    // the same for glint and Cook-Torrance programs.
+    vec3 wh = normalize(vec3(-meanSlope, 1.0f));
+    specular += uRegionRadiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
+                glintRegionReflectanceAt(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, meanSlope, centre[r]) * mass;
   }
   return specular;
 }

@@ -35,8 +35,16 @@ bool insideQuad(const std::array<glm::vec2, 4>& q, glm::vec2 p) {
   return positive == 0 || negative == 0;
 }
 
+// The quadrilateral as a region: its corners and its edges' midpoints, the last two vertices
+// repeating the first (a region of fewer vertices than GLINT_REGION_VERTICES repeats one).
 kernel::GlintSlopeRegion regionOf(const std::array<glm::vec2, 4>& q) {
-  return {q[0], q[1], q[2], q[3]};
+  kernel::GlintSlopeRegion region;
+  for (int k = 0; k < 4; ++k) {
+    region.vertex[2 * k] = q[k];
+    region.vertex[2 * k + 1] = 0.5f * (q[k] + q[(k + 1) % 4]);
+  }
+  for (int k = 8; k < GLINT_REGION_VERTICES; ++k) region.vertex[k] = q[0];
+  return region;
 }
 
 // The integral of f over the quadrilateral by the midpoint rule on cells x cells of its bounding box.
@@ -104,9 +112,9 @@ TEST(ExtendedLightsStat, RegionMassIsTheIntegralOfThePSdfOverTheRegion) {
   // Random glint layers, footprints and quadrilateral regions within the lobe, the mass against the
   // midpoint rule of glintP22 over the quadrilateral (300 x 300 cells of its bounding box). The
   // strips take the region's y extent at each strip's centroid (glintCellRegionMass); measured on
-  // these 40 cases, the worst error is 9.6% of the region's mass with one strip between corners
-  // (GLINT_REGION_STRIPS 1, the default) and 3.4% with two. Tolerance: 12% plus 1e-3 of the
-  // footprint's whole mass; the target's mass, by the same strips, within 5% (worst 3.3%).
+  // these 40 cases, the worst error is 6.8% of the region's mass with 8 strips (GLINT_REGION_STRIPS,
+  // the default), 7.7% with 6 and 4.4% with 12. Tolerance: 12% plus 1e-3 of the footprint's whole
+  // mass; the target's mass, by the same strips, within 5%.
   const Dictionary& dictionary = defaultDictionary();
   const kernel::GlintDictionaryView dict = dictionary.view();
   Pcg32 rng(49, 2);
@@ -134,6 +142,86 @@ TEST(ExtendedLightsStat, RegionMassIsTheIntegralOfThePSdfOverTheRegion) {
     EXPECT_NEAR(masses.targetMass[0], expectedTarget, 0.05 * expectedTarget + 1e-4) << "case " << i;
   }
   RecordProperty("worst_relative_error", std::to_string(worst));
+}
+
+// A rectangle light seen from the shading point: its centre at unit distance, its plane facing
+// the point, half-sizes tan of its half-angles, turned about its axis.
+struct RectangleLight {
+  glm::vec3 centre, u, v;
+  float halfWidth, halfHeight;
+  std::array<glm::vec3, 4> cornerDirections() const {
+    std::array<glm::vec3, 4> c{centre - halfWidth * u - halfHeight * v, centre + halfWidth * u - halfHeight * v,
+                               centre + halfWidth * u + halfHeight * v, centre - halfWidth * u + halfHeight * v};
+    for (glm::vec3& d : c) d = glm::normalize(d);
+    return c;
+  }
+};
+
+// The smooth lobe's reflected radiance per unit radiance, by the midpoint rule over the light's
+// area (n x n): the integral of f cos over its solid angle, f = D G2 / (4 wo.z wi.z).
+double smoothLobeOverLight(const RectangleLight& light, glm::vec3 wo, glm::vec2 alpha, int masking, int n) {
+  double sum = 0.0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 p = light.centre + (2.0f * (i + 0.5f) / n - 1.0f) * light.halfWidth * light.u +
+                          (2.0f * (j + 0.5f) / n - 1.0f) * light.halfHeight * light.v;
+      const float r2 = glm::dot(p, p);
+      const glm::vec3 wi = p / std::sqrt(r2);
+      if (wi.z <= 0.0f) continue;
+      const glm::vec3 h = glm::normalize(wo + wi);
+      const float d = kernel::glintTargetP22(kernel::GLINT_NDF_BECKMANN, kernel::glintSlopeFromNormal(h), alpha, 0.0f) / std::pow(h.z, 4.0f);
+      const float solidAngle = 4.0f * light.halfWidth * light.halfHeight / float(n * n) * glm::dot(wi, light.centre) / r2;
+      sum += kernel::glintMaskedMicrofacetReflectance(masking, kernel::GLINT_NDF_BECKMANN, alpha, 0.0f, wo, wi, h, d) * wi.z * solidAngle;
+    }
+  }
+  return sum;
+}
+
+TEST(ExtendedLightsStat, AreaLightSmoothLobeIsTheBrdfIntegralOverTheLight) {
+  // Rectangle lights 10 to 60 degrees across near the mirror direction, some below the horizon, for
+  // views 5 to 85 degrees above it, Beckmann alpha 0.1, 0.3, 0.5, both maskings: the smooth lobe's
+  // mass over the light's region times the reflectance at its clipped centre (what the renderers
+  // draw) against a 300 x 300 quadrature of Cook-Torrance over the light. Measured on these 120
+  // cases (those reflecting at least 1e-3): median |log error| 0.015, 90th percentile 0.16. With
+  // the light's four corners only and no clipping to the horizon, 0.04 and 1.4 (a light that
+  // straddles the horizon drew nothing); with clipping, 0.04 and 0.43. Tolerance: median 0.03 and
+  // 90th percentile 0.25: the approximation's own spread (the reflectance is taken at one
+  // direction), not noise; the 10% that stay out are grazing views of lights on the horizon.
+  Pcg32 rng(491, 3);
+  std::vector<double> errors;
+  for (int k = 0; k < 120; ++k) {
+    const glm::vec2 alpha(std::array<float, 3>{0.1f, 0.3f, 0.5f}[k % 3]);
+    const int masking = (k / 3) % 2 == 0 ? kernel::GLINT_MASKING_VCAVITY : kernel::GLINT_MASKING_SMITH;
+    const float viewElevation = glm::radians(uniform(rng, 5.0f, 85.0f));
+    const glm::vec3 wo(std::cos(viewElevation), 0.0f, std::sin(viewElevation));
+    const float elevation = glm::clamp(viewElevation + uniform(rng, -0.6f, 0.6f), glm::radians(-5.0f), glm::radians(85.0f));
+    const float azimuth = 3.14159265f + uniform(rng, -0.6f, 0.6f);
+    RectangleLight light;
+    light.centre = glm::vec3(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    const glm::vec3 across = glm::normalize(glm::cross(light.centre, glm::vec3(0.0f, 0.0f, 1.0f)));
+    const float turn = uniform(rng, 0.0f, 3.14159265f);
+    light.u = std::cos(turn) * across + std::sin(turn) * glm::cross(across, light.centre);
+    light.v = glm::cross(light.centre, light.u);
+    light.halfWidth = std::tan(glm::radians(uniform(rng, 5.0f, 30.0f)));
+    light.halfHeight = std::tan(glm::radians(uniform(rng, 5.0f, 30.0f)));
+    const double expected = smoothLobeOverLight(light, wo, alpha, masking, 300);
+    if (expected < 1e-3) continue;
+    const std::array<glm::vec3, 4> c = light.cornerDirections();
+    const kernel::GlintClippedLight clipped = kernel::glintClipLightToHorizon(c[0], c[1], c[2], c[3]);
+    const glm::vec3 moments = kernel::glintSmoothRegionMoments(kernel::GLINT_NDF_BECKMANN, alpha, 0.0f, kernel::glintLightSlopeRegion(wo, clipped));
+    const double drawn = moments.x * kernel::glintRegionReflectanceAt(masking, kernel::GLINT_NDF_BECKMANN, alpha, 0.0f, wo, glm::vec2(moments.y, moments.z),
+                                                                      kernel::glintClippedLightCentre(clipped));
+    errors.push_back(std::abs(std::log(std::max(drawn, 1e-6) / expected)));
+    if (getenv("DBG")) printf("k %d a %.1f m %d wo %.0f el %.0f size %.0fx%.0f exp %.4g ratio %.3f\n", k, alpha.x, masking, glm::degrees(viewElevation), glm::degrees(elevation), 2*glm::degrees(std::atan(light.halfWidth)), 2*glm::degrees(std::atan(light.halfHeight)), expected, drawn/expected);
+  }
+  ASSERT_GE(errors.size(), 100u);
+  std::sort(errors.begin(), errors.end());
+  const double median = errors[errors.size() / 2];
+  const double ninetieth = errors[errors.size() * 9 / 10];
+  RecordProperty("median_log_error", std::to_string(median));
+  RecordProperty("p90_log_error", std::to_string(ninetieth));
+  EXPECT_LE(median, 0.03);
+  EXPECT_LE(ninetieth, 0.25);
 }
 
 }  // namespace

@@ -10,9 +10,9 @@
 // (x', y') its rotated, unscaled slope and J the Jacobian of that map, so over a region its mass is
 // the integral of p_i(x') p_j(y') over the region's image in the cell's frame, the Jacobian gone:
 // over a box, a product of two differences of the marginals' cumulative tables. The region, a
-// quadrilateral in slope space (the half vectors of a light's four corners), is cut into
-// GLINT_REGION_STRIPS strips across the cell's x' axis, each a box whose y' extent is the
-// quadrilateral's at the strip's middle. The smooth cells (Beckmann) are Gaussian in the unscaled
+// polygon in slope space (the half vectors of a light's corners, clipped to the horizon, and of its
+// edges' midpoints), is cut into GLINT_REGION_STRIPS strips across the cell's x' axis, each a box
+// whose y' extent is the polygon's at the strip's centroid. The smooth cells (Beckmann) are Gaussian in the unscaled
 // frame: the same strips with the normal CDF. GGX's remainder and target, whose slope density is
 // not separable, take each strip's area times the density at its centre.
 // The anti-aliasing filter of 2021 is not applied here: a region's integral is itself a box filter
@@ -27,21 +27,23 @@
 GLINT_KERNEL_BEGIN
 
 // The regions evaluated by one walk over the footprint's cells, a compile-time constant as
-// GLINT_SLOPE_COUNT is; and the strips each of the three pieces of a region between its corners
-// is cut into in a cell's frame (glintRegionStrip).
+// GLINT_SLOPE_COUNT is; and the strips a region is cut into across its x extent in a cell's frame
+// (glintRegionStrip).
 #ifndef GLINT_REGION_COUNT
 #define GLINT_REGION_COUNT 1
 #endif
 #ifndef GLINT_REGION_STRIPS
-#define GLINT_REGION_STRIPS 1
+#define GLINT_REGION_STRIPS 8
 #endif
+// A light's quadrilateral clipped to the horizon has at most 5 corners; with each edge's midpoint,
+// a region has 10 vertices.
+#define GLINT_LIGHT_CORNERS 5
+#define GLINT_REGION_VERTICES 10
 
-// A region of slope space: a quadrilateral, its corners in order around it (either way round).
+// A region of slope space: a polygon, its vertices in order around it (either way round); a
+// polygon of fewer vertices repeats its last one.
 struct GlintSlopeRegion {
-  vec2 c0;
-  vec2 c1;
-  vec2 c2;
-  vec2 c3;
+  vec2 vertex[GLINT_REGION_VERTICES];
 };
 
 struct GlintRegionSet {
@@ -51,6 +53,14 @@ struct GlintRegionSet {
 struct GlintRegionMassSet {
   vec4 mass[GLINT_REGION_COUNT];        // the P-SDF's mass over each region; .rgb weighted by the cells' colours
   float targetMass[GLINT_REGION_COUNT];  // the smooth target's mass over the same region, by the same strips
+  vec2 targetMeanSlope[GLINT_REGION_COUNT];  // where that mass lies on average (glintRegionReflectanceAt)
+};
+
+// A light's corners seen from the shading point: unit directions in the shading frame, clipped to
+// the part above the horizon (count 0 to 5, the unused slots repeating the last corner).
+struct GlintClippedLight {
+  vec3 corner[GLINT_LIGHT_CORNERS];
+  int count;
 };
 
 // The slope of the half vector between wo and wi (both in the shading frame, wo above the
@@ -62,25 +72,76 @@ GLINT_FN vec2 glintHalfVectorSlope(vec3 wo, vec3 wi) {
   return glintSlopeFromNormal(normalize(h));
 }
 
-// The region of slope space that a light of corners wi0..wi3 (unit directions towards them, in the
-// shading frame, in order around the light) sends wo into, as the quadrilateral of their half
-// vectors' slopes (docs/method.md, "Extended lights": exact at the corners, straight between them).
-GLINT_FN GlintSlopeRegion glintLightSlopeRegion(vec3 wo, vec3 wi0, vec3 wi1, vec3 wi2, vec3 wi3) {
+// The part above the horizon of a light of corners wi0..wi3 (unit directions towards them, in the
+// shading frame, in order around the light). A planar polygon's edges are arcs of great circles
+// seen from any point, and so is the horizon: clipping the corners' polygon by the plane z = 0 and
+// normalising is exact (Heitz et al. 2016 clip the same way). Directions just above the horizon
+// (z >= 1e-4) keep the half vectors' slopes finite.
+GLINT_FN GlintClippedLight glintClipLightToHorizon(vec3 wi0, vec3 wi1, vec3 wi2, vec3 wi3) {
+  vec3 corners[4];
+  corners[0] = wi0;
+  corners[1] = wi1;
+  corners[2] = wi2;
+  corners[3] = wi3;
+  GlintClippedLight light;
+  light.count = 0;
+  for (int k = 0; k < GLINT_LIGHT_CORNERS; ++k) {
+    light.corner[k] = vec3(0.0f, 0.0f, 1.0f);
+  }
+  const float lowest = 1e-4f;
+  for (int k = 0; k < 4; ++k) {
+    vec3 a = corners[k];
+    vec3 b = corners[(k + 1) % 4];
+    if (a.z >= lowest) {
+      light.corner[light.count] = a;
+      light.count += 1;
+    }
+    if ((a.z >= lowest) != (b.z >= lowest)) {
+      light.corner[light.count] = normalize(mix(a, b, (lowest - a.z) / (b.z - a.z)));
+      light.count += 1;
+    }
+  }
+  for (int k = 1; k < GLINT_LIGHT_CORNERS; ++k) {
+    if (k >= light.count && light.count > 0) {
+      light.corner[k] = light.corner[k - 1];
+    }
+  }
+  return light;
+}
+
+// The direction the light's reflectance is taken in (glintRegionReflectance): the mean of its
+// clipped corners, the light's centre when none is clipped; straight up when none is above the
+// horizon, where its mass is zero.
+GLINT_FN vec3 glintClippedLightCentre(GlintClippedLight light) {
+  vec3 sum = glintSplat3(0.0f);
+  for (int k = 0; k < GLINT_LIGHT_CORNERS; ++k) {
+    sum += k < light.count ? light.corner[k] : glintSplat3(0.0f);
+  }
+  return light.count > 0 ? normalize(sum) : vec3(0.0f, 0.0f, 1.0f);
+}
+
+// The region of slope space that the clipped light sends wo into: the polygon of its corners' and
+// its edges' midpoints' half-vector slopes (docs/method.md, "Extended lights": exact at those ten
+// points, straight between them). The half-vector map bends a light's edges in slope space; their
+// midpoints keep a light up to 60 degrees across within a few percent of its mass.
+GLINT_FN GlintSlopeRegion glintLightSlopeRegion(vec3 wo, GlintClippedLight light) {
   GlintSlopeRegion region;
-  region.c0 = glintHalfVectorSlope(wo, wi0);
-  region.c1 = glintHalfVectorSlope(wo, wi1);
-  region.c2 = glintHalfVectorSlope(wo, wi2);
-  region.c3 = glintHalfVectorSlope(wo, wi3);
+  for (int k = 0; k < GLINT_LIGHT_CORNERS; ++k) {
+    vec3 a = light.corner[k];
+    vec3 b = light.corner[(k + 1) % GLINT_LIGHT_CORNERS];
+    region.vertex[2 * k] = glintHalfVectorSlope(wo, a);
+    // A great circle's arc's midpoint; the same point for a repeated corner.
+    region.vertex[2 * k + 1] = glintHalfVectorSlope(wo, normalize(a + b));
+  }
   return region;
 }
 
 // A region mapped by the linear map of the footprint's unscaling (glintUnscaledSlope).
 GLINT_FN GlintSlopeRegion glintUnscaledRegion(GlintDictionaryView dict, GlintParameters params, GlintSlopeRegion region) {
   GlintSlopeRegion unscaled;
-  unscaled.c0 = glintUnscaledSlope(dict, params, region.c0);
-  unscaled.c1 = glintUnscaledSlope(dict, params, region.c1);
-  unscaled.c2 = glintUnscaledSlope(dict, params, region.c2);
-  unscaled.c3 = glintUnscaledSlope(dict, params, region.c3);
+  for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+    unscaled.vertex[k] = glintUnscaledSlope(dict, params, region.vertex[k]);
+  }
   return unscaled;
 }
 
@@ -88,22 +149,25 @@ GLINT_FN GlintSlopeRegion glintUnscaledRegion(GlintDictionaryView dict, GlintPar
 // (glintDictionarySlope).
 GLINT_FN GlintSlopeRegion glintCellRegion(vec2 rotation, float unscale, GlintSlopeRegion unscaled) {
   GlintSlopeRegion local;
-  local.c0 = glintDictionarySlope(rotation, unscaled.c0 * unscale);
-  local.c1 = glintDictionarySlope(rotation, unscaled.c1 * unscale);
-  local.c2 = glintDictionarySlope(rotation, unscaled.c2 * unscale);
-  local.c3 = glintDictionarySlope(rotation, unscaled.c3 * unscale);
+  for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+    local.vertex[k] = glintDictionarySlope(rotation, unscaled.vertex[k] * unscale);
+  }
   return local;
 }
 
-// The region's extent along x: (min, max).
-GLINT_FN vec2 glintRegionXRange(GlintSlopeRegion region) {
-  return vec2(min(min(region.c0.x, region.c1.x), min(region.c2.x, region.c3.x)),
-              max(max(region.c0.x, region.c1.x), max(region.c2.x, region.c3.x)));
+// The region's extent along x and along y: (xmin, xmax, ymin, ymax).
+GLINT_FN vec4 glintRegionBounds(GlintSlopeRegion region) {
+  vec4 bounds = vec4(region.vertex[0].x, region.vertex[0].x, region.vertex[0].y, region.vertex[0].y);
+  for (int k = 1; k < GLINT_REGION_VERTICES; ++k) {
+    vec2 v = region.vertex[k];
+    bounds = vec4(min(bounds.x, v.x), max(bounds.y, v.x), min(bounds.z, v.y), max(bounds.w, v.y));
+  }
+  return bounds;
 }
 
-GLINT_FN vec2 glintRegionYRange(GlintSlopeRegion region) {
-  return vec2(min(min(region.c0.y, region.c1.y), min(region.c2.y, region.c3.y)),
-              max(max(region.c0.y, region.c1.y), max(region.c2.y, region.c3.y)));
+GLINT_FN vec2 glintRegionXRange(GlintSlopeRegion region) {
+  vec4 bounds = glintRegionBounds(region);
+  return vec2(bounds.x, bounds.y);
 }
 
 // Where the vertical line at x crosses the edge from a to b: widens (low, high) by its y.
@@ -120,37 +184,16 @@ GLINT_FN vec2 glintEdgeCrossing(vec2 a, vec2 b, float x, vec2 range) {
 // misses it.
 GLINT_FN vec2 glintRegionYAt(GlintSlopeRegion region, float x) {
   vec2 range = vec2(3.0e38f, -3.0e38f);
-  range = glintEdgeCrossing(region.c0, region.c1, x, range);
-  range = glintEdgeCrossing(region.c1, region.c2, x, range);
-  range = glintEdgeCrossing(region.c2, region.c3, x, range);
-  range = glintEdgeCrossing(region.c3, region.c0, x, range);
+  for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+    range = glintEdgeCrossing(region.vertex[k], region.vertex[(k + 1) % GLINT_REGION_VERTICES], x, range);
+  }
   return range;
 }
 
-// The x positions that cut a region into strips: its corners' x, sorted, clipped to [-reach,
-// reach]. Between two neighbours both of the region's boundaries on the vertical line are straight.
-GLINT_FN vec4 glintRegionBreaks(GlintSlopeRegion region, float reach) {
-  float lowA = min(region.c0.x, region.c1.x);
-  float highA = max(region.c0.x, region.c1.x);
-  float lowB = min(region.c2.x, region.c3.x);
-  float highB = max(region.c2.x, region.c3.x);
-  float middleLow = max(lowA, lowB);
-  float middleHigh = min(highA, highB);
-  vec4 breaks = vec4(min(lowA, lowB), min(middleLow, middleHigh), max(middleLow, middleHigh), max(highA, highB));
-  return clamp(breaks, glintSplat4(-reach), glintSplat4(reach));
-}
-
-// The strips: each of the three pieces between breaks cut into GLINT_REGION_STRIPS equal strips.
-GLINT_CONST int GLINT_REGION_STRIP_COUNT = 3 * GLINT_REGION_STRIPS;
-
-// Strip k's x interval.
-GLINT_FN vec2 glintRegionStrip(vec4 breaks, int k) {
-  int piece = k / GLINT_REGION_STRIPS;
-  int part = k - piece * GLINT_REGION_STRIPS;
-  float start = piece == 0 ? breaks.x : (piece == 1 ? breaks.y : breaks.z);
-  float end = piece == 0 ? breaks.y : (piece == 1 ? breaks.z : breaks.w);
-  float width = (end - start) / float(GLINT_REGION_STRIPS);
-  return vec2(start + float(part) * width, part + 1 == GLINT_REGION_STRIPS ? end : start + float(part + 1) * width);
+// Strip k of GLINT_REGION_STRIPS equal strips across the x interval (start, end).
+GLINT_FN vec2 glintRegionStrip(vec2 xRange, int k) {
+  float width = (xRange.y - xRange.x) / float(GLINT_REGION_STRIPS);
+  return vec2(xRange.x + float(k) * width, k + 1 == GLINT_REGION_STRIPS ? xRange.y : xRange.x + float(k + 1) * width);
 }
 
 // The signed cumulative marginal and its first moment: the integrals of table `level`'s marginal
@@ -198,15 +241,15 @@ GLINT_FN float glintStripCentroid(vec2 strip, vec2 startIntegrals, vec2 endInteg
 // centroid (the centroid rule: exact where the y marginal's mass varies linearly across the strip).
 GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local) {
   float fourSigma = glintDictionaryDomain(dict);
-  vec2 yRange = glintRegionYRange(local);
-  vec4 breaks = glintRegionBreaks(local, fourSigma);
-  if (!(breaks.x < breaks.w && yRange.x < fourSigma && yRange.y > -fourSigma)) {
-    return 0.0f;  // the region misses the cell's support (a NaN corner misses it too)
+  vec4 bounds = glintRegionBounds(local);
+  vec2 xRange = clamp(vec2(bounds.x, bounds.y), glintSplat2(-fourSigma), glintSplat2(fourSigma));
+  if (!(xRange.x < xRange.y && bounds.z < fourSigma && bounds.w > -fourSigma)) {
+    return 0.0f;  // the region misses the cell's support (a NaN vertex misses it too)
   }
   float mass = 0.0f;
-  vec2 start = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, breaks.x);
-  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
-    vec2 strip = glintRegionStrip(breaks, k);
+  vec2 start = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, xRange.x);
+  for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
+    vec2 strip = glintRegionStrip(xRange, k);
     vec2 end = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, strip.y);
     vec2 across = glintRegionYAt(local, glintStripCentroid(strip, start, end));
     if (across.y > across.x && end.x > start.x) {
@@ -228,62 +271,85 @@ GLINT_FN vec2 glintCumulativeNormal(float x, float sigma) {
 
 // The mass over an unscaled region of the isotropic Gaussian of standard deviation sigma per axis
 // (the Beckmann target, and the smooth cells, in the unscaled frame, where their sigma is
-// sigma_d), by glintCellRegionMass's strips and centroid rule.
-GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
-  vec4 breaks = glintRegionBreaks(unscaled, 8.0f * sigma);
-  if (!(breaks.x < breaks.w)) {
-    return 0.0f;
+// sigma_d), by glintCellRegionMass's strips and centroid rule, and its first moments:
+// (mass, integral of x, integral of y).
+GLINT_FN vec3 glintGaussianRegionMoments(GlintSlopeRegion unscaled, float sigma) {
+  vec2 xRange = clamp(glintRegionXRange(unscaled), glintSplat2(-4.0f * sigma), glintSplat2(4.0f * sigma));
+  vec3 moments = glintSplat3(0.0f);
+  if (!(xRange.x < xRange.y)) {
+    return moments;
   }
-  float mass = 0.0f;
-  vec2 start = glintCumulativeNormal(breaks.x, sigma);
-  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
-    vec2 strip = glintRegionStrip(breaks, k);
+  vec2 start = glintCumulativeNormal(xRange.x, sigma);
+  for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
+    vec2 strip = glintRegionStrip(xRange, k);
     vec2 end = glintCumulativeNormal(strip.y, sigma);
     vec2 across = glintRegionYAt(unscaled, glintStripCentroid(strip, start, end));
     if (across.y > across.x) {
-      mass += (end.x - start.x) * (glintNormalCdf(across.y / sigma) - glintNormalCdf(across.x / sigma));
+      vec2 low = glintCumulativeNormal(across.x, sigma);
+      vec2 high = glintCumulativeNormal(across.y, sigma);
+      moments += vec3((end.x - start.x) * (high.x - low.x), (end.y - start.y) * (high.x - low.x), (end.x - start.x) * (high.y - low.y));
     }
     start = end;
   }
-  return mass;
+  return moments;
+}
+
+GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
+  return glintGaussianRegionMoments(unscaled, sigma).x;
 }
 
 // The midpoint rule over the strips of a region in the unscaled frame of roughness alpha,
 // correlation rho and dictionary roughness alphaD (glintCorrelatedUnscale) for a slope density that
 // is not separable: each strip's area times the density at its centre, mapped back to slope space
-// and divided by the unscaling's Jacobian. `tail` chooses GGX's smooth remainder
-// (glintStudentTailSlopeP22) over the target's P22.
-GLINT_FN float glintMidpointRegionMass(int ndf, vec2 alpha, float rho, float alphaD, GlintSlopeRegion unscaled, bool tail) {
-  vec4 breaks = glintRegionBreaks(unscaled, 1.0e6f);
+// and divided by the unscaling's Jacobian; with its first moments in the unscaled frame, as
+// glintGaussianRegionMoments'. `tail` chooses GGX's smooth remainder (glintStudentTailSlopeP22)
+// over the target's P22.
+GLINT_FN vec3 glintMidpointRegionMoments(int ndf, vec2 alpha, float rho, float alphaD, GlintSlopeRegion unscaled, bool tail) {
+  vec2 xRange = glintRegionXRange(unscaled);
   vec3 covariance = glintBeckmannSlopeCovariance(alpha, rho);
-  float mass = 0.0f;
-  for (int k = 0; k < GLINT_REGION_STRIP_COUNT; ++k) {
-    vec2 strip = glintRegionStrip(breaks, k);
+  vec3 moments = glintSplat3(0.0f);
+  for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
+    vec2 strip = glintRegionStrip(xRange, k);
     float middle = 0.5f * (strip.x + strip.y);
     vec2 across = glintRegionYAt(unscaled, middle);
     if (across.y > across.x && strip.y > strip.x) {
-      vec2 slope = glintCorrelatedScale(vec2(middle, 0.5f * (across.x + across.y)), alpha, rho, alphaD);
+      vec2 centre = vec2(middle, 0.5f * (across.x + across.y));
+      vec2 slope = glintCorrelatedScale(centre, alpha, rho, alphaD);
       float p22 = tail ? glintStudentTailSlopeP22(slope, covariance) : glintTargetP22(ndf, slope, alpha, rho);
-      mass += (strip.y - strip.x) * (across.y - across.x) * p22;
+      float mass = (strip.y - strip.x) * (across.y - across.x) * p22;
+      moments += vec3(mass, mass * centre.x, mass * centre.y);
     }
   }
-  return mass / glintCorrelatedJacobian(alpha, rho, alphaD);
+  return moments / glintCorrelatedJacobian(alpha, rho, alphaD);
+}
+
+GLINT_FN float glintMidpointRegionMass(int ndf, vec2 alpha, float rho, float alphaD, GlintSlopeRegion unscaled, bool tail) {
+  return glintMidpointRegionMoments(ndf, alpha, rho, alphaD, unscaled, tail).x;
 }
 
 // A smooth lobe's mass over a region of slope space (GLINT_NDF_BECKMANN or GLINT_NDF_GGX of
-// roughness alpha and correlation rho): in its unscaled frame (alpha_d = 1) Beckmann is the
-// isotropic Gaussian of sigma 1 / sqrt 2, by the strips; GGX by the midpoint rule. The smooth
-// target of a glint layer, and the specular lobe of every material under extended lights.
-GLINT_FN float glintSmoothRegionMass(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
+// roughness alpha and correlation rho) and the mean slope of that mass: (mass, mean slope). In its
+// unscaled frame (alpha_d = 1) Beckmann is the isotropic Gaussian of sigma 1 / sqrt 2, by the
+// strips; GGX by the midpoint rule. The smooth target of a glint layer, and the specular lobe of
+// every material under extended lights; the mean slope is where the light's reflectance is taken
+// (glintRegionReflectanceAt).
+GLINT_FN vec3 glintSmoothRegionMoments(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
   GlintSlopeRegion unscaled;
-  unscaled.c0 = glintCorrelatedUnscale(region.c0, alpha, rho, 1.0f);
-  unscaled.c1 = glintCorrelatedUnscale(region.c1, alpha, rho, 1.0f);
-  unscaled.c2 = glintCorrelatedUnscale(region.c2, alpha, rho, 1.0f);
-  unscaled.c3 = glintCorrelatedUnscale(region.c3, alpha, rho, 1.0f);
-  if (ndf != GLINT_NDF_GGX) {
-    return glintGaussianRegionMass(unscaled, 0.70710678f);
+  for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+    unscaled.vertex[k] = glintCorrelatedUnscale(region.vertex[k], alpha, rho, 1.0f);
   }
-  return glintMidpointRegionMass(ndf, alpha, rho, 1.0f, unscaled, false);
+  vec3 moments = ndf != GLINT_NDF_GGX ? glintGaussianRegionMoments(unscaled, 0.70710678f)
+                                      : glintMidpointRegionMoments(ndf, alpha, rho, 1.0f, unscaled, false);
+  if (!(moments.x > 0.0f)) {
+    return glintSplat3(0.0f);
+  }
+  vec2 meanUnscaled = vec2(moments.y, moments.z) / moments.x;
+  vec2 mean = glintCorrelatedScale(meanUnscaled, alpha, rho, 1.0f);
+  return vec3(moments.x, mean.x, mean.y);
+}
+
+GLINT_FN float glintSmoothRegionMass(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
+  return glintSmoothRegionMoments(ndf, alpha, rho, region).x;
 }
 
 // The masses over one footprint level's cells (glintLevelP22's walk, weights and cells, the masses
@@ -300,9 +366,8 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     dictionarySum[r] = 0.0f;
     chromaSum[r] = glintSplat2(0.0f);
-    vec2 xRange = glintRegionXRange(unscaled.region[r]);
-    vec2 yRange = glintRegionYRange(unscaled.region[r]);
-    inReach[r] = xRange.x < reach && xRange.y > -reach && yRange.x < reach && yRange.y > -reach;
+    vec4 bounds = glintRegionBounds(unscaled.region[r]);
+    inReach[r] = bounds.x < reach && bounds.y > -reach && bounds.z < reach && bounds.w > -reach;
     anyInReach = anyInReach || inReach[r];
   }
   GlintLodDraws draws = glintLodDraws(dict, params, footprint.logDensity, level, draw);
@@ -339,6 +404,7 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     masses.mass[r] = glintSplat4(0.0f);
     masses.targetMass[r] = 0.0f;
+    masses.targetMeanSlope[r] = glintSplat2(0.0f);
     if (weightSum > 0.0f) {
       vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum[r], chromaSum[r]) : glintSplat3(dictionarySum[r]);
       masses.mass[r] = vec4(colourWeighted, dictionarySum[r]);
@@ -373,8 +439,10 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   if (footprint.degenerate) {
     for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-      masses.targetMass[r] = glintSmoothRegionMass(params.ndf, params.alpha, params.rho, regions.region[r]);
-      masses.mass[r] = glintSplat4(masses.targetMass[r]);
+      vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
+      masses.targetMass[r] = target.x;
+      masses.targetMeanSlope[r] = vec2(target.y, target.z);
+      masses.mass[r] = glintSplat4(target.x);
     }
     return masses;
   }
@@ -394,7 +462,9 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
     }
   }
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-    masses.targetMass[r] = glintSmoothRegionMass(params.ndf, params.alpha, params.rho, regions.region[r]);
+    vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
+    masses.targetMass[r] = target.x;
+    masses.targetMeanSlope[r] = vec2(target.y, target.z);
   }
   return masses;
 }
@@ -411,6 +481,15 @@ GLINT_FN float glintRegionReflectance(int masking, int ndf, vec2 alpha, float rh
   // glintMaskedReflectance with D = 1 is G2 / (4 wo.z wi.z); dw_i = 4 |wo.h| dw_h and
   // D dw_h = P22 ds / cos(theta_h) turn f |n.wi| dw_i into it times 4 wi.z |wo.h| / h.z P22 ds.
   return glintMaskedMicrofacetReflectance(masking, ndf, alpha, rho, wo, wi, wh, 1.0f) * 4.0f * wi.z * dot(wo, wh) / wh.z;
+}
+
+// The same per unit of mass for a region whose mass lies about the mean slope `slope`
+// (glintSmoothRegionMoments): wi is wo reflected about that slope's normal; a reflection below the
+// horizon takes `fallback` (the light's clipped centre, glintClippedLightCentre) instead.
+GLINT_FN float glintRegionReflectanceAt(int masking, int ndf, vec2 alpha, float rho, vec3 wo, vec2 slope, vec3 fallback) {
+  vec3 h = normalize(vec3(-slope.x, -slope.y, 1.0f));
+  vec3 wi = 2.0f * dot(wo, h) * h - wo;
+  return glintRegionReflectance(masking, ndf, alpha, rho, wo, wi.z > 0.0f ? wi : fallback);
 }
 
 GLINT_KERNEL_END
