@@ -25,7 +25,7 @@ class ShaderProgram;
 // compiled per light count (LIGHT_COUNT). The path tracer draws them all.
 constexpr int kMaxLights = 8;
 // The most regions of an environment map whose glints a frame draws (scene::environmentGlintRegions).
-constexpr int kMaxEnvironmentRegions = 8;
+constexpr int kMaxEnvironmentRegions = 16;
 // The most cascades of a directional light's shadow maps, and its default
 // (FrameSettings::shadowCascades, shadow_maps.h).
 constexpr int kShadowCascades = 4;

@@ -283,17 +283,30 @@ EnvironmentRegions environmentGlintRegions(const Environment& environment, int m
       c.radianceSum += glm::dvec3(radiance) * solidAngle;
     }
   }
+  // Summed-area tables of the cells' sums, so that any rectangle's sums cost four lookups.
+  const std::size_t stride = static_cast<std::size_t>(gridWidth) + 1;
+  std::vector<GridRectangle> table(stride * (static_cast<std::size_t>(gridHeight) + 1));
+  auto add = [](GridRectangle& into, const GridRectangle& c, double sign) {
+    into.weight += sign * c.weight;
+    into.luminanceSum += sign * c.luminanceSum;
+    into.squareSum += sign * c.squareSum;
+    into.radianceSum += sign * c.radianceSum;
+  };
+  for (int y = 0; y < gridHeight; ++y) {
+    for (int x = 0; x < gridWidth; ++x) {
+      GridRectangle& t = table[(y + 1) * stride + x + 1];
+      add(t, cells[static_cast<std::size_t>(y * gridWidth + x)], 1.0);
+      add(t, table[y * stride + x + 1], 1.0);
+      add(t, table[(y + 1) * stride + x], 1.0);
+      add(t, table[y * stride + x], -1.0);
+    }
+  }
   auto sums = [&](int x0, int y0, int x1, int y1) {
     GridRectangle r{x0, y0, x1, y1};
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        const GridRectangle& c = cells[static_cast<std::size_t>(y * gridWidth + x)];
-        r.weight += c.weight;
-        r.luminanceSum += c.luminanceSum;
-        r.squareSum += c.squareSum;
-        r.radianceSum += c.radianceSum;
-      }
-    }
+    add(r, table[y1 * stride + x1], 1.0);
+    add(r, table[y0 * stride + x1], -1.0);
+    add(r, table[y1 * stride + x0], -1.0);
+    add(r, table[y0 * stride + x0], 1.0);
     return r;
   };
   // Split in two where the two halves' spreads sum least, across either axis; false when it is one cell.

@@ -100,9 +100,9 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, int m
 // (times the environment's intensity). The rasteriser lights both lobes of every material with the
 // regions analytically and prefilters `specularResidual`, the map less each region's mean radiance
 // over its texels, so that a region's power is counted once. A uniform environment has none.
-inline constexpr int kEnvironmentRegionGridWidth = 64;
+inline constexpr int kEnvironmentRegionGridWidth = 512;
 inline constexpr int kEnvironmentRegionLeaves = 32;
-inline constexpr double kEnvironmentRegionMaxExtent = 0.7;  // radians, 40 degrees
+inline constexpr double kEnvironmentRegionMaxExtent = 1.05;  // radians, 60 degrees
 struct EnvironmentRegion {
   std::array<glm::vec3, 4> corners;  // unit world directions, in order around the rectangle
   glm::vec3 radiance{0.0f};          // mean, W/(m^2 sr), the environment's intensity included
