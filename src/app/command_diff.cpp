@@ -19,6 +19,7 @@ struct DiffOptions {
   std::string output;
   float scale = 0.0f;
   std::vector<std::string> smooth;  // --glint-ratio: A's and B's smooth images
+  double minimumSmooth = kGlintRatioMinimumSmooth;
 };
 
 void runDiff(const DiffOptions& options) {
@@ -31,7 +32,7 @@ void runDiff(const DiffOptions& options) {
   if (!options.smooth.empty()) {
     GlintRatioAgreement agreement;
     try {
-      agreement = glintRatioAgreement(test, readImage(options.smooth[0]), reference, readImage(options.smooth[1]));
+      agreement = glintRatioAgreement(test, readImage(options.smooth[0]), reference, readImage(options.smooth[1]), options.minimumSmooth);
     } catch (const Error& e) {
       throw Error(options.test + " vs " + options.reference + ": " + e.what());
     }
@@ -68,13 +69,22 @@ void registerDiffCommand(CLI::App& app) {
                    "The |A - B| at the top of the colour map (0: the 99th percentile of the differences)")
       ->capture_default_str()
       ->needs(output);
-  command
+  CLI::Option* glintRatio =
+      command
       ->add_option("--glint-ratio", options->smooth,
                    "A_SMOOTH B_SMOOTH: compare A's and B's glints, each image over its smooth one (the same scene "
                    "with --brdf cook-torrance), pixel for pixel: the log ratios' correlation, the fractions above "
                    "twice the smooth image and the ratios' coefficients of variation, each for A then B")
       ->expected(2)
       ->excludes(output);
+  command
+      ->add_option("--min-smooth", options->minimumSmooth,
+                   "With --glint-ratio: compare only pixels whose smooth images are both at least this fraction of "
+                   "the 99th percentile of B's smooth image (a ratio over a smooth value near zero is the path "
+                   "tracer's noise)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->needs(glintRatio);
   command->callback([options] { runDiff(*options); });
 }
 

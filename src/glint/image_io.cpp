@@ -463,15 +463,21 @@ double rec709Luminance(glm::vec3 c) { return 0.2126 * c.r + 0.7152 * c.g + 0.072
 }  // namespace
 
 GlintRatioAgreement glintRatioAgreement(const ImageRgbF& glintA, const ImageRgbF& smoothA, const ImageRgbF& glintB,
-                                        const ImageRgbF& smoothB) {
+                                        const ImageRgbF& smoothB, double minimumSmooth) {
   checkSameSize(glintA, smoothA);
   checkSameSize(glintA, glintB);
   checkSameSize(glintA, smoothB);
+  if (!(minimumSmooth >= 0.0)) throw Error("the smallest smooth value compared must be a fraction >= 0");
+  std::vector<double> smoothLuminance;
+  smoothLuminance.reserve(smoothB.pixels.size());
+  for (const glm::vec3& c : smoothB.pixels) smoothLuminance.push_back(rec709Luminance(c));
+  std::sort(smoothLuminance.begin(), smoothLuminance.end());
+  const double floor = std::max(minimumSmooth * smoothLuminance[smoothLuminance.size() * 99 / 100], 1e-6);
   std::vector<double> ratioA, ratioB;
   for (std::size_t i = 0; i < glintA.pixels.size(); ++i) {
     const double sa = rec709Luminance(smoothA.pixels[i]);
     const double sb = rec709Luminance(smoothB.pixels[i]);
-    if (!(sa > 1e-6 && sb > 1e-6)) continue;
+    if (!(sa >= floor && sb >= floor)) continue;
     const double a = std::max(rec709Luminance(glintA.pixels[i]), 0.0) / sa;
     const double b = std::max(rec709Luminance(glintB.pixels[i]), 0.0) / sb;
     if (std::abs(a - 1.0) < 1e-6 && std::abs(b - 1.0) < 1e-6) continue;

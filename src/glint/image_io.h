@@ -103,9 +103,13 @@ struct GlintRatioAgreement {
   double variationA = 0.0;         // coefficient of variation (std / mean) of the ratio, in A and in B
   double variationB = 0.0;
 };
-// Throws Error when the four sizes differ or no pixel is left to compare.
+// The pixels compared are those whose smooth images are both at least `minimumSmooth` times the
+// 99th percentile of B's smooth luminance (a ratio over a smooth image near zero is a path
+// tracer's noise, not its flakes), less those where both ratios are 1 (no glint layer). Throws
+// Error when the four sizes differ, minimumSmooth is negative or no pixel is left to compare.
+inline constexpr double kGlintRatioMinimumSmooth = 0.01;
 GlintRatioAgreement glintRatioAgreement(const ImageRgbF& glintA, const ImageRgbF& smoothA, const ImageRgbF& glintB,
-                                        const ImageRgbF& smoothB);
+                                        const ImageRgbF& smoothB, double minimumSmooth = kGlintRatioMinimumSmooth);
 
 // A picture of the per-pixel mean over channels of |a - b|, divided by `scale` and mapped through
 // an approximation of matplotlib's 'inferno' colour map (values beyond `scale` saturate), with a
