@@ -261,14 +261,16 @@ GlintP22Set litGlintP22s(GlintDictionaryView dict, GlintSurface surface, vec3 li
 uniform vec3 uRegionCorner[4 * REGION_COUNT];  // each region's four corners, unit world directions in order around it
 uniform vec3 uRegionRadiance[REGION_COUNT];
 
-// The specular of the environment's brightest regions (docs/method.md, "Extended lights"), which the
-// prefiltered map lacks: each region's radiance times Fresnel and glintRegionReflectance at its
-// centre, times the mass of the lobe over the half vectors it sends the view into: the glint
-// layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's (glintSmoothRegionMass)
-// in the others.
-vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+// The light of the environment's brightest regions (docs/method.md, "Extended lights"), which the
+// prefiltered map and the irradiance lack: each region's diffuse by its cosine-weighted solid
+// angle, and its specular: its radiance times Fresnel and glintRegionReflectanceAt, times the mass
+// of the lobe over the half vectors it sends the view into: the glint layer's P-SDF
+// (glintRegionMassSet) in glint programs, the smooth lobe's (glintSmoothRegionMoments) in the
+// others.
+vec3 environmentRegionLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   GlintRegionSet regions;
   vec3 centre[REGION_COUNT];
+  vec3 diffuse = vec3(0.0f);
   for (int r = 0; r < REGION_COUNT; ++r) {
     vec3 wi[4];
     for (int k = 0; k < 4; ++k) {
@@ -278,6 +280,7 @@ vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, v
     GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
     regions.region[r] = glintLightSlopeRegion(surface.wo, light);
     centre[r] = glintClippedLightCentre(light);
+    diffuse += uRegionRadiance[r] * glintClippedLightProjectedSolidAngle(light);
   }
   float rho = GLINT_LAYER ? surface.glint.rho : 0.0f;
 #if SPECULAR_MODEL == SPECULAR_GLINT
@@ -299,7 +302,7 @@ vec3 environmentRegionSpecular(GlintSurface surface, vec2 glintUv, vec2 duvdx, v
     specular += uRegionRadiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
                 glintRegionReflectanceAt(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, meanSlope, centre[r]) * mass;
   }
-  return specular;
+  return surface.diffuse * diffuse + specular;
 }
 #endif
 
@@ -384,8 +387,9 @@ void main() {
                      environmentRadiance(reflected, max(surface.smoothAlpha.x, surface.smoothAlpha.y));
   radiance += ambient * surface.occlusion;
 #if REGION_COUNT > 0
-  // The regions' specular; the prefiltered map less their means can dip below zero around them.
-  radiance = max(radiance + environmentRegionSpecular(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
+  // The regions' light, both lobes; the map less their means (prefiltered, and its irradiance) can
+  // dip below zero around them.
+  radiance = max(radiance + environmentRegionLight(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
 #endif
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth

@@ -466,11 +466,11 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
     const glm::vec3 uniform[4] = {e.uniform, e.uniform, e.uniform, e.uniform};
     return makeTexture(2, 2, GL_RGBA32F, GL_RGB, GL_FLOAT, uniform, false, true);
   };
-  // The prefiltered specular lacks the regions too (drawn analytically); the irradiance has them.
-  g.environment = uploadEnvironment(regions.specularResidual);
+  // The prefiltered specular and the irradiance lack the regions too (drawn analytically, both lobes).
+  g.environment = uploadEnvironment(regions.residual);
   g.backgroundEnvironment = environmentLights_.empty() && environmentRegions_.empty() ? g.environment : uploadEnvironment(env);
   if (!env.pixels.empty()) g.environmentMaxLod = std::floor(std::log2(static_cast<float>(std::max(env.width, env.height))));
-  g.irradiance = irradianceSh(split.residual);
+  g.irradiance = irradianceSh(regions.residual);
   for (const scene::Mesh& mesh : scene.meshes) {
     GpuMesh m;
     m.material = mesh.material;

@@ -261,7 +261,7 @@ struct GridRectangle {
 
 EnvironmentRegions environmentGlintRegions(const Environment& environment, int maxRegions) {
   EnvironmentRegions result;
-  result.specularResidual = environment;
+  result.residual = environment;
   std::vector<EnvironmentRegion>& regions = result.regions;
   if (maxRegions <= 0 || environment.pixels.empty() || environment.width <= 0 || environment.height <= 0) return result;
   // The coarse grid: the map's texels averaged into cells, each cell's sums weighted by the
@@ -384,7 +384,7 @@ EnvironmentRegions environmentGlintRegions(const Environment& environment, int m
       if (cy < r.y0 || cy >= r.y1) continue;
       for (int x = 0; x < environment.width; ++x) {
         const int cx = x * gridWidth / environment.width;
-        if (cx >= r.x0 && cx < r.x1) result.specularResidual.pixels[static_cast<std::size_t>(y) * environment.width + x] -= mean;
+        if (cx >= r.x0 && cx < r.x1) result.residual.pixels[static_cast<std::size_t>(y) * environment.width + x] -= mean;
       }
     }
   }

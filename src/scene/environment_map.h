@@ -98,7 +98,7 @@ EnvironmentLights extractEnvironmentLights(const Environment& environment, int m
 // brightest of them, up to maxRegions and only those brighter than the map's mean, are taken, a
 // rectangle wider than kEnvironmentRegionMaxExtent halved first. Each carries its mean radiance
 // (times the environment's intensity). The rasteriser lights both lobes of every material with the
-// regions analytically and prefilters `specularResidual`, the map less each region's mean radiance
+// regions analytically and prefilters `residual`, the map less each region's mean radiance
 // over its texels, so that a region's power is counted once. A uniform environment has none.
 inline constexpr int kEnvironmentRegionGridWidth = 512;
 inline constexpr int kEnvironmentRegionLeaves = 32;
@@ -110,7 +110,7 @@ struct EnvironmentRegion {
 };
 struct EnvironmentRegions {
   std::vector<EnvironmentRegion> regions;
-  Environment specularResidual;
+  Environment residual;
 };
 EnvironmentRegions environmentGlintRegions(const Environment& environment, int maxRegions);
 

@@ -120,6 +120,26 @@ GLINT_FN vec3 glintClippedLightCentre(GlintClippedLight light) {
   return light.count > 0 ? normalize(sum) : vec3(0.0f, 0.0f, 1.0f);
 }
 
+// The clipped light's cosine-weighted solid angle, the integral of wi.z over it: by Lambert's
+// formula for a spherical polygon, half the sum over its edges of each arc's angle times the z of
+// its plane's unit normal (Heitz et al. 2016, Eq. 11, for the clamped cosine). Times the light's
+// radiance, its irradiance; times a Lambertian albedo / pi, its diffuse reflection.
+GLINT_FN float glintClippedLightProjectedSolidAngle(GlintClippedLight light) {
+  float sum = 0.0f;
+  for (int k = 0; k < GLINT_LIGHT_CORNERS; ++k) {
+    if (k < light.count) {
+      vec3 a = light.corner[k];
+      vec3 b = light.corner[k + 1 < light.count ? k + 1 : 0];
+      vec3 normal = cross(a, b);
+      float sine = length(normal);
+      if (sine > 0.0f) {
+        sum += acos(clamp(dot(a, b), -1.0f, 1.0f)) * normal.z / sine;
+      }
+    }
+  }
+  return 0.5f * abs(sum);
+}
+
 // The region of slope space that the clipped light sends wo into: the polygon of its corners' and
 // its edges' midpoints' half-vector slopes (docs/method.md, "Extended lights": exact at those ten
 // points, straight between them). The half-vector map bends a light's edges in slope space; their
