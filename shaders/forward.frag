@@ -36,10 +36,12 @@
 #define GLINT_LOD_CONSTRUCTION 0
 #endif
 #include "glint_brdf.h"
-// The environment's brightest regions, drawn analytically in every program (REGION_COUNT, compiled
-// in like LIGHT_COUNT): glint programs walk the footprint's cells once for all of them.
-#if REGION_COUNT > 0
-#define GLINT_REGION_COUNT REGION_COUNT
+// The environment's brightest regions and the scene's area lights (emissive rectangles), drawn
+// analytically in every program (REGION_COUNT, AREA_LIGHT_COUNT, compiled in like LIGHT_COUNT):
+// glint programs walk the footprint's cells once for all of them.
+#define EXTENDED_LIGHT_COUNT (REGION_COUNT + AREA_LIGHT_COUNT)
+#if EXTENDED_LIGHT_COUNT > 0
+#define GLINT_REGION_COUNT EXTENDED_LIGHT_COUNT
 #include "glint_extended_lights.h"
 #endif
 #include "glint_material_block.glsl"
@@ -257,37 +259,66 @@ GlintP22Set litGlintP22s(GlintDictionaryView dict, GlintSurface surface, vec3 li
 }
 #endif
 
+#if EXTENDED_LIGHT_COUNT > 0
 #if REGION_COUNT > 0
 uniform vec3 uRegionCorner[4 * REGION_COUNT];  // each region's four corners, unit world directions in order around it
 uniform vec3 uRegionRadiance[REGION_COUNT];
+#endif
+#if AREA_LIGHT_COUNT > 0
+uniform vec3 uAreaLightCorner[4 * AREA_LIGHT_COUNT];  // each light's four corners, world positions, counter-clockwise seen from its front
+uniform vec3 uAreaLightRadiance[AREA_LIGHT_COUNT];
+uniform int uAreaLightTwoSided[AREA_LIGHT_COUNT];
+#endif
 
-// The light of the environment's brightest regions (docs/method.md, "Extended lights"), which the
-// prefiltered map and the irradiance lack: each region's diffuse by its cosine-weighted solid
-// angle, and its specular: its radiance times Fresnel and glintRegionReflectanceAt, times the mass
-// of the lobe over the half vectors it sends the view into: the glint layer's P-SDF
-// (glintRegionMassSet) in glint programs, the smooth lobe's (glintSmoothRegionMoments) in the
-// others.
-vec3 environmentRegionLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+// The light of the extended lights (docs/method.md, "Extended lights"): the environment's brightest
+// regions, which the prefiltered map and the irradiance lack, and the area lights. Each one's
+// diffuse by its cosine-weighted solid angle, and its specular: its radiance times Fresnel and
+// glintRegionReflectanceAt, times the mass of the lobe over the half vectors it sends the view
+// into: the glint layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's
+// (glintSmoothRegionMoments) in the others. Area lights cast no shadow.
+vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   GlintRegionSet regions;
-  vec3 centre[REGION_COUNT];
+  vec3 centre[EXTENDED_LIGHT_COUNT];
+  vec3 radiance[EXTENDED_LIGHT_COUNT];
   vec3 diffuse = vec3(0.0f);
-  for (int r = 0; r < REGION_COUNT; ++r) {
+  for (int r = 0; r < EXTENDED_LIGHT_COUNT; ++r) {
     vec3 wi[4];
+    radiance[r] = vec3(0.0f);
+#if REGION_COUNT > 0
+    if (r < REGION_COUNT) {
+      for (int k = 0; k < 4; ++k) {
+        wi[k] = uRegionCorner[4 * r + k];
+      }
+      radiance[r] = uRegionRadiance[r];
+    }
+#endif
+#if AREA_LIGHT_COUNT > 0
+    if (r >= REGION_COUNT) {
+      int a = r - REGION_COUNT;
+      for (int k = 0; k < 4; ++k) {
+        wi[k] = normalize(uAreaLightCorner[4 * a + k] - vPosition);
+      }
+      // Its front faces the side its corners turn counter-clockwise on; a one-sided light is dark
+      // behind.
+      vec3 front = cross(uAreaLightCorner[4 * a + 1] - uAreaLightCorner[4 * a], uAreaLightCorner[4 * a + 3] - uAreaLightCorner[4 * a]);
+      bool lit = uAreaLightTwoSided[a] != 0 || dot(vPosition - uAreaLightCorner[4 * a], front) > 0.0f;
+      radiance[r] = lit ? uAreaLightRadiance[a] : vec3(0.0f);
+    }
+#endif
     for (int k = 0; k < 4; ++k) {
-      vec3 c = uRegionCorner[4 * r + k];
-      wi[k] = vec3(dot(c, surface.t), dot(c, surface.b), dot(c, surface.n));
+      wi[k] = vec3(dot(wi[k], surface.t), dot(wi[k], surface.b), dot(wi[k], surface.n));
     }
     GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
     regions.region[r] = glintLightSlopeRegion(surface.wo, light);
     centre[r] = glintClippedLightCentre(light);
-    diffuse += uRegionRadiance[r] * glintClippedLightProjectedSolidAngle(light);
+    diffuse += radiance[r] * glintClippedLightProjectedSolidAngle(light);
   }
   float rho = GLINT_LAYER ? surface.glint.rho : 0.0f;
 #if SPECULAR_MODEL == SPECULAR_GLINT
   GlintRegionMassSet masses = glintRegionMassSet(glintDictionary(), surface.glint, glintUv, duvdx, duvdy, regions);
 #endif
   vec3 specular = vec3(0.0f);
-  for (int r = 0; r < REGION_COUNT; ++r) {
+  for (int r = 0; r < EXTENDED_LIGHT_COUNT; ++r) {
 #if SPECULAR_MODEL == SPECULAR_GLINT
     vec3 mass = masses.mass[r].rgb;
     vec2 meanSlope = masses.targetMeanSlope[r];
@@ -299,7 +330,7 @@ vec3 environmentRegionLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2
     // The light's reflectance where the smooth lobe's mass over it lies (glintRegionReflectanceAt),
     // the same for glint and Cook-Torrance programs.
     vec3 wh = normalize(vec3(-meanSlope, 1.0f));
-    specular += uRegionRadiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
+    specular += radiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
                 glintRegionReflectanceAt(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, meanSlope, centre[r]) * mass;
   }
   return surface.diffuse * diffuse + specular;
@@ -386,10 +417,10 @@ void main() {
                  glintFresnelSchlick(surface.f0, surface.wo.z) *
                      environmentRadiance(reflected, max(surface.smoothAlpha.x, surface.smoothAlpha.y));
   radiance += ambient * surface.occlusion;
-#if REGION_COUNT > 0
-  // The regions' light, both lobes; the map less their means (prefiltered, and its irradiance) can
-  // dip below zero around them.
-  radiance = max(radiance + environmentRegionLight(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
+#if EXTENDED_LIGHT_COUNT > 0
+  // The extended lights, both lobes; the map less the regions' means (prefiltered, and its
+  // irradiance) can dip below zero around them.
+  radiance = max(radiance + extendedLight(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
 #endif
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth

@@ -9,6 +9,7 @@
 #include "gl/renderer.h"
 #include "glint/dictionary_exr.h"
 #include "glint/error.h"
+#include "scene/area_lights.h"
 #include "scene/builtin_scenes.h"
 #include "scene/environment_map.h"
 #include "scene/gltf_loader.h"
@@ -23,6 +24,11 @@ void SceneOptions::addTo(CLI::App& command) {
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
   environment.addTo(command);
+  command.add_option("--rect-light", rectLights,
+                   "Add an emissive rectangle that lights the scene in both renderers: X,Y,Z,W,H,L, a W x H m "
+                   "rectangle centred at X,Y,Z facing the scene's centre, one-sided, of radiance L (white, W/(m^2 sr)); "
+                   "repeatable")
+      ->delimiter(',');
 }
 
 void EnvironmentOptions::addTo(CLI::App& command) {
@@ -141,7 +147,17 @@ scene::Scene SceneOptions::loadScene() const {
     s.environment = scene::skyEnvironment(*sky);
   }
   environment.applyTo(s);
-  const bool droppedDefaultLights = (sky || !environment.file.empty()) && environment.dropDefaultLights(s);
+  if (rectLights.size() % 6 != 0) throw Error("--rect-light takes six numbers: X,Y,Z,W,H,L");
+  const glm::vec3 sceneCentre = 0.5f * (s.boundsMin() + s.boundsMax());
+  for (std::size_t i = 0; i < rectLights.size(); i += 6) {
+    const float* r = &rectLights[i];
+    if (!std::all_of(r, r + 6, [](float v) { return std::isfinite(v); }) || !(r[3] > 0.0f && r[4] > 0.0f && r[5] >= 0.0f)) {
+      throw Error("--rect-light: X,Y,Z,W,H,L must be finite, W and H > 0 and L >= 0");
+    }
+    scene::addRectangleLight(s, glm::vec3(r[0], r[1], r[2]), sceneCentre, r[3], r[4], glm::vec3(r[5]));
+  }
+  const bool droppedDefaultLights =
+      (sky || !environment.file.empty() || !rectLights.empty()) && environment.dropDefaultLights(s);
   if (patternSeed && !(*patternSeed >= 0 && *patternSeed <= 0xffffffffLL)) {
     throw Error("--pattern-seed must be a whole number in [0, 4294967295], got " + std::to_string(*patternSeed));
   }
@@ -194,9 +210,9 @@ scene::Scene SceneOptions::loadScene() const {
   if (!layered.empty() && !logDensity) std::fprintf(stderr, "glint: %s\n", describeDefaultGlintDensity(s, layered).c_str());
   if (droppedDefaultLights) {
     std::fprintf(stderr,
-                 "glint: the environment replaces the default lights of %s, which has none of its own "
+                 "glint: the %s the default lights of %s, which has none of its own "
                  "(--keep-default-lights keeps them)\n",
-                 scene.c_str());
+                 sky || !environment.file.empty() ? "environment replaces" : "rectangle lights replace", scene.c_str());
   }
   return s;
 }

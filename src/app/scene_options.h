@@ -49,6 +49,7 @@ struct SceneOptions {
   std::optional<std::int64_t> patternSeed;  // checked to be a uint32 when applied
   std::optional<float> sky;
   EnvironmentOptions environment;
+  std::vector<float> rectLights;  // --rect-light: X,Y,Z,W,H,L per light (scene::addRectangleLight)
   CameraOptions cameraOptions;  // --look-from, --look-at, --up, --fov: applied to the chosen preset
   // The specular target of every material (scene::Material::specular).
   std::optional<std::string> ndf;

@@ -179,6 +179,7 @@ struct ForwardVariant {
   bool normalMapFinest;  // NORMAL_MAP_FINEST: the normal map at its finest level
   int lightCount;  // LIGHT_COUNT: glint programs walk a footprint's cells once for all the lights
   int regionCount;  // REGION_COUNT: the environment's regions drawn analytically (glints in glint programs)
+  int areaLightCount;  // AREA_LIGHT_COUNT: the scene's emissive rectangles drawn as lights, likewise
   bool alphaMask;  // ALPHA_MASK: glTF alphaMode MASK (a discard, kept out of every other program)
   bool textureTransforms;  // TEXTURE_TRANSFORMS: some texture of the material has a KHR_texture_transform
   bool vertexColours;      // VERTEX_COLOURS: the mesh has COLOR_0 other than white
@@ -214,6 +215,7 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"NORMAL_MAP_FINEST", variant.normalMapFinest ? "1" : "0"},
                         {"LIGHT_COUNT", std::to_string(variant.lightCount)},
                         {"REGION_COUNT", std::to_string(variant.regionCount)},
+                        {"AREA_LIGHT_COUNT", std::to_string(variant.areaLightCount)},
                         {"ALPHA_MASK", variant.alphaMask ? "1" : "0"},
                         {"TEXTURE_TRANSFORMS", variant.textureTransforms ? "1" : "0"},
                         {"VERTEX_COLOURS", variant.vertexColours ? "1" : "0"},
@@ -248,7 +250,7 @@ int footprintWords(const kernel::GlintFootprintPolicy& policy) {
 // every BRDF, so it gets the Cook-Torrance program: llvmpipe runs both sides of a branch, and the
 // glint (or Zirr & Kaplanyan) program would make it pay for the other lobe's setup as well.
 ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Material& material, const GpuMesh& mesh,
-                              int lightCount, int regionCount, int shadowCubes) {
+                              int lightCount, int regionCount, int areaLightCount, int shadowCubes) {
   const SpecularModel model = material.glint.enabled ? settings.brdf : SpecularModel::CookTorrance;
   const bool coloured = model == SpecularModel::Glint && material.glint.colouredCells;
   const bool filtered = model == SpecularModel::Glint && settings.antiAliasing != AntiAliasing::None;
@@ -265,6 +267,7 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         finest,
                         lightCount,
                         regionCount,
+                        areaLightCount,
                         isMasked(material),
                         transforms,
                         mesh.vertexColours,
@@ -461,6 +464,17 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
   scene::EnvironmentRegions regions =
       scene::environmentGlintRegions(split.residual, std::min(env.rasterRegions, kMaxEnvironmentRegions));
   environmentRegions_ = std::move(regions.regions);
+  scene::AreaLights area = scene::findAreaLights(scene);
+  for (const std::string& skipped : area.skipped) warnings_.push_back(skipped + ": it glows but lights nothing in the rasteriser");
+  if (area.lights.size() > static_cast<std::size_t>(kMaxAreaLights)) {
+    warnings_.push_back("the rasteriser draws " + std::to_string(kMaxAreaLights) + " of the scene's " +
+                        std::to_string(area.lights.size()) + " area lights, the brightest (radiance times area)");
+    std::sort(area.lights.begin(), area.lights.end(), [](const scene::AreaLight& a, const scene::AreaLight& b) {
+      return scene::luminance(a.radiance) * a.area() > scene::luminance(b.radiance) * b.area();
+    });
+    area.lights.resize(kMaxAreaLights);
+  }
+  areaLights_ = std::move(area.lights);
   auto uploadEnvironment = [](const scene::Environment& e) {
     if (!e.pixels.empty()) return makeTexture(e.width, e.height, GL_RGBA32F, GL_RGB, GL_FLOAT, e.pixels.data(), true, true);
     const glm::vec3 uniform[4] = {e.uniform, e.uniform, e.uniform, e.uniform};
@@ -536,6 +550,11 @@ struct Renderer::FrameState {
   int regionCount = 0;
   glm::vec3 regionCorners[4 * kMaxEnvironmentRegions];
   glm::vec3 regionRadiances[kMaxEnvironmentRegions];
+  // The area lights: four corners each (world positions), radiance, and whether both faces emit.
+  int areaLightCount = 0;
+  glm::vec3 areaLightCorners[4 * kMaxAreaLights];
+  glm::vec3 areaLightRadiances[kMaxAreaLights];
+  int areaLightTwoSided[kMaxAreaLights];
   bool shadows = false;
   int shadowEntries = 0;  // lightCount * kShadowCascades
   int shadowCubes = 0;    // bit i: light i has a cube map
@@ -615,6 +634,13 @@ Renderer::FrameState Renderer::beginFrame(const FrameSettings& settings) {
     const scene::EnvironmentRegion& region = environmentRegions_[static_cast<std::size_t>(r)];
     for (int k = 0; k < 4; ++k) frame.regionCorners[4 * r + k] = region.corners[static_cast<std::size_t>(k)];
     frame.regionRadiances[r] = region.radiance;
+  }
+  frame.areaLightCount = static_cast<int>(areaLights_.size());
+  for (int a = 0; a < frame.areaLightCount; ++a) {
+    const scene::AreaLight& light = areaLights_[static_cast<std::size_t>(a)];
+    for (int k = 0; k < 4; ++k) frame.areaLightCorners[4 * a + k] = light.corners[static_cast<std::size_t>(k)];
+    frame.areaLightRadiances[a] = light.radiance;
+    frame.areaLightTwoSided[a] = light.twoSided ? 1 : 0;
   }
   frame.shadows = settings.shadows && frame.lightCount > 0;
   frame.shadowEntries = frame.lightCount * kShadowCascades;
@@ -718,6 +744,11 @@ void Renderer::setFrameUniforms(const ShaderProgram& p, const FrameSettings& set
     glUniform3fv(p.uniform("uRegionCorner"), 4 * frame.regionCount, &frame.regionCorners[0].x);
     glUniform3fv(p.uniform("uRegionRadiance"), frame.regionCount, &frame.regionRadiances[0].x);
   }
+  if (frame.areaLightCount > 0) {
+    glUniform3fv(p.uniform("uAreaLightCorner"), 4 * frame.areaLightCount, &frame.areaLightCorners[0].x);
+    glUniform3fv(p.uniform("uAreaLightRadiance"), frame.areaLightCount, &frame.areaLightRadiances[0].x);
+    glUniform1iv(p.uniform("uAreaLightTwoSided"), frame.areaLightCount, frame.areaLightTwoSided);
+  }
   glUniform3fv(p.uniform("uIrradianceSh"), 9, &g.irradiance[0].x);
   glUniform1f(p.uniform("uGlintFilterScale"), settings.filterScale);
   glUniform3f(p.uniform("uGlintFootprintPolicy"), settings.footprintPolicy.maxAnisotropy,
@@ -793,7 +824,7 @@ void Renderer::shadingPass(const FrameSettings& settings, const FrameState& fram
   const ShaderProgram* current = nullptr;
   for (const GpuMesh& mesh : g.meshes) {
     const scene::Material& m = materials_[static_cast<std::size_t>(mesh.material)];
-    const ForwardVariant variant = forwardVariant(settings, m, mesh, frame.lightCount, frame.regionCount, frame.shadowCubes);
+    const ForwardVariant variant = forwardVariant(settings, m, mesh, frame.lightCount, frame.regionCount, frame.areaLightCount, frame.shadowCubes);
     auto program = g.forward.find(variant);
     if (program == g.forward.end()) program = g.forward.emplace(variant, forwardProgram(variant)).first;
     const ShaderProgram& p = program->second;

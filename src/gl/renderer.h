@@ -14,6 +14,7 @@
 #include "glint/dictionary.h"
 #include "glint/image_io.h"
 #include "glint/specular_model.h"
+#include "scene/area_lights.h"
 #include "scene/environment_map.h"
 #include "scene/scene.h"
 
@@ -26,6 +27,8 @@ class ShaderProgram;
 constexpr int kMaxLights = 8;
 // The most regions of an environment map whose glints a frame draws (scene::environmentGlintRegions).
 constexpr int kMaxEnvironmentRegions = 16;
+// The most area lights (scene::findAreaLights) a frame draws; beyond them, the brightest.
+constexpr int kMaxAreaLights = 8;
 // The most cascades of a directional light's shadow maps, and its default
 // (FrameSettings::shadowCascades, shadow_maps.h).
 constexpr int kShadowCascades = 4;
@@ -122,6 +125,8 @@ class Renderer {
   // specular (scene::environmentGlintRegions, at most scene::Environment::rasterRegions and
   // kMaxEnvironmentRegions).
   const std::vector<scene::EnvironmentRegion>& environmentRegions() const { return environmentRegions_; }
+  // The scene's emissive rectangles drawn as lights (scene::findAreaLights, at most kMaxAreaLights).
+  const std::vector<scene::AreaLight>& areaLights() const { return areaLights_; }
 
  private:
   struct Gpu;
@@ -146,6 +151,7 @@ class Renderer {
   std::vector<scene::Light> lights_;
   std::vector<scene::Light> environmentLights_;
   std::vector<scene::EnvironmentRegion> environmentRegions_;
+  std::vector<scene::AreaLight> areaLights_;
   std::vector<std::string> warnings_;
   std::unique_ptr<Gpu> gpu_;
 };
