@@ -17,6 +17,7 @@
 #include "gl/frame_timer.h"
 #include "gl/renderer.h"
 #include "glint/error.h"
+#include "scene/area_lights.h"
 #include "scene/builtin_scenes.h"
 
 namespace glint::app {
@@ -41,6 +42,8 @@ struct BenchOptions {
   bool featureCost = false;
   EnvironmentOptions environment;
   bool compareEnvironmentLights = false;
+  std::vector<float> rectLights;  // --rect-light, as for render
+  bool compareExtendedLights = false;
 };
 
 // What one column of the table times: a specular model under an anti-aliasing mode. With glint
@@ -52,13 +55,18 @@ struct BenchOptions {
 // keeps them while the lights and the camera stay, so the other columns only read them), and with
 // one shadow map a directional light instead of cascades (glint-one-cascade).
 // --compare-env-lights, glint is timed a second time without the directional lights taken out of
-// the environment map (scene::Environment::rasterLights 0), glint-no-env-lights.
+// the environment map (scene::Environment::rasterLights 0), glint-no-env-lights. With
+// --compare-extended-lights, glint is timed with each area light replaced by a point light at its
+// centre (glint-area-as-points: intensity radiance times area, its mesh no longer emitting) and
+// without the environment's regions (glint-no-env-regions: the whole map prefiltered).
 struct Variant {
   std::string label;
   SpecularModel brdf;
   gl::AntiAliasing antiAliasing;
   bool gltfTarget = false;
   bool withoutEnvironmentLights = false;
+  bool areaAsPoints = false;
+  bool withoutEnvironmentRegions = false;
   bool noShadows = false;
   bool oneSample = false;
   bool movingLights = false;
@@ -72,7 +80,7 @@ std::string policyColumn(const std::string& policyName) { return "glint[" + poli
 // With several --footprint policies, the first is every column's, and glint is timed again with each
 // of the others, glint[policy].
 std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarget, bool compareEnvironmentLights,
-                                   bool featureCost,
+                                   bool compareExtendedLights, bool featureCost,
                                    const std::vector<std::pair<std::string, FootprintPolicy>>& footprints) {
   std::vector<Variant> variants;
   for (SpecularModel model : allSpecularModels()) variants.push_back({toString(model), model, antiAliasing});
@@ -80,6 +88,14 @@ std::vector<Variant> benchVariants(gl::AntiAliasing antiAliasing, bool gltfTarge
   if (gltfTarget) variants.push_back({"glint-gltf", SpecularModel::Glint, antiAliasing, true});
   if (compareEnvironmentLights) {
     variants.push_back({"glint-no-env-lights", SpecularModel::Glint, antiAliasing, false, true});
+  }
+  if (compareExtendedLights) {
+    Variant points{"glint-area-as-points", SpecularModel::Glint, antiAliasing};
+    points.areaAsPoints = true;
+    variants.push_back(points);
+    Variant prefiltered{"glint-no-env-regions", SpecularModel::Glint, antiAliasing};
+    prefiltered.withoutEnvironmentRegions = true;
+    variants.push_back(prefiltered);
   }
   if (featureCost) {
     variants.push_back({"glint-no-shadows", SpecularModel::Glint, antiAliasing, false, false, true});
@@ -120,6 +136,7 @@ void runBench(const BenchOptions& options) {
     sceneOptions.cameraOptions = options.cameraOptions;
     sceneOptions.environment = options.environment;
     sceneOptions.lod = options.lod;
+    sceneOptions.rectLights = options.rectLights;
     scenes.push_back(sceneOptions.loadScene());
   }
   SceneOptions dictionaryOptions;
@@ -133,7 +150,7 @@ void runBench(const BenchOptions& options) {
   const std::vector<std::pair<std::string, FootprintPolicy>> footprints = options.footprint.all();
   const std::vector<Variant> models =
       benchVariants(gl::antiAliasingFromString(options.antiAliasing), options.gltfTarget,
-                    options.compareEnvironmentLights, options.featureCost, footprints);
+                    options.compareEnvironmentLights, options.compareExtendedLights, options.featureCost, footprints);
   nlohmann::json report = {{"size", {width, height}}, {"renderer", info.renderer}, {"timer", timer.method()},
                            {"frames", options.frames}, {"footprint", footprints.front().first},
                            {"anti_aliasing", options.antiAliasing}, {"shadow_cascades", options.raster.shadowCascades},
@@ -157,6 +174,24 @@ void runBench(const BenchOptions& options) {
       unlitScene = scene;
       unlitScene.environment.rasterLights = 0;
       unlitRenderer = std::make_unique<gl::Renderer>(unlitScene, dictionary);
+    }
+    std::unique_ptr<gl::Renderer> pointsRenderer, prefilteredRenderer;
+    scene::Scene pointsScene, prefilteredScene;  // outlive their renderers
+    if (options.compareExtendedLights) {
+      pointsScene = scene;
+      for (const scene::AreaLight& area : scene::findAreaLights(scene).lights) {
+        scene::Light point;
+        point.type = scene::Light::Type::Point;
+        point.position = area.centre();
+        point.intensity = area.radiance * area.area();
+        pointsScene.lights.push_back(point);
+        pointsScene.materials[static_cast<std::size_t>(pointsScene.meshes[static_cast<std::size_t>(area.mesh)].material)].emissive =
+            glm::vec3(0.0f);
+      }
+      pointsRenderer = std::make_unique<gl::Renderer>(pointsScene, dictionary);
+      prefilteredScene = scene;
+      prefilteredScene.environment.rasterRegions = 0;
+      prefilteredRenderer = std::make_unique<gl::Renderer>(prefilteredScene, dictionary);
     }
     // The renderer keeps its shadow maps while the lights and the camera stay, so a variant that
     // draws other maps (one cascade, a moving light) draws with a renderer of its own: on the
@@ -187,6 +222,8 @@ void runBench(const BenchOptions& options) {
         frame.footprintPolicy = variant.footprint;
         gl::Renderer& drawing = variant.gltfTarget                 ? *gltfRenderer
                                 : variant.withoutEnvironmentLights ? *unlitRenderer
+                                : variant.areaAsPoints             ? *pointsRenderer
+                                : variant.withoutEnvironmentRegions ? *prefilteredRenderer
                                 : variant.oneCascade               ? *oneCascadeRenderer
                                 : variant.movingLights             ? *movingLightsRenderer
                                                                    : renderer;
@@ -323,6 +360,10 @@ void registerBenchCommand(CLI::App& app) {
   options->environment.addTo(*command);
   command->add_flag("--compare-env-lights", options->compareEnvironmentLights,
                     "Also time glint without the lights taken out of the environment map (glint-no-env-lights)");
+  addRectLightOption(*command, options->rectLights);
+  command->add_flag("--compare-extended-lights", options->compareExtendedLights,
+                    "Also time glint with each area light replaced by a point light at its centre (glint-area-as-points) "
+                    "and without the environment's regions, the whole map prefiltered (glint-no-env-regions)");
   command->add_flag("--json", options->json, "Print one JSON object instead of the table");
   options->quality.addTo(*command);
   command->callback([options, command] {

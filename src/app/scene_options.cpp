@@ -24,10 +24,15 @@ void SceneOptions::addTo(CLI::App& command) {
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
   environment.addTo(command);
-  command.add_option("--rect-light", rectLights,
-                   "Add an emissive rectangle that lights the scene in both renderers: X,Y,Z,W,H,L, a W x H m "
-                   "rectangle centred at X,Y,Z facing the scene's centre, one-sided, of radiance L (white, W/(m^2 sr)); "
-                   "repeatable")
+  addRectLightOption(command, rectLights);
+}
+
+void addRectLightOption(CLI::App& command, std::vector<float>& rectLights) {
+  command
+      .add_option("--rect-light", rectLights,
+                  "Add an emissive rectangle that lights the scene in both renderers: X,Y,Z,W,H,L, a W x H m "
+                  "rectangle centred at X,Y,Z facing the scene's centre, one-sided, of radiance L (white, W/(m^2 sr)); "
+                  "repeatable")
       ->delimiter(',');
 }
 

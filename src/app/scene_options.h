@@ -37,6 +37,10 @@ struct EnvironmentOptions {
   bool dropDefaultLights(scene::Scene& scene) const;
 };
 
+// --rect-light X,Y,Z,W,H,L (repeatable): into `rectLights`, six numbers a light
+// (scene::addRectangleLight, applied by SceneOptions::loadScene).
+void addRectLightOption(CLI::App& command, std::vector<float>& rectLights);
+
 struct SceneOptions {
   std::string scene = scene::kDefaultScene;
   std::string camera = "default";

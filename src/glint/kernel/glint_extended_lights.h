@@ -38,6 +38,8 @@ GLINT_KERNEL_BEGIN
 // A light's quadrilateral clipped to the horizon has at most 5 corners; with each edge's midpoint,
 // a region has 10 vertices.
 #define GLINT_LIGHT_CORNERS 5
+// The smooth lobe's mass below which a region's flakes are not walked (glintRegionMassSet).
+#define GLINT_REGION_NEGLIGIBLE_MASS 1e-4f
 #define GLINT_REGION_VERTICES 10
 
 // A region of slope space: a polygon, its vertices in order around it (either way round); a
@@ -452,20 +454,28 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
 GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                                GlintRegionSet regions) {
   GlintRegionSet unscaled;
-  GlintRegionMassSet masses;
+  GlintRegionMassSet targets;
+  bool walked[GLINT_REGION_COUNT];
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
+    targets.targetMass[r] = target.x;
+    targets.targetMeanSlope[r] = vec2(target.y, target.z);
+    targets.mass[r] = glintSplat4(target.x);
+    // A region holding less than GLINT_REGION_NEGLIGIBLE_MASS of the smooth lobe is not walked: the
+    // lobe's far tail, whose flakes reflect a ten-thousandth of the light; its mass is the target's.
+    walked[r] = target.x >= GLINT_REGION_NEGLIGIBLE_MASS;
     unscaled.region[r] = glintUnscaledRegion(dict, params, regions.region[r]);
+    if (!walked[r]) {
+      for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+        unscaled.region[r].vertex[k] = glintSplat2(1.0e6f);  // beyond every cell's reach
+      }
+    }
   }
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
   if (footprint.degenerate) {
-    for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-      vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
-      masses.targetMass[r] = target.x;
-      masses.targetMeanSlope[r] = vec2(target.y, target.z);
-      masses.mass[r] = glintSplat4(target.x);
-    }
-    return masses;
+    return targets;
   }
+  GlintRegionMassSet masses;
   vec2 wrapped = glintWrapUv(uv, dict.numLevels);
   int level = glintLodLevel(footprint);
   float blend = glintLodBlend(footprint);
@@ -482,9 +492,11 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
     }
   }
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-    vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
-    masses.targetMass[r] = target.x;
-    masses.targetMeanSlope[r] = vec2(target.y, target.z);
+    masses.targetMass[r] = targets.targetMass[r];
+    masses.targetMeanSlope[r] = targets.targetMeanSlope[r];
+    if (!walked[r]) {
+      masses.mass[r] = targets.mass[r];
+    }
   }
   return masses;
 }
