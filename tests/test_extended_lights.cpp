@@ -403,9 +403,9 @@ TEST(AreaLights, EmissiveQuadrilateralsAreLightsOthersAreNamed) {
   EXPECT_NEAR(glm::length(light.normal() - glm::vec3(0.0f, -1.0f, 0.0f)), 0.0f, 1e-5f);  // its triangles' side
   EXPECT_NEAR(glm::length(light.centre() - glm::vec3(0.0f, 2.0f, 0.0f)), 0.0f, 1e-5f);
   ASSERT_EQ(found.skipped.size(), 3u);  // the dark quad is no emitter at all
-  EXPECT_NE(found.skipped[0].find("'textured' has an emissive texture"), std::string::npos) << found.skipped[0];
-  EXPECT_NE(found.skipped[1].find("'bulb' is not a quadrilateral"), std::string::npos) << found.skipped[1];
-  EXPECT_NE(found.skipped[2].find("'bent' is not flat"), std::string::npos) << found.skipped[2];
+  EXPECT_NE(found.skipped[0].find("1 'textured' has an emissive texture"), std::string::npos) << found.skipped[0];
+  EXPECT_NE(found.skipped[1].find("2 'bulb' is not a quadrilateral"), std::string::npos) << found.skipped[1];
+  EXPECT_NE(found.skipped[2].find("3 'bent' is not flat"), std::string::npos) << found.skipped[2];
 }
 
 }  // namespace

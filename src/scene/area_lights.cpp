@@ -98,7 +98,7 @@ AreaLights findAreaLights(const Scene& scene) {
     if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.materials.size())) continue;
     const Material& material = scene.materials[static_cast<std::size_t>(mesh.material)];
     if (!(glm::max(material.emissive.r, glm::max(material.emissive.g, material.emissive.b)) > 0.0f)) continue;
-    const std::string name = "emissive mesh '" + mesh.name + "'";
+    const std::string name = "emissive mesh " + std::to_string(i) + " '" + mesh.name + "'";
     if (material.emissiveTexture >= 0) {
       found.skipped.push_back(name + " has an emissive texture");
       continue;

@@ -264,8 +264,8 @@ EnvironmentRegions environmentGlintRegions(const Environment& environment, int m
   result.residual = environment;
   std::vector<EnvironmentRegion>& regions = result.regions;
   if (maxRegions <= 0 || environment.pixels.empty() || environment.width <= 0 || environment.height <= 0) return result;
-  // The coarse grid: the map's texels averaged into cells, each cell's sums weighted by the
-  // texels' solid angles.
+  // The grid: the map's texels (averaged into cells beyond 512 x 256), each cell's sums weighted
+  // by the texels' solid angles.
   const int gridWidth = std::min(environment.width, kEnvironmentRegionGridWidth);
   const int gridHeight = std::max(1, std::min(environment.height, kEnvironmentRegionGridWidth / 2));
   std::vector<GridRectangle> cells(static_cast<std::size_t>(gridWidth * gridHeight));
@@ -342,7 +342,8 @@ EnvironmentRegions environmentGlintRegions(const Environment& environment, int m
   }
   // 2. The brightest rectangles light glints, each at most kEnvironmentRegionMaxExtent across (a
   //    wider one is halved along its longer side and both halves go back among the candidates), so
-  //    that the quadrilateral of its corners' half vectors stays close to its region of slopes.
+  //    that the polygon of its corners' and edges' midpoints' half vectors stays close to its region
+  //    of slopes (measured up to 60 degrees, ExtendedLightsStat.AreaLightSmoothLobe...).
   const double mapMean = [&] {
     double w = 0.0, l = 0.0;
     for (const GridRectangle& c : cells) { w += c.weight; l += c.luminanceSum; }

@@ -91,15 +91,17 @@ struct EnvironmentLights {
 EnvironmentLights extractEnvironmentLights(const Environment& environment, int maxLights);
 
 // The rectangles of a map (its residual after extractEnvironmentLights) whose glints the rasteriser
-// draws (docs/method.md, "Extended lights"). The map, averaged on a grid of
-// kEnvironmentRegionGridWidth x half as many cells, is split k-d into kEnvironmentRegionLeaves
+// draws (docs/method.md, "Extended lights"). The map (averaged on a grid of at most
+// kEnvironmentRegionGridWidth x half as many cells: the map itself up to 512 x 256), from eight
+// tiles of 90 x 90 degrees, is split k-d into kEnvironmentRegionLeaves
 // rectangles, each cut where its two halves' luminance spread (solid-angle weighted squared
 // deviation from their mean) sums least, so that each is of nearly constant radiance; then the
 // brightest of them, up to maxRegions and only those brighter than the map's mean, are taken, a
 // rectangle wider than kEnvironmentRegionMaxExtent halved first. Each carries its mean radiance
 // (times the environment's intensity). The rasteriser lights both lobes of every material with the
-// regions analytically and prefilters `residual`, the map less each region's mean radiance
-// over its texels, so that a region's power is counted once. A uniform environment has none.
+// regions analytically and prefilters `residual` (and takes its irradiance), the map less each
+// region's mean radiance over its texels, so that a region's power is counted once. A uniform
+// environment has none.
 inline constexpr int kEnvironmentRegionGridWidth = 512;
 inline constexpr int kEnvironmentRegionLeaves = 32;
 inline constexpr double kEnvironmentRegionMaxExtent = 1.05;  // radians, 60 degrees
