@@ -372,6 +372,30 @@ TEST(ExtendedLightsCli, AreaLightsLightTheTracersFlakes) {
   }
 }
 
+TEST(ExtendedLightsCli, AnEmissiveRectangleOfAGltfFileLightsTheRasteriser) {
+  // `glint export --rect-light` writes the light as what a glTF file has: an emissive quadrilateral
+  // (KHR_materials_emissive_strength for a radiance above 1). Rendered from the file, it lights the
+  // sphere as the same light given on the command line does; without area lights (the dark
+  // environment, no other light) the sphere would be black.
+  const std::filesystem::path folder = temporaryFolder("area_light_gltf");
+  unlitScene(folder, "sphere");
+  const std::string light = " --rect-light 2,3,2,1.5,1,20";
+  const RunResult exported = runGlint(folder, "export sphere.gltf" + light + " -o lit.gltf");
+  ASSERT_EQ(exported.exitCode, 0) << exported.err;
+  const std::string common = " --env-intensity 0 --size 64x64 --aa none";
+  ASSERT_EQ(runGlint(folder, "render lit.gltf" + common + " -o file.exr").exitCode, 0);
+  ASSERT_EQ(runGlint(folder, "render sphere.gltf" + light + common + " -o option.exr").exitCode, 0);
+  const ImageRgbF fromFile = readImage(folder / "file.exr");
+  const ImageRgbF fromOption = readImage(folder / "option.exr");
+  double lit = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < fromFile.pixels.size(); ++i) {
+    lit += glm::dot(fromOption.pixels[i], glm::vec3(1.0f / 3.0f));
+    difference += glm::length(fromFile.pixels[i] - fromOption.pixels[i]);
+  }
+  EXPECT_GT(lit / fromFile.pixels.size(), 0.01);  // the light reaches the sphere
+  EXPECT_LT(difference / lit, 1e-3);
+}
+
 TEST(AreaLights, EmissiveQuadrilateralsAreLightsOthersAreNamed) {
   scene::Scene s;
   auto material = [&](glm::vec3 emissive, int texture) {

@@ -24,7 +24,6 @@ void SceneOptions::addTo(CLI::App& command) {
                      "Dictionary file or the authors' EXR folder (default: generate the paper's, about 0.7 s)");
   command.add_option("--sky", sky, "Replace the scene's environment by the procedural sky at this intensity");
   environment.addTo(command);
-  addRectLightOption(command, rectLights);
 }
 
 void addRectLightOption(CLI::App& command, std::vector<float>& rectLights) {
@@ -111,6 +110,7 @@ void SceneOptions::addSceneAndMaterialsTo(CLI::App& command) {
                      "The level-of-detail construction of every glint layer: paper (each cell its own glints), "
                      "consistent (a cell's glints shared out among its children) or tree (every cell below a level set "
                      "by the density the mean of its four children)");
+  addRectLightOption(command, rectLights);
 }
 
 void requireEachOnce(const std::vector<std::string>& values, const std::string& option) {

@@ -65,7 +65,8 @@ struct SceneOptions {
   // All of the options below (render, view, trace).
   void addTo(CLI::App& command);
   // The scene argument and the options that change its materials (--glint-material, --alpha,
-  // --log-density, --relative-area), without those of a view (camera, dictionary, sky): export.
+  // --log-density, --relative-area) or add to it (--rect-light), without those of a view (camera,
+  // dictionary, sky): export.
   void addSceneAndMaterialsTo(CLI::App& command);
   // Loads the scene, applies --glint-material and the overrides (validated like the file's own
   // parameters), checks the camera and applies the camera options to it; throws Error with one line.

@@ -1,5 +1,7 @@
 #include "scene/gltf_loader.h"
 
+#include "scene/area_lights.h"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -356,12 +358,13 @@ class GltfReader {
     for (const Mesh& mesh : scene_.meshes) triangles += mesh.indices.size() / 3;
     if (triangles == 0) throw error("no triangles in the scene");
     addCameras();
-    // The file's KHR_lights_punctual lights replace the default ones; glTF has no environment, so
-    // the default one stays either way.
+    // The file's KHR_lights_punctual lights replace the default ones, and so do its area lights
+    // (emissive quadrilaterals, findAreaLights) in a file without punctual lights; glTF has no
+    // environment, so the default one stays either way.
     std::vector<Light> fileLights = std::move(scene_.lights);
     scene_.lights.clear();
     addDefaultLighting(scene_);
-    if (!fileLights.empty()) {
+    if (!fileLights.empty() || !findAreaLights(scene_).lights.empty()) {
       scene_.lights = std::move(fileLights);
       scene_.defaultLights = false;
     }
