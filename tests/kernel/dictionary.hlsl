@@ -9,6 +9,8 @@
 //                   + index (docs/dictionary.md, "Mip chain");
 //   b4 / binding 4: cbuffer GlintDictionaryShape: int4 (L, N, R, numMips), float alpha_d,
 //                   int mipRowLength, uint caseCount (the number of cases kernel_eval.hlsl reads);
+//   t6 / binding 6, in a shader that includes glint_extended_lights.h: Buffer<float2>, the
+//   cumulative tables, texel (level * N + distribution) * R + k holds (C[k], M[k]);
 //   t5 / binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
 //                   Buffer<float>, GLINT_ALBEDO_TABLE's 4096 values, then GLINT_AVERAGE_ALBEDO_TABLE's 128.
 #ifndef DICTIONARY_HLSL
@@ -46,6 +48,15 @@ float2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distrib
 float4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index) {
   return dictionaryMips[uint((level * view.numDistributions + distribution) * view.mipRowLength + index)];
 }
+
+#ifdef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
+// The cumulative tables (glint_extended_lights.h), two floats a texel laid out like the pairs.
+[[vk::binding(6, 0)]] Buffer<float2> dictionaryCumulative : register(t6);
+
+float2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel) {
+  return dictionaryCumulative[uint((level * view.numDistributions + distribution) * view.texelsPerDistribution + texel)];
+}
+#endif
 
 #if defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
 [[vk::binding(5, 0)]] Buffer<float> albedoTables : register(t5);

@@ -19,6 +19,9 @@
 #include "lights.h"
 #include "tonemap.h"
 #include "zirr_kaplanyan.h"
+// glint's extension to extended lights, two regions a walk.
+#define GLINT_REGION_COUNT 2
+#include "glint_extended_lights.h"
 
 // Every entry point a renderer or a sampler calls, on inputs packed in three vec4s, summed so that
 // each result is used.
@@ -96,7 +99,20 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
   float zirrKaplanyan = glintZirrKaplanyanReflectance(uv, duvdx, duvdy, wo, wi, zk) +
                         glintZirrKaplanyanReferenceReflectance(uv, duvdx, duvdy, wo, wi, zk);
 
-  return vec4(f + ndf + filtered + p22.p22[0].w + p22.p22[1].x + (negligible ? 1.0f : 0.0f) + weights,
+  // Extended lights: an area light's region, its glints' and smooth lobe's mass, its diffuse.
+  GlintClippedLight area = glintClipLightToHorizon(normalize(vec3(-0.3f, -0.2f, 1.0f)), normalize(vec3(0.3f, -0.2f, 1.0f)),
+                                                   normalize(vec3(0.3f, 0.2f, 1.0f)), normalize(vec3(-0.3f, 0.2f, -0.1f)));
+  GlintRegionSet regions;
+  regions.region[0] = glintLightSlopeRegion(wo, area);
+  regions.region[1] = glintLightSlopeRegion(wi, area);
+  GlintRegionMassSet masses = glintRegionMassSet(dict, params, uv, duvdx, duvdy, regions);
+  vec3 smoothMoments = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[0]);
+  float extended = masses.mass[0].w + masses.mass[1].x + masses.targetMass[1] +
+                   glintRegionReflectanceAt(params.masking, params.ndf, params.alpha, params.rho, wo, masses.targetMeanSlope[0],
+                                            glintClippedLightCentre(area)) +
+                   glintClippedLightProjectedSolidAngle(area) + smoothMoments.y;
+
+  return vec4(f + ndf + filtered + p22.p22[0].w + p22.p22[1].x + (negligible ? 1.0f : 0.0f) + weights + extended,
               cookTorrance + smith + multiple + scaled.x + lod + light, fresnel.x + compensation.y + lean.z + display.x,
               zirrKaplanyan);
 }

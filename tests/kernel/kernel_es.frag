@@ -9,6 +9,7 @@ precision highp sampler2D;
 
 uniform sampler2D dictionaryPairs;
 uniform sampler2D dictionaryMips;
+uniform sampler2D dictionaryCumulative;
 uniform ivec4 dictionaryShape;  // L, N, R, numMips
 uniform float dictionaryAlpha;
 uniform int dictionaryMipRowLength;
@@ -22,6 +23,11 @@ vec2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distribut
 vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index) {
   int i = (level * view.numDistributions + distribution) * view.mipRowLength + index;
   return texelFetch(dictionaryMips, ivec2(i & 2047, i >> 11), 0);
+}
+
+vec2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel) {
+  int i = (level * view.numDistributions + distribution) * view.texelsPerDistribution + texel;
+  return texelFetch(dictionaryCumulative, ivec2(i & 2047, i >> 11), 0).xy;
 }
 
 layout(location = 0) out vec4 outValues;

@@ -99,7 +99,7 @@ GLINT_FN GlintClippedLight glintClipLightToHorizon(vec3 wi0, vec3 wi1, vec3 wi2,
       light.count += 1;
     }
     if ((a.z >= lowest) != (b.z >= lowest)) {
-      light.corner[light.count] = normalize(mix(a, b, (lowest - a.z) / (b.z - a.z)));
+      light.corner[light.count] = normalize(glintMix(a, b, (lowest - a.z) / (b.z - a.z)));
       light.count += 1;
     }
   }
