@@ -159,24 +159,10 @@ struct RectangleLight {
   }
 };
 
-// The integral of wi.z over the part of the light above the horizon, by the midpoint rule (n x n).
-double projectedSolidAngle(const RectangleLight& light, int n) {
-  double sum = 0.0;
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      const glm::vec3 p = light.centre + (2.0f * (i + 0.5f) / n - 1.0f) * light.halfWidth * light.u +
-                          (2.0f * (j + 0.5f) / n - 1.0f) * light.halfHeight * light.v;
-      const float r2 = glm::dot(p, p);
-      const glm::vec3 wi = p / std::sqrt(r2);
-      if (wi.z > 0.0f) sum += wi.z * 4.0f * light.halfWidth * light.halfHeight / float(n * n) * glm::dot(wi, light.centre) / r2;
-    }
-  }
-  return sum;
-}
-
-// The smooth lobe's reflected radiance per unit radiance, by the midpoint rule over the light's
-// area (n x n): the integral of f cos over its solid angle, f = D G2 / (4 wo.z wi.z).
-double smoothLobeOverLight(const RectangleLight& light, glm::vec3 wo, glm::vec2 alpha, int masking, int n) {
+// The integral of f(wi) over the part of the light above the horizon, by the midpoint rule over
+// its area (n x n), each cell's solid angle its area times cos / r^2.
+template <typename F>
+double integrateOverLight(const RectangleLight& light, int n, F f) {
   double sum = 0.0;
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
@@ -185,13 +171,25 @@ double smoothLobeOverLight(const RectangleLight& light, glm::vec3 wo, glm::vec2 
       const float r2 = glm::dot(p, p);
       const glm::vec3 wi = p / std::sqrt(r2);
       if (wi.z <= 0.0f) continue;
-      const glm::vec3 h = glm::normalize(wo + wi);
-      const float d = kernel::glintTargetP22(kernel::GLINT_NDF_BECKMANN, kernel::glintSlopeFromNormal(h), alpha, 0.0f) / std::pow(h.z, 4.0f);
-      const float solidAngle = 4.0f * light.halfWidth * light.halfHeight / float(n * n) * glm::dot(wi, light.centre) / r2;
-      sum += kernel::glintMaskedMicrofacetReflectance(masking, kernel::GLINT_NDF_BECKMANN, alpha, 0.0f, wo, wi, h, d) * wi.z * solidAngle;
+      sum += f(wi) * 4.0f * light.halfWidth * light.halfHeight / float(n * n) * glm::dot(wi, light.centre) / r2;
     }
   }
   return sum;
+}
+
+// The integral of wi.z over the light: its cosine-weighted solid angle.
+double projectedSolidAngle(const RectangleLight& light, int n) {
+  return integrateOverLight(light, n, [](glm::vec3 wi) { return static_cast<double>(wi.z); });
+}
+
+// The smooth lobe's reflected radiance per unit radiance: the integral of f cos over the light's
+// solid angle, f = D G2 / (4 wo.z wi.z).
+double smoothLobeOverLight(const RectangleLight& light, glm::vec3 wo, glm::vec2 alpha, int masking, int n) {
+  return integrateOverLight(light, n, [&](glm::vec3 wi) {
+    const glm::vec3 h = glm::normalize(wo + wi);
+    const float d = kernel::glintTargetP22(kernel::GLINT_NDF_BECKMANN, kernel::glintSlopeFromNormal(h), alpha, 0.0f) / std::pow(h.z, 4.0f);
+    return static_cast<double>(kernel::glintMaskedMicrofacetReflectance(masking, kernel::GLINT_NDF_BECKMANN, alpha, 0.0f, wo, wi, h, d) * wi.z);
+  });
 }
 
 TEST(ExtendedLightsStat, AreaLightSmoothLobeIsTheBrdfIntegralOverTheLight) {
