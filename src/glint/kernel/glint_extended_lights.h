@@ -124,7 +124,7 @@ GLINT_FN vec3 glintClippedLightCentre(GlintClippedLight light) {
 
 // The clipped light's cosine-weighted solid angle, the integral of wi.z over it: by Lambert's
 // formula for a spherical polygon, half the sum over its edges of each arc's angle times the z of
-// its plane's unit normal (Heitz et al. 2016, Eq. 11, for the clamped cosine). Times the light's
+// its plane's unit normal (the form factor of a polygon; Arvo 1995). Times the light's
 // radiance, its irradiance; times a Lambertian albedo / pi, its diffuse reflection.
 GLINT_FN float glintClippedLightProjectedSolidAngle(GlintClippedLight light) {
   float sum = 0.0f;
