@@ -289,7 +289,9 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
       for (int k = 0; k < 4; ++k) {
         wi[k] = uRegionCorner[4 * r + k];
       }
-      radiance[r] = uRegionRadiance[r];
+      // Part of the environment: ambient light, which the occlusion texture dims as it dims the
+      // prefiltered map's; an area light is direct light, which it does not (glTF's occlusionTexture).
+      radiance[r] = uRegionRadiance[r] * surface.occlusion;
     }
 #endif
 #if AREA_LIGHT_COUNT > 0
@@ -420,7 +422,7 @@ void main() {
 #if EXTENDED_LIGHT_COUNT > 0
   // The extended lights, both lobes; the map less the regions' means (prefiltered, and its
   // irradiance) can dip below zero around them.
-  radiance = max(radiance + extendedLight(surface, glintUv, duvdx, duvdy) * surface.occlusion, vec3(0.0f));
+  radiance = max(radiance + extendedLight(surface, glintUv, duvdx, duvdy), vec3(0.0f));
 #endif
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth
