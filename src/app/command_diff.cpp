@@ -83,7 +83,7 @@ void registerDiffCommand(CLI::App& app) {
                    "the 99th percentile of B's smooth image (a ratio over a smooth value near zero is the path "
                    "tracer's noise)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0.0, 1.0))
       ->needs(glintRatio);
   command->callback([options] { runDiff(*options); });
 }

@@ -121,12 +121,6 @@ class Renderer {
   // (scene::extractEnvironmentLights, at most scene::Environment::rasterLights and the slots the
   // scene's lights leave of kMaxLights); the map's specular and irradiance lack their radiance.
   const std::vector<scene::Light>& environmentLights() const { return environmentLights_; }
-  // The rest of the map's brightest regions, whose glints glint programs draw over the prefiltered
-  // specular (scene::environmentGlintRegions, at most scene::Environment::rasterRegions and
-  // kMaxEnvironmentRegions).
-  const std::vector<scene::EnvironmentRegion>& environmentRegions() const { return environmentRegions_; }
-  // The scene's emissive rectangles drawn as lights (scene::findAreaLights, at most kMaxAreaLights).
-  const std::vector<scene::AreaLight>& areaLights() const { return areaLights_; }
 
  private:
   struct Gpu;
@@ -150,6 +144,9 @@ class Renderer {
   std::vector<scene::Material> materials_;
   std::vector<scene::Light> lights_;
   std::vector<scene::Light> environmentLights_;
+  // The rest of the map's brightest regions (scene::environmentGlintRegions, at most
+  // scene::Environment::rasterRegions and kMaxEnvironmentRegions) and the scene's emissive
+  // quadrilaterals (scene::findAreaLights, at most kMaxAreaLights), drawn as extended lights.
   std::vector<scene::EnvironmentRegion> environmentRegions_;
   std::vector<scene::AreaLight> areaLights_;
   std::vector<std::string> warnings_;

@@ -66,6 +66,23 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
   return slopes;
 }
 
+// A level's average over its walked cells, as glintLevelP22 and the extended lights' region masses
+// (glint_extended_lights.h) take it: the dictionary cells' sum times `dictionaryScale`, .rgb tinted
+// by their chroma sum with coloured cells, plus the smooth cells' and the GGX-tail cells' parts
+// (untinted), over the walk's summed weight. Under the consistent construction a complement's few
+// texels below zero (glintBlockMarginal) never make it negative.
+GLINT_FN vec4 glintLevelAverage(GlintParameters params, float dictionarySum, vec2 chromaSum, float dictionaryScale, float smoothPart,
+                                float tailPart, float weightSum) {
+  vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum, chromaSum) : glintSplat3(dictionarySum);
+  vec4 average = (vec4(colourWeighted, dictionarySum) * dictionaryScale + glintSplat4(smoothPart) + glintSplat4(tailPart)) / weightSum;
+#if GLINT_CONSISTENT_LOD_COMPILED
+  if (params.lod == GLINT_LOD_CONSISTENT) {
+    average = max(average, glintSplat4(0.0f));
+  }
+#endif
+  return average;
+}
+
 // P22 over the footprint at one level (method.md 2.4), at each slope of the set: the EWA-weighted
 // mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
 // Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
@@ -159,24 +176,19 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   for (int k = 0; k < GLINT_SLOPE_COUNT; ++k) {
     p22.p22[k] = glintSplat4(0.0f);
     if (weightSum > 0.0f) {
-      vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum[k], chromaSum[k]) : glintSplat3(dictionarySum[k]);
-      p22.p22[k] = vec4(colourWeighted, dictionarySum[k]) * glintScalingJacobian(dict, params);
+      float smoothPart = 0.0f;
       if (smoothWeightSum > 0.0f) {
         float smoothP22 = filtering ? glintFilteredTargetP22(params, slopes.slope[k], slopeKernel[k])
                                  : glintTargetP22(params.ndf, slopes.slope[k], params.alpha, params.rho);
-        p22.p22[k] += glintSplat4(smoothWeightSum * smoothP22);
+        smoothPart = smoothWeightSum * smoothP22;
       }
+      float tailPart = 0.0f;
       if (tailWeightSum > 0.0f) {
         vec3 covariance = glintBeckmannSlopeCovariance(params.alpha, params.rho) + (filtering ? slopeKernel[k] : glintSplat3(0.0f));
-        p22.p22[k] += glintSplat4(tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance));
+        tailPart = tailWeightSum * glintStudentTailSlopeP22(slopes.slope[k], covariance);
       }
-      p22.p22[k] = p22.p22[k] / weightSum;
-#if GLINT_CONSISTENT_LOD_COMPILED
-      // A complement's few texels below zero (glintBlockMarginal) never make the P-SDF negative.
-      if (params.lod == GLINT_LOD_CONSISTENT) {
-        p22.p22[k] = max(p22.p22[k], glintSplat4(0.0f));
-      }
-#endif
+      p22.p22[k] = glintLevelAverage(params, dictionarySum[k], chromaSum[k], glintScalingJacobian(dict, params), smoothPart, tailPart,
+                                     weightSum);
     }
   }
   return p22;

@@ -370,10 +370,6 @@ GLINT_FN vec3 glintSmoothRegionMoments(int ndf, vec2 alpha, float rho, GlintSlop
   return vec3(moments.x, mean.x, mean.y);
 }
 
-GLINT_FN float glintSmoothRegionMass(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
-  return glintSmoothRegionMoments(ndf, alpha, rho, region).x;
-}
-
 // The masses over one footprint level's cells (glintLevelP22's walk, weights and cells, the masses
 // of its regions in place of the P22 at its slopes).
 GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint,
@@ -428,21 +424,14 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
     masses.targetMass[r] = 0.0f;
     masses.targetMeanSlope[r] = glintSplat2(0.0f);
     if (weightSum > 0.0f) {
-      vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum[r], chromaSum[r]) : glintSplat3(dictionarySum[r]);
-      masses.mass[r] = vec4(colourWeighted, dictionarySum[r]);
-      if (smoothWeightSum > 0.0f) {
-        masses.mass[r] += glintSplat4(smoothWeightSum * glintGaussianRegionMass(unscaled.region[r], 0.70710678f * dict.alpha));
-      }
-      if (tailWeightSum > 0.0f) {
-        masses.mass[r] += glintSplat4(tailWeightSum * glintMidpointRegionMass(params.ndf, params.alpha, params.rho, dict.alpha,
-                                                                               unscaled.region[r], true));
-      }
-      masses.mass[r] = masses.mass[r] / weightSum;
-#if GLINT_CONSISTENT_LOD_COMPILED
-      if (params.lod == GLINT_LOD_CONSISTENT) {
-        masses.mass[r] = max(masses.mass[r], glintSplat4(0.0f));
-      }
-#endif
+      float smoothPart = smoothWeightSum > 0.0f
+                             ? smoothWeightSum * glintGaussianRegionMass(unscaled.region[r], 0.70710678f * dict.alpha)
+                             : 0.0f;
+      float tailPart = tailWeightSum > 0.0f ? tailWeightSum * glintMidpointRegionMass(params.ndf, params.alpha, params.rho,
+                                                                                       dict.alpha, unscaled.region[r], true)
+                                            : 0.0f;
+      // The dictionary cells' masses need no Jacobian (EL-3).
+      masses.mass[r] = glintLevelAverage(params, dictionarySum[r], chromaSum[r], 1.0f, smoothPart, tailPart, weightSum);
     }
   }
   return masses;
