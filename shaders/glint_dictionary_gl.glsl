@@ -68,8 +68,8 @@ vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level, int dist
 #ifdef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
 layout(binding = 15) uniform GLINT_TEXEL_BUFFER uGlintCumulativeDictionary;
 
-vec2 glintDictionaryCumulativeTexels(GlintDictionaryView dict, int level, int distribution, int texel) {
-  return GLINT_TEXEL_BUFFER_FETCH(uGlintCumulativeDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel).rg;
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView dict, int level, int distribution, int texel) {
+  return GLINT_TEXEL_BUFFER_FETCH(uGlintCumulativeDictionary, (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel);
 }
 #endif
 

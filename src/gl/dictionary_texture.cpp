@@ -43,8 +43,9 @@ DictionaryTexture::DictionaryTexture(const Dictionary& dictionary)
   // likewise: four values a texel, so that one fetch serves both levels of a filtered lookup.
   createBufferTexture(std::span<const std::uint16_t>(pairs), 2, GL_RG16F, "dictionary", buffer_, texture_);
   createBufferTexture(dictionary.filteredHalfTexels(), 4, GL_RGBA16F, "dictionary mip chain", mipBuffer_, mipTexture_);
-  // The cumulative tables of glints under extended lights, two 32-bit floats a texel.
-  createBufferTexture(dictionary.cumulativeTexels(), 2, GL_RG32F, "dictionary cumulative tables", cumulativeBuffer_,
+  // The cumulative tables of glints under extended lights with each texel's pair, four 32-bit floats
+  // a texel: one fetch an integral.
+  createBufferTexture(dictionary.cumulativeTexels(), 4, GL_RGBA32F, "dictionary cumulative tables", cumulativeBuffer_,
                       cumulativeTexture_);
 }
 

@@ -265,16 +265,20 @@ void Dictionary::buildCumulativeTables() {
   // the last texel. Each texel's share of the integral of p and of slope times p, in double.
   const std::size_t texels = static_cast<std::size_t>(parameters_.texelsPerDistribution);
   const double spacing = static_cast<double>(kernel::glintDictionaryDomain(view())) / static_cast<double>(texels);
-  cumulative_.assign(2 * values_.size(), 0.0f);
+  cumulative_.assign(4 * values_.size(), 0.0f);
   for (std::size_t row = 0; row < values_.size() / texels; ++row) {
     const float* p = values_.data() + row * texels;
     double mass = 0.0;
     double moment = 0.0;
     for (std::size_t k = 0; k < texels; ++k) {
-      cumulative_[2 * (row * texels + k)] = static_cast<float>(mass);
-      cumulative_[2 * (row * texels + k) + 1] = static_cast<float>(moment);
+      const float next = k + 1 < texels ? p[k + 1] : 0.0f;
+      float* texel = cumulative_.data() + 4 * (row * texels + k);
+      texel[0] = static_cast<float>(mass);
+      texel[1] = static_cast<float>(moment);
+      texel[2] = p[k];  // the pair, as glintDictionaryTexelPair reads it
+      texel[3] = next;
       const double a = p[k];
-      const double rise = (k + 1 < texels ? p[k + 1] : 0.0) - a;
+      const double rise = static_cast<double>(next) - a;
       mass += spacing * (a + 0.5 * rise);
       moment += spacing * spacing * (static_cast<double>(k) * (a + 0.5 * rise) + 0.5 * a + rise / 3.0);
     }

@@ -81,10 +81,11 @@ class Dictionary {
   std::span<const std::uint16_t> filteredHalfTexels() const { return filteredHalves_; }  // for GPU upload
 
   // The cumulative tables that glints under extended lights integrate the marginals with
-  // (docs/dictionary.md, "Cumulative tables"; kernel glintDictionaryCumulativeTexels): for every
-  // table and texel k, (C[k], M[k]), the integrals of the interpolated marginal and of slope times
-  // it from slope 0 to texel k's slope, summed in double from the binary16 texels and kept as
-  // 32-bit floats (differences of binary16 sums would lose a narrow region's mass); two a texel.
+  // (docs/dictionary.md, "Cumulative tables"; kernel glintDictionaryCumulativeTexel): for every
+  // table and texel k, (C[k], M[k], p[k], p[k+1]): the integrals of the interpolated marginal and
+  // of slope times it from slope 0 to texel k's slope, summed in double from the binary16 texels and
+  // kept as 32-bit floats (differences of binary16 sums would lose a narrow region's mass), then
+  // texel k's pair, so that one read serves an integral; four a texel.
   std::span<const float> cumulativeTexels() const { return cumulative_; }
 
   // The versioned binary file (docs/dictionary.md, "File format"): the L levels (version 1), or with

@@ -50,10 +50,10 @@ float4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int di
 }
 
 #ifdef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
-// The cumulative tables (glint_extended_lights.h), two floats a texel laid out like the pairs.
-[[vk::binding(6, 0)]] Buffer<float2> dictionaryCumulative : register(t6);
+// The cumulative tables (glint_extended_lights.h), four floats a texel laid out like the pairs.
+[[vk::binding(6, 0)]] Buffer<float4> dictionaryCumulative : register(t6);
 
-float2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel) {
+float4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel) {
   return dictionaryCumulative[uint((level * view.numDistributions + distribution) * view.texelsPerDistribution + texel)];
 }
 #endif

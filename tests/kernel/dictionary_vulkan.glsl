@@ -11,9 +11,9 @@
 //   binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
 //              uniform texel buffer, one channel (R32_SFLOAT): GLINT_ALBEDO_TABLE's 4096 values, then
 //              GLINT_AVERAGE_ALBEDO_TABLE's 128.
-//   binding 6, in a shader that includes glint_extended_lights.h: uniform texel buffer, two
-//   channels a texel (R32G32_SFLOAT): the cumulative tables, texel (level * N + distribution) * R + k
-//   holds (C[k], M[k]) (glint::Dictionary::cumulativeTexels).
+//   binding 6, in a shader that includes glint_extended_lights.h: uniform texel buffer, four
+//   channels a texel (R32G32B32A32_SFLOAT): the cumulative tables, texel (level * N + distribution) * R
+//   + k holds (C[k], M[k], p[k], p[k+1]) (glint::Dictionary::cumulativeTexels).
 // The same bindings as tests/kernel/dictionary.hlsl.
 #ifndef DICTIONARY_VULKAN_GLSL
 #define DICTIONARY_VULKAN_GLSL
@@ -49,11 +49,11 @@ vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int dist
 }
 
 #ifdef GLINT_KERNEL_GLINT_EXTENDED_LIGHTS_H
-// The cumulative tables (glint_extended_lights.h), two floats a texel laid out like the pairs.
+// The cumulative tables (glint_extended_lights.h), four floats a texel laid out like the pairs.
 layout(set = 0, binding = 6) uniform samplerBuffer dictionaryCumulative;
 
-vec2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel) {
-  return texelFetch(dictionaryCumulative, (level * view.numDistributions + distribution) * view.texelsPerDistribution + texel).xy;
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel) {
+  return texelFetch(dictionaryCumulative, (level * view.numDistributions + distribution) * view.texelsPerDistribution + texel);
 }
 #endif
 

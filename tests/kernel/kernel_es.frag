@@ -25,9 +25,9 @@ vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int dist
   return texelFetch(dictionaryMips, ivec2(i & 2047, i >> 11), 0);
 }
 
-vec2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel) {
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel) {
   int i = (level * view.numDistributions + distribution) * view.texelsPerDistribution + texel;
-  return texelFetch(dictionaryCumulative, ivec2(i & 2047, i >> 11), 0).xy;
+  return texelFetch(dictionaryCumulative, ivec2(i & 2047, i >> 11), 0);
 }
 
 layout(location = 0) out vec4 outValues;

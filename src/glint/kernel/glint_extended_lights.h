@@ -41,6 +41,11 @@ GLINT_KERNEL_BEGIN
 // The smooth lobe's mass below which a region's flakes are not walked (glintRegionMassSet).
 #define GLINT_REGION_NEGLIGIBLE_MASS 1e-4f
 #define GLINT_REGION_VERTICES 10
+// A cell's mass over a region, below this fraction of the smooth target's mass over it, counted as 0
+// (glintCellRegionMass): the cells average, so the P-SDF's mass loses at most this fraction.
+#ifndef GLINT_CELL_NEGLIGIBLE_FRACTION
+#define GLINT_CELL_NEGLIGIBLE_FRACTION 1e-3f
+#endif
 
 // A region of slope space: a polygon, its vertices in order around it (either way round); a
 // polygon of fewer vertices repeats its last one.
@@ -221,16 +226,17 @@ GLINT_FN vec2 glintRegionStrip(vec2 xRange, int k) {
 // The signed cumulative marginal and its first moment: the integrals of table `level`'s marginal
 // of `distribution`, and of the slope times it, from 0 to x: (C(x), M(x)), C odd and M even in x,
 // C +-1/2 beyond the support for a normalised marginal. The interpolation is glintMarginal's,
-// linear between texels, so that these are exactly its integrals: the cumulative texels
-// (glintDictionaryCumulativeTexels) plus texel k's part.
+// linear between texels, so that these are exactly its integrals: the cumulative texel
+// (glintDictionaryCumulativeTexel, which carries texel k's pair too: one read) plus texel k's part.
 GLINT_FN vec2 glintCumulativeMarginal(GlintDictionaryView dict, int level, int distribution, float x) {
   float fourSigma = glintDictionaryDomain(dict);
   float spacing = fourSigma / float(dict.texelsPerDistribution);
   float t = min(abs(x), fourSigma) / spacing;
   int k = min(int(t), dict.texelsPerDistribution - 1);
   float f = t - float(k);
-  vec2 ab = glintDictionaryTexelPair(dict, level, distribution, k);
-  vec2 base = glintDictionaryCumulativeTexels(dict, level, distribution, k);
+  vec4 texel = glintDictionaryCumulativeTexel(dict, level, distribution, k);
+  vec2 base = vec2(texel.x, texel.y);
+  vec2 ab = vec2(texel.z, texel.w);
   float rise = ab.y - ab.x;
   float c = base.x + spacing * f * (ab.x + 0.5f * f * rise);
   // The integral of (k + s) spacing (a + rise s) spacing ds over [0, f].
@@ -261,23 +267,28 @@ GLINT_FN float glintStripCentroid(vec2 strip, vec2 startIntegrals, vec2 endInteg
 // A dictionary cell's mass over a region in its own frame (glintCellRegion): per strip, the x
 // marginal's mass over the strip times the y marginal's over the region's y extent at the strip's
 // centroid (the centroid rule: exact where the y marginal's mass varies linearly across the strip).
-GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local) {
+// A strip whose x marginal holds at most its share of `negligible` is counted as 0 without reading
+// the y marginal (the y marginal's mass is at most 1), so that a cell loses at most `negligible`.
+GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local, float negligible) {
   float fourSigma = glintDictionaryDomain(dict);
   vec4 bounds = glintRegionBounds(local);
   vec2 xRange = clamp(vec2(bounds.x, bounds.y), glintSplat2(-fourSigma), glintSplat2(fourSigma));
   if (!(xRange.x < xRange.y && bounds.z < fourSigma && bounds.w > -fourSigma)) {
     return 0.0f;  // the region misses the cell's support (a NaN vertex misses it too)
   }
-  float mass = 0.0f;
   vec2 start = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, xRange.x);
+  float stripNegligible = negligible / float(GLINT_REGION_STRIPS);
+  float mass = 0.0f;
   for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
     vec2 strip = glintRegionStrip(xRange, k);
     vec2 end = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, strip.y);
-    vec2 across = glintRegionYAt(local, glintStripCentroid(strip, start, end));
-    if (across.y > across.x && end.x > start.x) {
-      float yMass = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.y).x -
-                    glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.x).x;
-      mass += (end.x - start.x) * yMass;
+    if (end.x - start.x > stripNegligible) {
+      vec2 across = glintRegionYAt(local, glintStripCentroid(strip, start, end));
+      if (across.y > across.x) {
+        float yMass = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.y).x -
+                      glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.x).x;
+        mass += (end.x - start.x) * yMass;
+      }
     }
     start = end;
   }
@@ -373,7 +384,8 @@ GLINT_FN vec3 glintSmoothRegionMoments(int ndf, vec2 alpha, float rho, GlintSlop
 // The masses over one footprint level's cells (glintLevelP22's walk, weights and cells, the masses
 // of its regions in place of the P22 at its slopes).
 GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint,
-                                                 vec2 uv, int level, GlintLevelDraw draw, GlintRegionSet unscaled) {
+                                                 vec2 uv, int level, GlintLevelDraw draw, GlintRegionSet unscaled,
+                                                 GlintRegionMassSet targets) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   float dictionarySum[GLINT_REGION_COUNT];
   vec2 chromaSum[GLINT_REGION_COUNT];
@@ -408,7 +420,8 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
         vec2 chroma = params.colouredCells ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
         for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
           if (inReach[r]) {
-            float weighted = covered * glintCellRegionMass(dict, cell, glintCellRegion(rotation, cell.unscale, unscaled.region[r]));
+            float negligible = GLINT_CELL_NEGLIGIBLE_FRACTION * targets.targetMass[r];
+            float weighted = covered * glintCellRegionMass(dict, cell, glintCellRegion(rotation, cell.unscale, unscaled.region[r]), negligible);
             dictionarySum[r] += weighted;
             if (params.colouredCells) {
               chromaSum[r] += weighted * chroma;
@@ -469,13 +482,13 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
   int level = glintLodLevel(footprint);
   float blend = glintLodBlend(footprint);
   GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
-  masses = glintLevelRegionMass(dict, params, footprint, wrapped, level, draw, unscaled);
+  masses = glintLevelRegionMass(dict, params, footprint, wrapped, level, draw, unscaled, targets);
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     masses.mass[r] = (1.0f - blend) * masses.mass[r];
   }
   if (blend > 0.0f) {
     GlintLevelDraw next = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
-    GlintRegionMassSet coarser = glintLevelRegionMass(dict, params, footprint, wrapped, level + 1, next, unscaled);
+    GlintRegionMassSet coarser = glintLevelRegionMass(dict, params, footprint, wrapped, level + 1, next, unscaled, targets);
     for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
       masses.mass[r] += blend * coarser.mass[r];
     }

@@ -26,11 +26,12 @@
 // glint_antialiasing.h, glint_brdf.h, zirr_kaplanyan.h) defines both, even if it calls none of
 // those functions: some GLSL linkers (Mesa's) resolve the calls of every function. A shader that
 // includes glint_extended_lights.h (glints under area lights and environments) defines a third:
-//   vec2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel)
-//     (C[k], M[k]), k = texel: the integrals of that marginal and of the slope times it from slope 0
-//     to texel k's slope, as glint::Dictionary::cumulativeTexels() holds them (docs/dictionary.md,
-//     "Cumulative tables"):
-//     32-bit floats, as a difference of two binary16 values would lose the narrow regions' mass.
+//   vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel)
+//     (C[k], M[k], p[k], p[k+1]), k = texel: the integrals of that marginal and of the slope times it
+//     from slope 0 to texel k's slope, then texel k's pair as glintDictionaryTexelPair returns it, as
+//     glint::Dictionary::cumulativeTexels() holds them (docs/dictionary.md, "Cumulative tables"):
+//     32-bit floats, as a difference of two binary16 values would lose the narrow regions' mass; the
+//     pair beside them so that one read serves an integral.
 //
 // GlintDictionaryView is the host's description of its dictionary: in shaders its shape and
 // roughness (which the host fills, from its own uniforms or constant buffer), in C++ pointers to
@@ -233,7 +234,7 @@ struct GlintDictionaryView {
   const float* filteredTexels;
   int numMips;
   int mipRowLength;
-  // The cumulative tables (glintDictionaryCumulativeTexels), two floats a texel; null where the host has
+  // The cumulative tables (glintDictionaryCumulativeTexel), four floats a texel; null where the host has
   // none (then nothing may call glint_extended_lights.h).
   const float* cumulativeTexels;
 };
@@ -253,9 +254,9 @@ GLINT_FN vec4 glintDictionaryFilteredTexels(GlintDictionaryView dict, int level,
   return vec4(t[0], t[1], t[2], t[3]);
 }
 
-GLINT_FN vec2 glintDictionaryCumulativeTexels(GlintDictionaryView dict, int level, int distribution, int texel) {
-  const float* t = dict.cumulativeTexels + 2 * ((level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel);
-  return vec2(t[0], t[1]);
+GLINT_FN vec4 glintDictionaryCumulativeTexel(GlintDictionaryView dict, int level, int distribution, int texel) {
+  const float* t = dict.cumulativeTexels + 4 * ((level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel);
+  return vec4(t[0], t[1], t[2], t[3]);
 }
 
 #else
@@ -273,7 +274,7 @@ struct GlintDictionaryView {
 // The hook, defined by the host (see the top of this file).
 vec2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distribution, int texel);
 vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index);
-vec2 glintDictionaryCumulativeTexels(GlintDictionaryView view, int level, int distribution, int texel);
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel);
 
 #endif
 
