@@ -166,6 +166,8 @@ TEST(ShaderBundleCli, BadArgumentsGiveOneLine) {
   expectOneLineError(runGlint(folder, "shader-bundle"), "give one of --language LANGUAGE and --shadertoy");
   expectOneLineError(runGlint(folder, "shader-bundle --language glsl --shadertoy -o x"), "give one of");
   expectOneLineError(runGlint(folder, "shader-bundle --shadertoy"), "give the folder with -o FOLDER");
+  expectOneLineError(runGlint(folder, "shader-bundle --shadertoy --extended-lights -o toy"),
+                     "--extended-lights goes with --language, not --shadertoy");
   EXPECT_FALSE(std::filesystem::exists(folder / "x"));
 }
 

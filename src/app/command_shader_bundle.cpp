@@ -21,6 +21,7 @@ namespace {
 
 struct BundleOptions {
   std::string language;
+  bool extendedLights = false;
   bool shadertoy = false;
   std::string output;
 };
@@ -34,9 +35,10 @@ std::string bundleHeader(const std::string& what) {
 
 // The embedded file with its includes expanded, without the #line directives of glint's own
 // program assembly: in a bundle they would name source strings the host never sees.
-std::string expandedWithoutLines(const std::string& name) {
+// With `after`, as it reads after that file (its files left out).
+std::string expandedWithoutLines(const std::string& name, const std::string& after = "") {
   static const std::regex lineDirective(R"(^\s*#\s*line\b.*$)");
-  std::istringstream lines(gl::expandIncludes(name).text);
+  std::istringstream lines(after.empty() ? gl::expandIncludes(name).text : gl::expandIncludesAfter(after, name).text);
   std::string out;
   for (std::string line; std::getline(lines, line);) {
     if (!std::regex_match(line, lineDirective)) out += line + '\n';
@@ -62,10 +64,17 @@ void runShaderBundle(const BundleOptions& options) {
   if (options.shadertoy == !options.language.empty()) {
     throw Error("give one of --language LANGUAGE and --shadertoy");
   }
+  if (options.extendedLights && options.shadertoy) throw Error("--extended-lights goes with --language, not --shadertoy");
   if (!options.shadertoy) {
     const std::string preamble = languagePreamble(options.language);
-    const std::string text = bundleHeader("the whole kernel as " + options.language) + preamble +
-                             expandedWithoutLines("glint_kernel.h");
+    const std::string text =
+        options.extendedLights
+            ? bundleHeader("glints under area lights and environment regions (glint_extended_lights.h) as " +
+                           options.language) +
+                  "// Include it after the kernel's bundle (--language without --extended-lights) and define\n"
+                  "// GLINT_REGION_COUNT first; it needs the hook's third function, glintDictionaryCumulativeTexel.\n" +
+                  expandedWithoutLines("glint_extended_lights.h", "glint_kernel.h")
+            : bundleHeader("the whole kernel as " + options.language) + preamble + expandedWithoutLines("glint_kernel.h");
     if (options.output.empty()) {
       std::fputs(text.c_str(), stdout);
       return;
@@ -106,6 +115,9 @@ void registerShaderBundleCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "shader-bundle", "Write the kernel as one include for a host's shaders, or a Shadertoy shader");
   command->add_option("--language", options->language, "glsl, glsl-es, vulkan or hlsl");
+  command->add_flag("--extended-lights", options->extendedLights,
+                    "Write glints under area lights and environment regions (glint_extended_lights.h) alone, a second "
+                    "include after the kernel's bundle of the same --language");
   command->add_flag("--shadertoy", options->shadertoy,
                     "Write a Shadertoy shader (Common, Buffer A, Image) into the folder -o names");
   command->add_option("-o,--output", options->output, "The file (--language; default: standard output) or folder (--shadertoy)");

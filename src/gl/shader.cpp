@@ -141,6 +141,17 @@ ExpandedSource expandIncludes(const std::string& name, const std::map<std::strin
   return out;
 }
 
+ExpandedSource expandIncludesAfter(const std::string& first, const std::string& name,
+                                   const std::map<std::string, std::string>& sources) {
+  ExpansionState state;
+  ExpandedSource before;
+  expand(first, sources, state, before);
+  ExpandedSource out;
+  out.files = before.files;  // the source strings keep their numbers
+  expand(name, sources, state, out);
+  return out;
+}
+
 std::string locateInFiles(const std::string& log, const std::vector<std::string>& files) {
   // "S:N" followed by "(" or ":" (Mesa's "0:12(5): error", ANGLE's and glslang's "ERROR: 0:12:"), or
   // "S(N)" followed by " :" (NVIDIA's "0(12) : error"), at the start of a line or after a space.

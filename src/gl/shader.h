@@ -31,6 +31,12 @@ struct ExpandedSource {
 ExpandedSource expandIncludes(const std::string& name,
                               const std::map<std::string, std::string>& sources = embeddedFiles());
 
+// `name` expanded as it reads after `first` in the same program: the files `first` already wrote are
+// left out. For a second include that a host puts after the first (`glint shader-bundle
+// --extended-lights`).
+ExpandedSource expandIncludesAfter(const std::string& first, const std::string& name,
+                                   const std::map<std::string, std::string>& sources = embeddedFiles());
+
 // A compiler's info log with its locations "S:N" (Mesa, ANGLE, glslang) and "S(N)" (NVIDIA)
 // written as "file:n", the file and line of ExpandedSource's numbering (`files` its files).
 std::string locateInFiles(const std::string& log, const std::vector<std::string>& files);

@@ -2,9 +2,11 @@
 """A bundle of `glint shader-bundle --language LANGUAGE` compiles on its own: the bundle's text,
 then a host's few lines (the dictionary hook over a buffer of its own, and an entry point that
 calls the kernel's main functions), compiled by glslangValidator as tests/kernel/compile_shaders.py
-does for each language (ShaderBundle.* in tests/CMakeLists.txt).
+does for each language (ShaderBundle.* in tests/CMakeLists.txt). With `extended-lights`, the
+kernel's bundle, then `--extended-lights`'s after it, and a host that defines the hook's third
+function too and calls the region masses of one area light.
 
-Usage: compile_bundle.py GLINT_EXECUTABLE glsl|glsl-es|vulkan|hlsl
+Usage: compile_bundle.py GLINT_EXECUTABLE glsl|glsl-es|vulkan|hlsl [extended-lights]
 Exits 77 (ctest's skip) with one line when glslangValidator is not installed."""
 import os
 import shutil
@@ -54,6 +56,28 @@ vec4 glintDictionaryFilteredTexels(GlintDictionaryView d, int level, int distrib
 """
 HOOK = "vec2 glintDictionaryTexelPair(GlintDictionaryView d, int level, int distribution, int texel) " + HOOK_BODY
 
+# The extended lights' part: the cumulative hook over the same buffer (CUMULATIVE(i)), and one
+# rectangle light above the surface.
+CUMULATIVE_HOOK = """
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView d, int level, int distribution, int texel) {
+  return CUMULATIVE((level * d.numDistributions + distribution) * d.texelsPerDistribution + texel);
+}
+"""
+EXTENDED_CALL = """
+  GlintClippedLight light = glintClipLightToHorizon(normalize(vec3(-0.2, -0.2, 1.0)), normalize(vec3(0.2, -0.2, 1.0)),
+                                                    normalize(vec3(0.2, 0.2, 1.0)), normalize(vec3(-0.2, 0.2, 1.0)));
+  GlintRegionSet regions;
+  regions.region[0] = glintLightSlopeRegion(vec3(0.0, 0.0, 1.0), light);
+  GlintRegionMassSet masses = glintRegionMassSet(d, p, vec2(0.3, 0.7), vec2(0.001, 0.0), vec2(0.0, 0.001), regions);
+  f += masses.mass[0].w * glintClippedLightProjectedSolidAngle(light);
+"""
+CUMULATIVE_READS = {
+    "glsl": "#define CUMULATIVE(i) vec4(pairs[i], pairs[i])\n",
+    "vulkan": "#define CUMULATIVE(i) vec4(pairs[i], pairs[i])\n",
+    "glsl-es": "#define CUMULATIVE(i) texelFetch(uPairs, ivec2((i) % 2048, (i) / 2048), 0)\n",
+    "hlsl": "#define CUMULATIVE(i) float4(pairs[i], pairs[i])\n",
+}
+
 HOSTS = {
     "glsl": ("comp", "#version 450\n", """
 layout(std430, binding = 3) readonly buffer Pairs { vec2 pairs[]; };
@@ -94,27 +118,35 @@ void main() {""" + PARAMETERS + """  result[0] = f;
 
 
 def main(argv):
-    if len(argv) != 2 or argv[1] not in HOSTS:
-        print("usage: compile_bundle.py GLINT_EXECUTABLE glsl|glsl-es|vulkan|hlsl", file=sys.stderr)
+    extended = len(argv) == 3 and argv[2] == "extended-lights"
+    if len(argv) not in (2, 3) or argv[1] not in HOSTS or (len(argv) == 3 and not extended):
+        print("usage: compile_bundle.py GLINT_EXECUTABLE glsl|glsl-es|vulkan|hlsl [extended-lights]", file=sys.stderr)
         return 2
-    glint, language = argv
+    glint, language = argv[:2]
     glslang = shutil.which("glslangValidator")
     if glslang is None:
         print("glslangValidator not found (Debian's glslang-tools): skipped")
         return SKIP
     stage, version, host = HOSTS[language]
+    if extended:
+        host = host.replace("  result[0] = f;", EXTENDED_CALL + "  result[0] = f;").replace(
+            "  colour = vec4(f);", EXTENDED_CALL + "  colour = vec4(f);")
+        host = host.replace("void main() {", CUMULATIVE_READS[language] + CUMULATIVE_HOOK + "void main() {", 1)
     with tempfile.TemporaryDirectory() as temporary:
-        bundle = os.path.join(temporary, "glint.bundle")
-        written = subprocess.run([glint, "shader-bundle", "--language", language, "-o", bundle],
-                                 capture_output=True, text=True)
-        if written.returncode != 0:
-            print(written.stderr)
-            return 1
-        with open(bundle, encoding="utf-8") as f:
-            text = f.read()
-        if "#include" in text:
-            print("the bundle still has #include lines")
-            return 1
+        text = ""
+        for part in [[], ["--extended-lights"]] if extended else [[]]:
+            bundle = os.path.join(temporary, "glint.bundle")
+            written = subprocess.run([glint, "shader-bundle", "--language", language, *part, "-o", bundle],
+                                     capture_output=True, text=True)
+            if written.returncode != 0:
+                print(written.stderr)
+                return 1
+            with open(bundle, encoding="utf-8") as f:
+                part_text = f.read()
+            if "#include" in part_text:
+                print("the bundle still has #include lines")
+                return 1
+            text += ("#define GLINT_REGION_COUNT 1\n" if part else "") + part_text
         source = os.path.join(temporary, "host." + stage)
         with open(source, "w", encoding="utf-8") as f:
             f.write(version + text + host)
@@ -130,7 +162,8 @@ def main(argv):
         result = subprocess.run(command, capture_output=True, text=True)
     print(" ".join(command[:-2] if "-o" in command else command))
     print(result.stdout + result.stderr)
-    print(f"the {language} bundle: " + ("compiles on its own" if result.returncode == 0 else "does not compile"))
+    what = f"the {language} bundle" + (" with its extended lights" if extended else "")
+    print(f"{what}: " + ("compiles on its own" if result.returncode == 0 else "does not compile"))
     return 0 if result.returncode == 0 else 1
 
 
