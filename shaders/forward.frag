@@ -331,7 +331,7 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
 #endif
     // The light's reflectance where the smooth lobe's mass over it lies (glintRegionReflectanceAt),
     // the same for glint and Cook-Torrance programs.
-    vec3 wh = normalize(vec3(-meanSlope, 1.0f));
+    vec3 wh = glintSlopeHalfVector(meanSlope);
     specular += radiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
                 glintRegionReflectanceAt(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, meanSlope, centre[r]) * mass;
   }

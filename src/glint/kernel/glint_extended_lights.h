@@ -517,11 +517,17 @@ GLINT_FN float glintRegionReflectance(int masking, int ndf, vec2 alpha, float rh
   return glintMaskedMicrofacetReflectance(masking, ndf, alpha, rho, wo, wi, wh, 1.0f) * 4.0f * wi.z * dot(wo, wh) / wh.z;
 }
 
+// The unit normal of slope `slope` (s = -h.xy / h.z): the half vector about which a region's mass
+// lies, where a host takes its Fresnel.
+GLINT_FN vec3 glintSlopeHalfVector(vec2 slope) {
+  return normalize(vec3(-slope.x, -slope.y, 1.0f));
+}
+
 // The same per unit of mass for a region whose mass lies about the mean slope `slope`
 // (glintSmoothRegionMoments): wi is wo reflected about that slope's normal; a reflection below the
 // horizon takes `fallback` (the light's clipped centre, glintClippedLightCentre) instead.
 GLINT_FN float glintRegionReflectanceAt(int masking, int ndf, vec2 alpha, float rho, vec3 wo, vec2 slope, vec3 fallback) {
-  vec3 h = normalize(vec3(-slope.x, -slope.y, 1.0f));
+  vec3 h = glintSlopeHalfVector(slope);
   vec3 wi = 2.0f * dot(wo, h) * h - wo;
   return glintRegionReflectance(masking, ndf, alpha, rho, wo, wi.z > 0.0f ? wi : fallback);
 }

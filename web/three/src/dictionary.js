@@ -5,7 +5,7 @@
 // the kernel's linear interpolation, as glint's own renderers lay it out
 // (shaders/glint_dictionary_gl.glsl); the pairs run row after row through a texture
 // DICTIONARY_TEXTURE_WIDTH texels wide (WebGL2 has no buffer textures).
-import { DataTexture, HalfFloatType, NearestFilter, RGFormat } from 'three';
+import { DataTexture, DataUtils, FloatType, HalfFloatType, NearestFilter, RGBAFormat, RGFormat } from 'three';
 
 export const DICTIONARY_TEXTURE_WIDTH = 2048;  // the hook's GLSL divides by it with a shift (11 bits)
 
@@ -97,4 +97,43 @@ export function loadGlintDictionary(url) {
   })();
   dictionary.catch(() => {});
   return dictionary;
+}
+
+// The cumulative tables that glints under area lights integrate the marginals with
+// (docs/dictionary.md, "Cumulative tables"), built on first use, as glint's own renderers build them
+// (glint::Dictionary::buildCumulativeTables): per marginal and texel k, (C[k], M[k], p[k], p[k+1]),
+// the integrals of the linearly interpolated marginal and of the slope times it from slope 0 to
+// texel k's slope, summed in double from the binary16 texels and kept as 32-bit floats, then the
+// texel pair; an RGBA32F texture DICTIONARY_TEXTURE_WIDTH texels wide, laid out like the pairs.
+// Programs lit by a RectAreaLight read it (hook glintDictionaryCumulativeTexel, src/shader.js).
+export function glintCumulativeTexture(dictionary) {
+  if (dictionary.cumulativeTexture) return dictionary.cumulativeTexture;
+  const pairs = dictionary.texture.image.data;  // binary16 (p[k], p[k + 1]) per texel
+  const count = pairs.length / 2;
+  const texels = dictionary.texelsPerDistribution;
+  // The kernel's glintDictionaryDomain (4 sigma_d = 2 sqrt 2 alpha_d), in 32-bit float as it computes it.
+  const domain = Math.fround(Math.fround(2.82842712) * Math.fround(dictionary.alpha));
+  const spacing = domain / texels;
+  const table = new Float32Array(4 * count);
+  for (let row = 0; row + texels <= count; row += texels) {
+    let mass = 0;
+    let moment = 0;
+    for (let k = 0; k < texels; ++k) {
+      const i = row + k;
+      const a = DataUtils.fromHalfFloat(pairs[2 * i]);
+      const next = DataUtils.fromHalfFloat(pairs[2 * i + 1]);  // 0 past the marginal's last texel
+      table.set([mass, moment, a, next], 4 * i);
+      const rise = next - a;
+      mass += spacing * (a + 0.5 * rise);
+      moment += spacing * spacing * (k * (a + 0.5 * rise) + 0.5 * a + rise / 3);
+    }
+  }
+  const texture = new DataTexture(table, DICTIONARY_TEXTURE_WIDTH, count / DICTIONARY_TEXTURE_WIDTH, RGBAFormat, FloatType);
+  texture.minFilter = NearestFilter;
+  texture.magFilter = NearestFilter;
+  texture.generateMipmaps = false;
+  texture.flipY = false;
+  texture.needsUpdate = true;
+  dictionary.cumulativeTexture = texture;
+  return texture;
 }

@@ -1,8 +1,9 @@
-// MeshGlintMaterial: three.js's MeshPhysicalMaterial whose specular lobe, for point, spot and
-// directional lights, is glint's procedural glint layer (Chermain et al. 2020), the layer's
+// MeshGlintMaterial: three.js's MeshPhysicalMaterial whose specular lobe, for point, spot,
+// directional and rectangle area lights, is glint's procedural glint layer (Chermain et al. 2020), the layer's
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
 import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
+import { glintCumulativeTexture } from './dictionary.js';
 import { EXTENSION_FIELD } from './fields.js';
 import { LAYER_NAME_CHOICES, addGlintLayerToShader } from './shader.js';
 
@@ -131,6 +132,8 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
         },
       },
       glintDictionaryAlpha: { get value() { return material.glintDictionary ? material.glintDictionary.alpha : 0.5; } },
+      // Read only by programs lit by RectAreaLights, which build the tables on first use.
+      glintCumulativeTexels: { get value() { return material.glintDictionary ? glintCumulativeTexture(material.glintDictionary) : null; } },
       glintRoughnessMap: { get value() { return material.glint.roughnessTexture || WHITE; } },
       glintLogDensityMap: { get value() { return material.glint.logDensityTexture || WHITE; } },
       glintRelativeAreaMap: { get value() { return material.glint.relativeAreaTexture || WHITE; } },

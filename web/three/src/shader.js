@@ -8,6 +8,7 @@
 // three's lighting loop in place of its GGX lobe.
 import { ShaderChunk } from 'three';
 import glintKernelSource from '../generated/glint-kernel-es.js';
+import glintExtendedLightsSource from '../generated/glint-extended-lights-es.js';
 import { DICTIONARY_TEXTURE_WIDTH } from './dictionary.js';
 
 const TEXEL_ROW_SHIFT = Math.log2(DICTIONARY_TEXTURE_WIDTH);
@@ -189,6 +190,55 @@ vec3 glintDirectSpecular(vec3 l, vec3 v, vec3 n, vec3 f0, float f90) {
 }
 `;
 
+// Programs lit by RectAreaLights (three's NUM_RECT_AREA_LIGHTS): the kernel's second part
+// (glint_extended_lights.h, one light a walk of the footprint's cells), the hook's third function
+// over the cumulative tables (src/dictionary.js) and one light's specular lobe, which takes the place
+// of three's LTC lobe. docs/method.md section 8: the P-SDF's mass over the half vectors that send the
+// view into the light, times the reflectance at the smooth lobe's mean slope there.
+const AREA_LIGHT_HOST = /* glsl */ `
+uniform highp sampler2D glintCumulativeTexels;  // RGBA32F (C[k], M[k], p[k], p[k+1]) (src/dictionary.js)
+
+vec4 glintDictionaryCumulativeTexel(GlintDictionaryView dict, int level, int distribution, int texel) {
+  int index = (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel;
+  return texelFetch(glintCumulativeTexels, ivec2(index & ${DICTIONARY_TEXTURE_WIDTH - 1}, index >> ${TEXEL_ROW_SHIFT}), 0);
+}
+
+// One RectAreaLight's specular lobe per unit radiance (corners and position in view space, v and n
+// towards the viewer and the shading normal), as glint's rasteriser draws an area light
+// (shaders/forward.frag, extendedLight): with three's Schlick Fresnel at the half vector of the
+// lobe's mean slope. Dark behind the light, as three's LTC_Evaluate (one-sided, counter-clockwise).
+vec3 glintAreaLightSpecular(vec3 corners[4], vec3 position, vec3 v, vec3 n, vec3 f0, float f90) {
+  if (dot(cross(corners[1] - corners[0], corners[3] - corners[0]), position - corners[0]) < 0.0) {
+    return vec3(0.0);
+  }
+  vec3 wo = vec3(dot(v, glintT), dot(v, glintB), max(dot(v, n), 1e-4));
+  vec3 wi[4];
+  for (int k = 0; k < 4; ++k) {
+    vec3 d = normalize(corners[k] - position);
+    wi[k] = vec3(dot(d, glintT), dot(d, glintB), dot(d, n));
+  }
+  GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
+  GlintRegionSet regions;
+  regions.region[0] = glintLightSlopeRegion(wo, light);
+  GlintParameters params = glintParameters;
+#if GLINT_LAYER_SMOOTH
+  vec3 moments = glintSmoothRegionMoments(GLINT_LAYER_NDF, params.alpha, params.rho, regions.region[0]);
+  vec3 mass = vec3(moments.x);
+  vec2 meanSlope = moments.yz;
+#else
+  GlintRegionMassSet masses = glintRegionMassSet(glintDictionaryView(), params, glintUv, glintDuvdx, glintDuvdy, regions);
+  vec3 mass = masses.mass[0].rgb;
+  vec2 meanSlope = masses.targetMeanSlope[0];
+#endif
+  vec3 fresnel = F_Schlick(f0, f90, max(dot(wo, glintSlopeHalfVector(meanSlope)), 0.0));
+  return fresnel * mass * glintRegionReflectanceAt(GLINT_LAYER_MASKING, GLINT_LAYER_NDF, params.alpha, params.rho, wo, meanSlope,
+                                                   glintClippedLightCentre(light));
+}
+`;
+const THREE_AREA_SPECULAR = 'reflectedLight.directSpecular += lightColor * fresnel * LTC_Evaluate( normal, viewDir, position, mInv, rectCoords );';
+const GLINT_AREA_SPECULAR =
+  'reflectedLight.directSpecular += lightColor * glintAreaLightSpecular( rectCoords, position, viewDir, normal, material.specularColorBlended, material.specularF90 );';
+
 // three's direct lighting with the glint lobe in place of its GGX lobe. The layer brings its own
 // multiple-scattering lobe (the kernel's), so three's compensation factor is not applied to it.
 const THREE_SPECULAR = 'vec3 specularBRDF = BRDF_GGX( directLight.direction, geometryViewDir, geometryNormal, material );';
@@ -205,23 +255,28 @@ function replaceOnce(text, from, to, where) {
   return text.slice(0, at) + to + text.slice(at + from.length);
 }
 
-let glintLightsChunk = null;
-function lightsChunk() {
-  if (glintLightsChunk === null) {
+// three's physical lighting with glint's lobes; with `areaLights`, under RectAreaLights too.
+const glintLightsChunks = new Map();
+function lightsChunk(areaLights) {
+  if (!glintLightsChunks.has(areaLights)) {
     let chunk = ShaderChunk.lights_physical_pars_fragment;
     chunk = replaceOnce(chunk, THREE_SPECULAR, GLINT_SPECULAR, 'lights_physical_pars_fragment');
     chunk = replaceOnce(chunk, THREE_ACCUMULATION, GLINT_ACCUMULATION, 'lights_physical_pars_fragment');
-    glintLightsChunk = chunk;
+    if (areaLights) chunk = replaceOnce(chunk, THREE_AREA_SPECULAR, GLINT_AREA_SPECULAR, 'lights_physical_pars_fragment');
+    glintLightsChunks.set(areaLights, chunk);
   }
-  return glintLightsChunk;
+  return glintLightsChunks.get(areaLights);
 }
 
-// MeshPhysicalMaterial's program (the `shader` of onBeforeCompile) with the glint layer of one
-// variant; the host's uniforms are added by the material.
+// MeshPhysicalMaterial's program (the `shader` of onBeforeCompile, three's program parameters)
+// with the glint layer of one variant; the host's uniforms are added by the material. A program
+// lit by RectAreaLights (shader.numRectAreaLights) gets glints under them too.
 export function addGlintLayerToShader(shader, variant) {
   shader.vertexShader = replaceOnce(shader.vertexShader, 'void main() {', `${VERTEX_DECLARATIONS}\nvoid main() {`, 'meshphysical vertex shader');
   shader.vertexShader = replaceOnce(shader.vertexShader, '#include <begin_vertex>', `#include <begin_vertex>\n${VERTEX_MAIN}`, 'meshphysical vertex shader');
-  const fragmentHost = `${kernelDefines(variant)}\n${glintKernelSource}\n${FRAGMENT_HOST}\n${lightsChunk()}`;
+  const areaLights = shader.numRectAreaLights > 0;
+  const extended = areaLights ? `#define GLINT_REGION_COUNT 1\n${glintExtendedLightsSource}\n${AREA_LIGHT_HOST}\n` : '';
+  const fragmentHost = `${kernelDefines(variant)}\n${glintKernelSource}\n${FRAGMENT_HOST}\n${extended}${lightsChunk(areaLights)}`;
   let fragment = shader.fragmentShader;
   fragment = replaceOnce(fragment, '#include <lights_physical_pars_fragment>', fragmentHost, 'meshphysical fragment shader');
   fragment = replaceOnce(fragment, 'void main() {', 'void main() {\n  glintBeginFragment();', 'meshphysical fragment shader');

@@ -1,19 +1,23 @@
 // The test page's renderer (test/run.mjs drives it). window.renderView(options) loads a glTF file
 // and renders its default camera's view at size x size into an RGBA32F target, without tone mapping
 // or colour encoding, and returns the linear radiance, rows bottom up, as base64 of float32s.
-//   options: { url, size, mode: 'glints' | 'smooth' | 'core' }
+//   options: { url, size, mode: 'glints' | 'smooth' | 'core', rectLights }
 //   glints: with the plugin; smooth: with the plugin, each layer its smooth target; core: without
-//   the plugin (three's own material for the file).
+//   the plugin (three's own material for the file). rectLights: [X, Y, Z, W, H, L] each, a
+//   RectAreaLight as glint's --rect-light places it: W x H, centred at X, Y, Z, facing the centre of
+//   the file's bounds, radiance L (white).
 import * as THREE from 'three';
 import { FloatType, RGBAFormat, WebGLRenderTarget, WebGLRenderer } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { RectAreaLightUniformsLib } from 'three/addons/lights/RectAreaLightUniformsLib.js';
 import { GLTFMaterialsGlintExtension, MeshGlintMaterial, loadGlintDictionary } from '../src/index.js';
 import { glintStatistics } from './statistics.mjs';
 
 const renderer = new WebGLRenderer({ antialias: false });
+RectAreaLightUniformsLib.init();  // three's LTC tables, which its RectAreaLight's diffuse still reads
 const dictionary = loadGlintDictionary('../generated/dictionary.gdict');
 
-window.renderView = async ({ url, size, mode }) => {
+window.renderView = async ({ url, size, mode, rectLights = [] }) => {
   const loader = new GLTFLoader();
   if (mode !== 'core') {
     loader.register((parser) => new GLTFMaterialsGlintExtension(parser, { dictionary, smooth: mode === 'smooth' }));
@@ -28,6 +32,14 @@ window.renderView = async ({ url, size, mode }) => {
   gltf.scene.traverse((o) => {
     if (o.isLight) o.intensity /= 683;
   });
+  // glint's --rect-light: its width level (along x of three's lookAt frame), facing the bounds' centre.
+  const centre = new THREE.Box3().setFromObject(gltf.scene, true).getCenter(new THREE.Vector3());
+  for (const [x, y, z, width, height, radiance] of rectLights) {
+    const light = new THREE.RectAreaLight(0xffffff, radiance, width, height);
+    light.position.set(x, y, z);
+    light.lookAt(centre);
+    gltf.scene.add(light);
+  }
   camera.aspect = 1;
   camera.updateProjectionMatrix();
   const target = new WebGLRenderTarget(size, size, { type: FloatType, format: RGBAFormat, depthBuffer: true });

@@ -9,7 +9,9 @@
 //     under the file's own lights, the view of its default camera;
 //   - three.js in headless chromium, the same file and view through GLTFLoader: with the plugin,
 //     with the plugin drawing each layer's smooth target, and without the plugin;
-// and the glint statistics of each pair (test/statistics.mjs). Checked: three's glint fraction and
+// and the glint statistics of each pair (test/statistics.mjs). The car paint once more without its
+// lights under two rectangle lights: glint's `--rect-light` (an emissive rectangle facing the
+// scene's centre), three's RectAreaLight of the same place, size and radiance. Checked: three's glint fraction and
 // mean excess within 10% of glint's; without the plugin, with glTF's target, next to no glints
 // (under a tenth of glint's fraction). With the paper's target the core material (GGX, Smith) is
 // not the layer's smooth lobe, which differs from it at grazing angles: printed, not checked.
@@ -43,6 +45,9 @@ const FILES = [
   { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
   // a plane to the horizon: footprints stretched up to the anisotropy cap
   { name: 'GlintGrazingPlane', sample: 'GlintGrazingPlane.gltf', coreIsSmoothLobe: false },
+  // its punctual lights taken out, two rectangle lights (X, Y, Z, W, H, radiance: glint's --rect-light)
+  { name: 'carpaint-rect-lights', scene: 'carpaint', options: [], unlit: true, coreIsSmoothLobe: false,
+    rectLights: [[2, 3, 2, 1.5, 1, 20], [-2.5, 2, 2.5, 1, 1.2, 15]] },
 ];
 const fileUrl = (file) => (file.sample ? `/samples/${file.sample}` : `/work/${file.name}.glb`);
 const filePath = (file) => (file.sample ? path.join(SAMPLES, file.sample) : path.join(work, `${file.name}.glb`));
@@ -102,9 +107,32 @@ function runGlint(args) {
 
 function glintRender(file, brdf) {
   const output = path.join(work, `${file.name}-glint-${brdf}.exr`);
+  const rectLights = (file.rectLights || []).flatMap((light) => ['--rect-light', light.join(',')]);
   runGlint(['render', filePath(file), '--brdf', brdf, '--aa', 'none', '--shadows', 'off', '--msaa', '1',
-            '--env-intensity', '0', '--size', `${SIZE}x${SIZE}`, '-o', output]);
+            '--env-intensity', '0', ...rectLights, '--size', `${SIZE}x${SIZE}`, '-o', output]);
   return readExr(output);
+}
+
+// A .glb without KHR_lights_punctual: its JSON chunk rewritten, the binary chunk as it was.
+function withoutLights(file) {
+  const bytes = readFileSync(file);
+  const jsonLength = bytes.readUInt32LE(12);
+  const json = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  if (json.extensions) delete json.extensions.KHR_lights_punctual;
+  for (const node of json.nodes || []) {
+    if (node.extensions) delete node.extensions.KHR_lights_punctual;
+  }
+  json.extensionsUsed = (json.extensionsUsed || []).filter((name) => name !== 'KHR_lights_punctual');
+  let text = JSON.stringify(json);
+  text += ' '.repeat((4 - (text.length % 4)) % 4);  // chunks are 4-byte aligned
+  const chunk = Buffer.alloc(8);
+  chunk.writeUInt32LE(text.length, 0);
+  chunk.writeUInt32LE(0x4e4f534a, 4);  // 'JSON'
+  const rest = bytes.subarray(20 + jsonLength);
+  const header = Buffer.alloc(12);
+  bytes.copy(header, 0, 0, 8);
+  header.writeUInt32LE(12 + 8 + text.length + rest.length, 8);
+  writeFileSync(file, Buffer.concat([header, chunk, Buffer.from(text, 'utf8'), rest]));
 }
 
 function describe(s) {
@@ -123,6 +151,7 @@ const check = (ok, message) => {
 build(glint);
 for (const file of FILES) {
   if (file.scene) runGlint(['export', file.scene, ...file.options, '-o', filePath(file)]);
+  if (file.unlit) withoutLights(filePath(file));
 }
 const server = await serve(0, { '/work': work, '/samples': SAMPLES });
 const browser = await puppeteer.launch({
@@ -147,8 +176,8 @@ try {
     const reference = glintStatistics(glintFrames.glints, glintFrames.smooth);
     const three = {};
     for (const mode of ['glints', 'smooth', 'core']) {
-      const result = await page.evaluate((url, size, mode) => window.renderView({ url, size, mode }),
-                                         fileUrl(file), SIZE, mode);
+      const result = await page.evaluate((url, size, mode, rectLights) => window.renderView({ url, size, mode, rectLights }),
+                                         fileUrl(file), SIZE, mode, file.rectLights || []);
       const bytes = Buffer.from(result.pixels, 'base64');
       three[mode] = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
       if (keep) writeFileSync(path.join(work, `${scene}-three-${mode}.rgba32f`), bytes);  // rows bottom up
