@@ -22,7 +22,9 @@
 #include "gl_support.h"
 #include "glint/file_io.h"
 #include "kernel_cases.h"
+#include "scene/area_lights.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
 #include "test_support.h"
 
@@ -139,10 +141,9 @@ struct PageView {
   std::string quality = "exact";
 };
 
-// The desktop renderer's 8-bit image of a view (what `glint render` writes), RGB.
-ImageRgb8 desktopImage(const PageView& view, int size) {
+// The desktop renderer's 8-bit image of a view of `scene` (what `glint render` writes), RGB.
+ImageRgb8 desktopImage(const scene::Scene& scene, const PageView& view, int size) {
   useGlContext();
-  const scene::Scene scene = scene::makeBuiltinScene(view.scene);
   gl::Renderer renderer(scene, defaultDictionary());
   gl::FrameSettings frame;
   frame.width = size;
@@ -158,11 +159,34 @@ ImageRgb8 desktopImage(const PageView& view, int size) {
   return gl::DisplayPass().encode(radiance, scene.exposure);
 }
 
+ImageRgb8 desktopImage(const PageView& view, int size) {
+  return desktopImage(scene::makeBuiltinScene(view.scene), view, size);
+}
+
 struct ImageDifference {
   int largest = 0;         // in 8-bit code values, over the channels
   int pixelsDiffering = 0;
   double meanAbsolute = 0.0;  // over the channels
 };
+
+// The page's RGBA frame against the desktop renderer's image of the same view.
+ImageDifference differenceOf(const std::vector<char>& page, const ImageRgb8& desktop, int size) {
+  ImageDifference d;
+  long sum = 0;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const auto* p = reinterpret_cast<const unsigned char*>(&page[(static_cast<std::size_t>(y) * size + x) * 4]);
+      const auto& q = desktop.at(x, y);
+      const int diff[3] = {std::abs(p[0] - q.r), std::abs(p[1] - q.g), std::abs(p[2] - q.b)};
+      const int largest = std::max({diff[0], diff[1], diff[2]});
+      d.largest = std::max(d.largest, largest);
+      d.pixelsDiffering += largest > 0;
+      sum += diff[0] + diff[1] + diff[2];
+    }
+  }
+  d.meanAbsolute = static_cast<double>(sum) / (3.0 * size * size);
+  return d;
+}
 
 // The views in the page against the desktop renderer on llvmpipe; `report` gets the driver's.
 ImageDifference comparePageViews(const std::vector<PageView>& views, const std::string& backend, int size,
@@ -187,21 +211,7 @@ ImageDifference comparePageViews(const std::vector<PageView>& views, const std::
       ADD_FAILURE() << label << ": no frame from the page";
       continue;
     }
-    const ImageRgb8 desktop = desktopImage(view, size);
-    ImageDifference d;
-    long sum = 0;
-    for (int y = 0; y < size; ++y) {
-      for (int x = 0; x < size; ++x) {
-        const auto* p = reinterpret_cast<const unsigned char*>(&page[(static_cast<std::size_t>(y) * size + x) * 4]);
-        const auto& q = desktop.at(x, y);
-        const int diff[3] = {std::abs(p[0] - q.r), std::abs(p[1] - q.g), std::abs(p[2] - q.b)};
-        const int largest = std::max({diff[0], diff[1], diff[2]});
-        d.largest = std::max(d.largest, largest);
-        d.pixelsDiffering += largest > 0;
-        sum += diff[0] + diff[1] + diff[2];
-      }
-    }
-    d.meanAbsolute = static_cast<double>(sum) / (3.0 * size * size);
+    const ImageDifference d = differenceOf(page, desktopImage(view, size), size);
     std::printf("%s, %s, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255, %.4f/255 on average\n",
                 backend.c_str(), label.c_str(), size, size, d.pixelsDiffering, d.largest, d.meanAbsolute);
     total.largest = std::max(total.largest, d.largest);
@@ -274,6 +284,51 @@ TEST(PageWeb, ABrokenGltfDroppedOnThePageIsNamedAndThePreviousSceneKept) {
   const json& dropGood = report["steps"][2];
   EXPECT_EQ(dropGood["error"], "");
   EXPECT_EQ(dropGood["after"], "good.glb");
+}
+
+// A dropped glTF file's emissive rectangles light the page's scene as they light the desktop
+// renderer's (glints under area lights, glint_extended_lights.h, in WebGL2): the car paint without
+// its punctual lights under two rectangle lights, bit for bit on llvmpipe, and lit by them.
+TEST(PageWeb, TheAreaLightsOfADroppedGltfAreTheDesktopRenderersImage) {
+  SKIP_WITHOUT_BROWSER();
+  scene::Scene lit = scene::makeBuiltinScene("carpaint");
+  lit.lights.clear();
+  const glm::vec3 centre = 0.5f * (lit.boundsMin() + lit.boundsMax());
+  scene::addRectangleLight(lit, glm::vec3(2.0f, 3.0f, 2.0f), centre, 1.5f, 1.0f, glm::vec3(20.0f));
+  scene::addRectangleLight(lit, glm::vec3(-2.5f, 2.0f, 2.5f), centre, 1.0f, 1.2f, glm::vec3(15.0f));
+  const std::vector<std::byte> glb = scene::encodeGltf(lit, scene::GltfEncoding::Binary);
+  const scene::Scene loaded = scene::loadGltf(glb, "lit.glb", "");
+  ASSERT_EQ(scene::findAreaLights(loaded).lights.size(), 2u);
+  ASSERT_TRUE(loaded.lights.empty());
+  constexpr int kSize = 96;
+  BrowserJob job("area-lights");
+  job.writeFile("lit.glb", glb.data(), glb.size());
+  job.steps.push_back({{"kind", "drop"}, {"file", "lit.glb"}, {"output", "lit.rgba"}, {"width", kSize}, {"height", kSize}});
+  const json report = job.run("llvmpipe");
+  ASSERT_EQ(report["steps"].size(), 1u) << report.dump();
+  EXPECT_EQ(report["steps"][0]["error"], "");
+  EXPECT_EQ(report["steps"][0]["after"], "lit.glb");
+  const std::vector<char> page = job.readFile("lit.rgba");
+  ASSERT_EQ(page.size(), static_cast<std::size_t>(kSize) * kSize * 4) << "no frame from the page";
+  const ImageRgb8 desktop = desktopImage(loaded, PageView{"lit.glb"}, kSize);
+  const ImageDifference d = differenceOf(page, desktop, kSize);
+  std::printf("the car paint under two rectangle lights, %dx%d: %d pixels differ from the desktop renderer's, by at most %d/255\n",
+              kSize, kSize, d.pixelsDiffering, d.largest);
+  EXPECT_EQ(d.pixelsDiffering, 0);
+  // Lit by them: the same scene with the rectangles' emission off (no light then) differs.
+  scene::Scene unlit = loaded;
+  for (scene::Material& material : unlit.materials) material.emissive = glm::vec3(0.0f);
+  const ImageRgb8 dark = desktopImage(unlit, PageView{"unlit"}, kSize);
+  int litByThem = 0;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const auto& a = desktop.at(x, y);
+      const auto& b = dark.at(x, y);
+      litByThem += a.r + a.g + a.b > b.r + b.g + b.b + 30;
+    }
+  }
+  std::printf("pixels the rectangle lights brighten by more than 10/255: %d of %d\n", litByThem, kSize * kSize);
+  EXPECT_GT(litByThem, kSize * kSize / 10);
 }
 
 // The sliders of `glint view` on the page: each one, moved, changes the frame (the sphere: one glint

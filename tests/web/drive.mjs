@@ -11,7 +11,7 @@
 //     chosen in the page's quality list, exact by default; the step reports the page's
 //     anti-aliasing choice after it and the WebAssembly memory's size in bytes)
 //   {"kind": "time", "name": "sphere", "width": 256, "height": 256, "frames": 5}
-//   {"kind": "drop", "file": "broken.gltf"}
+//   {"kind": "drop", "file": "broken.gltf"}  (with "output", "width", "height": then a frame of it, read)
 //   {"kind": "sliders", "name": "sphere", "width": 64, "height": 64}
 //   {"kind": "screenshot", "output": "page.png", "scene": "sphere"}
 import { readFile, writeFile } from 'node:fs/promises';
@@ -117,7 +117,7 @@ try {
     } else if (step.kind === 'drop') {
       // A real drop event on the page, carrying the file as a user's drag would.
       const bytes = (await readFile(path.join(jobDir, step.file))).toString('base64');
-      const result = await page.evaluate(async (base64, name) => {
+      const result = await page.evaluate(async (base64, name, width, height) => {
         const before = window.glint.page.sceneName;
         const error = document.querySelector('#error');
         const errorBefore = error.textContent;
@@ -130,9 +130,20 @@ try {
           await new Promise((resolve) => setTimeout(resolve, 50));
         }
         await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
-        return { error: error.textContent, before, after: window.glint.page.sceneName };
-      }, bytes, path.basename(step.file));
-      report.steps.push({ kind: 'drop', file: step.file, ...result });
+        let pixels = '';
+        if (width > 0) {
+          const { page: p, drawFrame } = window.glint;
+          p.width = document.querySelector('#view').width = width;
+          p.height = document.querySelector('#view').height = height;
+          drawFrame();
+          const rgba = p.renderer.readFrame(width, height);
+          for (let i = 0; i < rgba.length; i += 0x8000) pixels += String.fromCharCode(...rgba.subarray(i, i + 0x8000));
+        }
+        return { error: error.textContent, before, after: window.glint.page.sceneName, pixels: btoa(pixels) };
+      }, bytes, path.basename(step.file), step.output ? step.width : 0, step.height || 0);
+      const { pixels, ...said } = result;
+      if (step.output) await writeFile(path.join(jobDir, step.output), Buffer.from(pixels, 'base64'));
+      report.steps.push({ kind: 'drop', file: step.file, ...said });
     } else if (step.kind === 'sliders') {
       // Each slider of the page's glint material and light moved as a user would (an input event),
       // one at a time from the scene as loaded: whether the frame changed.
