@@ -3,7 +3,7 @@
 // binary16 values the CPU evaluates (docs/dictionary.md, "Storage"); and its mip chain for
 // anti-aliasing, an RGBA16F buffer texture in the layout of the kernel's filteredTexels
 // (docs/dictionary.md, "Mip chain"); and the cumulative tables of glints under extended lights, an
-// RG32F buffer texture (docs/dictionary.md, "Cumulative tables").
+// RGBA32F buffer texture (docs/dictionary.md, "Cumulative tables").
 #pragma once
 
 #include <glad/gl.h>
