@@ -18,6 +18,7 @@ void registerAaErrorCommand(CLI::App& app);
 void registerLodConsistencyCommand(CLI::App& app);
 void registerAlbedoTablesCommand(CLI::App& app);
 void registerHdriCommand(CLI::App& app);
+void registerEnvRegionsCommand(CLI::App& app);
 void registerShaderBundleCommand(CLI::App& app);
 void registerExtensionSchemaCommand(CLI::App& app);
 

@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
   glint::app::registerBenchCommand(app);
   glint::app::registerExportCommand(app);
   glint::app::registerHdriCommand(app);
+  glint::app::registerEnvRegionsCommand(app);
   glint::app::registerAaErrorCommand(app);
   glint::app::registerLodConsistencyCommand(app);
   glint::app::registerAlbedoTablesCommand(app);

@@ -1,8 +1,9 @@
 // MeshGlintMaterial: three.js's MeshPhysicalMaterial whose specular lobe, for point, spot,
-// directional and rectangle area lights, is glint's procedural glint layer (Chermain et al. 2020), the layer's
+// directional and rectangle area lights and an environment's regions (src/environment.js), is
+// glint's procedural glint layer (Chermain et al. 2020), the layer's
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
-import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
+import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2, Vector3 } from 'three';
 import { glintCumulativeTexture } from './dictionary.js';
 import { EXTENSION_FIELD } from './fields.js';
 import { LAYER_NAME_CHOICES, addGlintLayerToShader } from './shader.js';
@@ -111,6 +112,8 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     this.glint = new GlintLayer();
     this.glintDictionary = null;
     this.glintSmooth = false;
+    this.glintRegions = [];  // the scene's environment regions as last drawn (applyGlintEnvironment)
+    this._glintResidual = null;  // the residual map this material took as its envMap
     this.defines.USE_UV = '';  // vUv, the glint uv's source, in every program
     const { glint, ...rest } = parameters;
     this.setValues(rest);
@@ -132,8 +135,10 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
         },
       },
       glintDictionaryAlpha: { get value() { return material.glintDictionary ? material.glintDictionary.alpha : 0.5; } },
-      // Read only by programs lit by RectAreaLights, which build the tables on first use.
+      // Read only by programs lit by RectAreaLights or regions, which build the tables on first use.
       glintCumulativeTexels: { get value() { return material.glintDictionary ? glintCumulativeTexture(material.glintDictionary) : null; } },
+      glintRegionCorner: { get value() { return material.glintRegions.flatMap((region) => region.corners); } },
+      glintRegionRadiance: { get value() { return material.glintRegions.map((region) => new Vector3(...region.radiance)); } },
       glintRoughnessMap: { get value() { return material.glint.roughnessTexture || WHITE; } },
       glintLogDensityMap: { get value() { return material.glint.logDensityTexture || WHITE; } },
       glintRelativeAreaMap: { get value() { return material.glint.relativeAreaTexture || WHITE; } },
@@ -156,6 +161,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
       multipleScattering: Boolean(this.glint.multipleScattering),
       lod: this.glint.lod,
       smooth: Boolean(this.glintSmooth),
+      environmentRegions: this.glintRegions.length,
     };
   }
 
@@ -177,13 +183,25 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
 
   customProgramCacheKey() {
     const v = this.glintVariant;
-    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.lod}:${v.smooth}`;
+    return `glint:${v.ndf}:${v.masking}:${v.colouredCells}:${v.multipleScattering}:${v.lod}:${v.smooth}:${v.environmentRegions}`;
   }
 
   // three chooses a material's program again only when its version changes (needsUpdate): a
   // compiled-in field changed since the last frame (ndf, masking, colouredCells,
-  // multipleScattering, lod, glintSmooth) asks for that here, before three picks the program.
-  onBeforeRender() {
+  // multipleScattering, lod, glintSmooth, the scene's environment regions) asks for that here,
+  // before three picks the program.
+  onBeforeRender(renderer, scene) {
+    const environment = scene && scene.userData ? scene.userData.glintEnvironment : undefined;
+    this.glintRegions = environment ? environment.regions : [];
+    // The residual map, which lacks the regions' light, as this material's envMap (one it was given
+    // stays): three compiles envMap programs apart, so a change asks for the program again.
+    const residual = environment ? environment.residual : null;
+    if ((this.envMap === null || this.envMap === this._glintResidual) && this.envMap !== residual) {
+      this.envMap = residual;
+      this.envMapIntensity = environment ? environment.intensity : 1;
+      this.needsUpdate = true;
+    }
+    this._glintResidual = residual;
     const key = this.customProgramCacheKey();
     if (this._glintProgramKey !== undefined && this._glintProgramKey !== key) this.needsUpdate = true;
     this._glintProgramKey = key;

@@ -190,18 +190,82 @@ vec3 glintDirectSpecular(vec3 l, vec3 v, vec3 n, vec3 f0, float f90) {
 }
 `;
 
-// Programs lit by RectAreaLights (three's NUM_RECT_AREA_LIGHTS): the kernel's second part
-// (glint_extended_lights.h, one light a walk of the footprint's cells), the hook's third function
-// over the cumulative tables (src/dictionary.js) and one light's specular lobe, which takes the place
-// of three's LTC lobe. docs/method.md section 8: the P-SDF's mass over the half vectors that send the
-// view into the light, times the reflectance at the smooth lobe's mean slope there.
-const AREA_LIGHT_HOST = /* glsl */ `
+// Programs lit by RectAreaLights (three's NUM_RECT_AREA_LIGHTS) or by an environment's regions
+// (src/environment.js, GLINT_ENV_REGION_COUNT): the kernel's second part (glint_extended_lights.h)
+// and the hook's third function over the cumulative tables (src/dictionary.js); then each light's
+// specular lobe (docs/method.md section 8): the P-SDF's mass over the half vectors that send the
+// view into the light, times the reflectance at the smooth lobe's mean slope there. A RectAreaLight
+// takes one walk of the footprint's cells, in place of three's LTC lobe; the regions share one.
+const EXTENDED_LIGHTS_HOST = /* glsl */ `
 uniform highp sampler2D glintCumulativeTexels;  // RGBA32F (C[k], M[k], p[k], p[k+1]) (src/dictionary.js)
 
 vec4 glintDictionaryCumulativeTexel(GlintDictionaryView dict, int level, int distribution, int texel) {
   int index = (level * dict.numDistributions + distribution) * dict.texelsPerDistribution + texel;
   return texelFetch(glintCumulativeTexels, ivec2(index & ${DICTIONARY_TEXTURE_WIDTH - 1}, index >> ${TEXEL_ROW_SHIFT}), 0);
 }
+
+// A light's corners (unit directions in view space) in the shading frame about n, clipped to its horizon.
+GlintClippedLight glintShadingFrameLight(vec3 d0, vec3 d1, vec3 d2, vec3 d3, vec3 n) {
+  mat3 frame = transpose(mat3(glintT, glintB, n));
+  return glintClipLightToHorizon(frame * d0, frame * d1, frame * d2, frame * d3);
+}
+
+// The specular lobe of the lights of a region set per unit radiance each (light r's clipped
+// centre, for a reflection below the horizon, in centre[r]), with three's Schlick Fresnel at the half
+// vector of the lobe's mean slope, as glint's rasteriser (shaders/forward.frag, extendedLight).
+void glintRegionSpecular(GlintRegionSet regions, vec3 centre[GLINT_REGION_COUNT], vec3 wo, vec3 f0, float f90,
+                         out vec3 specular[GLINT_REGION_COUNT]) {
+  GlintParameters params = glintParameters;
+#if !GLINT_LAYER_SMOOTH
+  GlintRegionMassSet masses = glintRegionMassSet(glintDictionaryView(), params, glintUv, glintDuvdx, glintDuvdy, regions);
+#endif
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+#if GLINT_LAYER_SMOOTH
+    vec3 moments = glintSmoothRegionMoments(GLINT_LAYER_NDF, params.alpha, params.rho, regions.region[r]);
+    vec3 mass = vec3(moments.x);
+    vec2 meanSlope = moments.yz;
+#else
+    vec3 mass = masses.mass[r].rgb;
+    vec2 meanSlope = masses.targetMeanSlope[r];
+#endif
+    vec3 fresnel = F_Schlick(f0, f90, max(dot(wo, glintSlopeHalfVector(meanSlope)), 0.0));
+    specular[r] = fresnel * mass * glintRegionReflectanceAt(GLINT_LAYER_MASKING, GLINT_LAYER_NDF, params.alpha, params.rho, wo,
+                                                            meanSlope, centre[r]);
+  }
+}
+
+vec3 glintViewVector(vec3 v, vec3 n) {
+  return vec3(dot(v, glintT), dot(v, glintB), max(dot(v, n), 1e-4));
+}
+
+#if GLINT_ENV_REGION_COUNT > 0
+uniform vec3 glintRegionCorner[4 * GLINT_ENV_REGION_COUNT];  // each region's corners, unit world directions in order
+uniform vec3 glintRegionRadiance[GLINT_ENV_REGION_COUNT];
+
+// The environment's regions: both lobes, the diffuse by each region's projected solid angle.
+void glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseColour, inout ReflectedLight reflectedLight) {
+  vec3 wo = glintViewVector(v, n);
+  GlintRegionSet regions;
+  vec3 centre[GLINT_REGION_COUNT];
+  vec3 diffuse = vec3(0.0);
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    vec3 d[4];
+    for (int k = 0; k < 4; ++k) {
+      d[k] = normalize((viewMatrix * vec4(glintRegionCorner[4 * r + k], 0.0)).xyz);
+    }
+    GlintClippedLight light = glintShadingFrameLight(d[0], d[1], d[2], d[3], n);
+    regions.region[r] = glintLightSlopeRegion(wo, light);
+    centre[r] = glintClippedLightCentre(light);
+    diffuse += glintRegionRadiance[r] * glintClippedLightProjectedSolidAngle(light);
+  }
+  vec3 specular[GLINT_REGION_COUNT];
+  glintRegionSpecular(regions, centre, wo, f0, f90, specular);
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    reflectedLight.directSpecular += glintRegionRadiance[r] * specular[r];
+  }
+  reflectedLight.directDiffuse += diffuse * BRDF_Lambert(diffuseColour);
+}
+#endif
 
 // One RectAreaLight's specular lobe per unit radiance (corners and position in view space, v and n
 // towards the viewer and the shading normal), as glint's rasteriser draws an area light
@@ -211,28 +275,22 @@ vec3 glintAreaLightSpecular(vec3 corners[4], vec3 position, vec3 v, vec3 n, vec3
   if (dot(cross(corners[1] - corners[0], corners[3] - corners[0]), position - corners[0]) < 0.0) {
     return vec3(0.0);
   }
-  vec3 wo = vec3(dot(v, glintT), dot(v, glintB), max(dot(v, n), 1e-4));
-  vec3 wi[4];
-  for (int k = 0; k < 4; ++k) {
-    vec3 d = normalize(corners[k] - position);
-    wi[k] = vec3(dot(d, glintT), dot(d, glintB), dot(d, n));
-  }
-  GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
+  vec3 wo = glintViewVector(v, n);
+  GlintClippedLight light = glintShadingFrameLight(normalize(corners[0] - position), normalize(corners[1] - position),
+                                                   normalize(corners[2] - position), normalize(corners[3] - position), n);
   GlintRegionSet regions;
+  vec3 centre[GLINT_REGION_COUNT];
   regions.region[0] = glintLightSlopeRegion(wo, light);
-  GlintParameters params = glintParameters;
-#if GLINT_LAYER_SMOOTH
-  vec3 moments = glintSmoothRegionMoments(GLINT_LAYER_NDF, params.alpha, params.rho, regions.region[0]);
-  vec3 mass = vec3(moments.x);
-  vec2 meanSlope = moments.yz;
-#else
-  GlintRegionMassSet masses = glintRegionMassSet(glintDictionaryView(), params, glintUv, glintDuvdx, glintDuvdy, regions);
-  vec3 mass = masses.mass[0].rgb;
-  vec2 meanSlope = masses.targetMeanSlope[0];
-#endif
-  vec3 fresnel = F_Schlick(f0, f90, max(dot(wo, glintSlopeHalfVector(meanSlope)), 0.0));
-  return fresnel * mass * glintRegionReflectanceAt(GLINT_LAYER_MASKING, GLINT_LAYER_NDF, params.alpha, params.rho, wo, meanSlope,
-                                                   glintClippedLightCentre(light));
+  centre[0] = glintClippedLightCentre(light);
+  for (int r = 1; r < GLINT_REGION_COUNT; ++r) {
+    for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
+      regions.region[r].vertex[k] = vec2(1.0e6);  // no region: its target mass is 0, none of its cells is walked
+    }
+    centre[r] = vec3(0.0, 0.0, 1.0);
+  }
+  vec3 specular[GLINT_REGION_COUNT];
+  glintRegionSpecular(regions, centre, wo, f0, f90, specular);
+  return specular[0];
 }
 `;
 const THREE_AREA_SPECULAR = 'reflectedLight.directSpecular += lightColor * fresnel * LTC_Evaluate( normal, viewDir, position, mInv, rectCoords );';
@@ -270,16 +328,26 @@ function lightsChunk(areaLights) {
 
 // MeshPhysicalMaterial's program (the `shader` of onBeforeCompile, three's program parameters)
 // with the glint layer of one variant; the host's uniforms are added by the material. A program
-// lit by RectAreaLights (shader.numRectAreaLights) gets glints under them too.
+// lit by RectAreaLights (shader.numRectAreaLights) gets glints under them too, and one with the
+// regions of an environment (variant.environmentRegions, src/environment.js) under those.
 export function addGlintLayerToShader(shader, variant) {
   shader.vertexShader = replaceOnce(shader.vertexShader, 'void main() {', `${VERTEX_DECLARATIONS}\nvoid main() {`, 'meshphysical vertex shader');
   shader.vertexShader = replaceOnce(shader.vertexShader, '#include <begin_vertex>', `#include <begin_vertex>\n${VERTEX_MAIN}`, 'meshphysical vertex shader');
   const areaLights = shader.numRectAreaLights > 0;
-  const extended = areaLights ? `#define GLINT_REGION_COUNT 1\n${glintExtendedLightsSource}\n${AREA_LIGHT_HOST}\n` : '';
+  const regions = variant.environmentRegions;
+  const extended = areaLights || regions > 0
+    ? `#define GLINT_ENV_REGION_COUNT ${regions}\n#define GLINT_REGION_COUNT ${Math.max(regions, 1)}\n` +
+      `${glintExtendedLightsSource}\n${EXTENDED_LIGHTS_HOST}\n`
+    : '';
   const fragmentHost = `${kernelDefines(variant)}\n${glintKernelSource}\n${FRAGMENT_HOST}\n${extended}${lightsChunk(areaLights)}`;
   let fragment = shader.fragmentShader;
   fragment = replaceOnce(fragment, '#include <lights_physical_pars_fragment>', fragmentHost, 'meshphysical fragment shader');
   fragment = replaceOnce(fragment, 'void main() {', 'void main() {\n  glintBeginFragment();', 'meshphysical fragment shader');
   fragment = replaceOnce(fragment, '#include <normal_fragment_maps>', '#include <normal_fragment_maps>\n  glintShadingFrame(normal);', 'meshphysical fragment shader');
+  if (regions > 0) {
+    fragment = replaceOnce(fragment, '#include <lights_fragment_end>',
+                           'glintEnvironmentRegions(geometryNormal, geometryViewDir, material.specularColorBlended, material.specularF90, ' +
+                           'material.diffuseContribution, reflectedLight);\n#include <lights_fragment_end>', 'meshphysical fragment shader');
+  }
   shader.fragmentShader = fragment;
 }

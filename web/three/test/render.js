@@ -5,19 +5,22 @@
 //   glints: with the plugin; smooth: with the plugin, each layer its smooth target; core: without
 //   the plugin (three's own material for the file). rectLights: [X, Y, Z, W, H, L] each, a
 //   RectAreaLight as glint's --rect-light places it: W x H, centred at X, Y, Z, facing the centre of
-//   the file's bounds, radiance L (white).
+//   the file's bounds, radiance L (white). environment: { url, intensity, map }, `glint env-regions`'s
+//   JSON, which lights the file (applyGlintEnvironment) at that intensity, and the whole map's URL
+//   (.hdr), the scene's environment.
 import * as THREE from 'three';
 import { FloatType, RGBAFormat, WebGLRenderTarget, WebGLRenderer } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { RectAreaLightUniformsLib } from 'three/addons/lights/RectAreaLightUniformsLib.js';
-import { GLTFMaterialsGlintExtension, MeshGlintMaterial, loadGlintDictionary } from '../src/index.js';
+import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+import { GLTFMaterialsGlintExtension, MeshGlintMaterial, applyGlintEnvironment, loadGlintDictionary, loadGlintEnvironment } from '../src/index.js';
 import { glintStatistics } from './statistics.mjs';
 
 const renderer = new WebGLRenderer({ antialias: false });
 RectAreaLightUniformsLib.init();  // three's LTC tables, which its RectAreaLight's diffuse still reads
 const dictionary = loadGlintDictionary('../generated/dictionary.gdict');
 
-window.renderView = async ({ url, size, mode, rectLights = [] }) => {
+window.renderView = async ({ url, size, mode, rectLights = [], environment = null }) => {
   const loader = new GLTFLoader();
   if (mode !== 'core') {
     loader.register((parser) => new GLTFMaterialsGlintExtension(parser, { dictionary, smooth: mode === 'smooth' }));
@@ -40,6 +43,13 @@ window.renderView = async ({ url, size, mode, rectLights = [] }) => {
     light.lookAt(centre);
     gltf.scene.add(light);
   }
+  const scene = new THREE.Scene();
+  scene.add(gltf.scene);
+  if (environment) {
+    const map = environment.map ? await new HDRLoader().loadAsync(environment.map) : null;
+    if (map) map.mapping = THREE.EquirectangularReflectionMapping;
+    applyGlintEnvironment(scene, await loadGlintEnvironment(environment.url), { intensity: environment.intensity, map });
+  }
   camera.aspect = 1;
   camera.updateProjectionMatrix();
   const target = new WebGLRenderTarget(size, size, { type: FloatType, format: RGBAFormat, depthBuffer: true });
@@ -49,7 +59,7 @@ window.renderView = async ({ url, size, mode, rectLights = [] }) => {
   renderer.setClearColor(0x000000, 0);
   renderer.clear();
   const start = performance.now();
-  renderer.render(gltf.scene, camera);
+  renderer.render(scene, camera);
   const pixels = new Float32Array(size * size * 4);
   renderer.readRenderTargetPixels(target, 0, 0, size, size, pixels);
   const ms = performance.now() - start;

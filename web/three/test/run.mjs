@@ -45,6 +45,11 @@ const FILES = [
   { name: 'GlintTexturedQuad', sample: 'GlintTexturedQuad.gltf', coreIsSmoothLobe: false },
   // a plane to the horizon: footprints stretched up to the anisotropy cap
   { name: 'GlintGrazingPlane', sample: 'GlintGrazingPlane.gltf', coreIsSmoothLobe: false },
+  // its punctual lights taken out, under the studio map (glint hdri --preset studio) at 4 times its
+  // radiance: its softboxes as 8 regions (glint env-regions; glint turns the map a quarter turn, -90
+  // degrees, into three's equirectangular convention); glint's background, the map, left out
+  // (three draws none)
+  { name: 'carpaint-studio', scene: 'carpaint', options: [], unlit: true, coreIsSmoothLobe: false, studio: true },
   // its punctual lights taken out, two rectangle lights (X, Y, Z, W, H, radiance: glint's --rect-light)
   { name: 'carpaint-rect-lights', scene: 'carpaint', options: [], unlit: true, coreIsSmoothLobe: false,
     rectLights: [[2, 3, 2, 1.5, 1, 20], [-2.5, 2, 2.5, 1, 1.2, 15]] },
@@ -52,6 +57,7 @@ const FILES = [
 const fileUrl = (file) => (file.sample ? `/samples/${file.sample}` : `/work/${file.name}.glb`);
 const filePath = (file) => (file.sample ? path.join(SAMPLES, file.sample) : path.join(work, `${file.name}.glb`));
 const TOLERANCE = 0.10;
+const STUDIO_INTENSITY = 4;
 
 function option(name, fallback) {
   const at = process.argv.indexOf(name);
@@ -71,7 +77,7 @@ if (missing) {
 
 const { build, findGlint } = await import('../tools/build.mjs');
 const { serve } = await import('../tools/serve.mjs');
-const { glintMask, glintStatistics, sharedGlintPixels } = await import('./statistics.mjs');
+const { glintMask, glintStatistics, luminance, sharedGlintPixels } = await import('./statistics.mjs');
 const { FloatType } = await import('three');
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const puppeteer = (await import('puppeteer-core')).default;
@@ -108,8 +114,12 @@ function runGlint(args) {
 function glintRender(file, brdf) {
   const output = path.join(work, `${file.name}-glint-${brdf}.exr`);
   const rectLights = (file.rectLights || []).flatMap((light) => ['--rect-light', light.join(',')]);
+  const lighting = file.studio
+    ? ['--env', path.join(work, 'studio.hdr'), '--env-intensity', String(STUDIO_INTENSITY), '--env-lights', '0', '--env-regions', '8',
+       '--env-rotation', '-90']
+    : ['--env-intensity', '0'];
   runGlint(['render', filePath(file), '--brdf', brdf, '--aa', 'none', '--shadows', 'off', '--msaa', '1',
-            '--env-intensity', '0', ...rectLights, '--size', `${SIZE}x${SIZE}`, '-o', output]);
+            ...lighting, ...rectLights, '--size', `${SIZE}x${SIZE}`, '-o', output]);
   return readExr(output);
 }
 
@@ -149,6 +159,8 @@ const check = (ok, message) => {
 };
 
 build(glint);
+runGlint(['hdri', '--preset', 'studio', '-o', path.join(work, 'studio.hdr')]);
+runGlint(['env-regions', path.join(work, 'studio.hdr'), '--lights', '0', '--regions', '8', '-o', path.join(work, 'studio-env.json')]);
 for (const file of FILES) {
   if (file.scene) runGlint(['export', file.scene, ...file.options, '-o', filePath(file)]);
   if (file.unlit) withoutLights(filePath(file));
@@ -173,17 +185,41 @@ try {
   for (const file of FILES) {
     const scene = file.name;
     const glintFrames = { glints: glintRender(file, 'glint'), smooth: glintRender(file, 'cook-torrance') };
-    const reference = glintStatistics(glintFrames.glints, glintFrames.smooth);
     const three = {};
     for (const mode of ['glints', 'smooth', 'core']) {
-      const result = await page.evaluate((url, size, mode, rectLights) => window.renderView({ url, size, mode, rectLights }),
-                                         fileUrl(file), SIZE, mode, file.rectLights || []);
+      const result = await page.evaluate(
+        (url, size, mode, rectLights, environment) => window.renderView({ url, size, mode, rectLights, environment }),
+        fileUrl(file), SIZE, mode, file.rectLights || [], file.studio ? { url: '/work/studio-env.json', intensity: STUDIO_INTENSITY, map: '/work/studio.hdr' } : null);
       const bytes = Buffer.from(result.pixels, 'base64');
       three[mode] = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
       if (keep) writeFileSync(path.join(work, `${scene}-three-${mode}.rgba32f`), bytes);  // rows bottom up
       console.log(`three.js, ${scene}, ${mode}: ${result.ms.toFixed(0)} ms, materials ${result.materials.join(', ')}`);
     }
+    if (file.studio) {
+      // glint draws the map behind the car; three, nothing: only the car's pixels are compared.
+      for (const frame of Object.values(glintFrames)) {
+        for (let i = 0; i < frame.length / 4; ++i) {
+          if (!(luminance(three.smooth, i) > 0)) frame.fill(0, 4 * i, 4 * i + 4);
+        }
+      }
+    }
+    const reference = glintStatistics(glintFrames.glints, glintFrames.smooth);
     const withPlugin = glintStatistics(three.glints, three.smooth);
+    if (file.studio) {
+      // Printed, not checked: the smooth frames' mean over the object pixels (the car and its ground,
+      // whose MeshStandardMaterial three lights by its own prefiltering of the whole map), three's over
+      // glint's.
+      const mean = (frame) => {
+        let sum = 0;
+        let count = 0;
+        for (let i = 0; i < frame.length / 4; ++i) {
+          if (luminance(three.smooth, i) > 0) { sum += luminance(frame, i); ++count; }
+        }
+        return sum / Math.max(count, 1);
+      };
+      const smoothRatio = mean(three.smooth) / mean(glintFrames.smooth);
+      console.log(`${scene}: three's smooth frame over glint's, mean over the object pixels: ${smoothRatio.toFixed(3)}`);
+    }
     masks[scene] = glintMask(three.glints, three.smooth);
     const withoutPlugin = glintStatistics(three.core, three.smooth);
     results[scene] = { glint: reference, three: withPlugin, threeWithoutPlugin: withoutPlugin };
