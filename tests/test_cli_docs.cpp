@@ -17,7 +17,7 @@
 namespace glint::test {
 namespace {
 
-const std::vector<std::string> kCommands = {"dict", "eval", "diff", "render", "export", "view", "trace", "bench", "aa-error", "lod-consistency", "hdri", "shader-bundle", "albedo-tables", "extension-schema"};
+const std::vector<std::string> kCommands = {"dict", "eval", "diff", "render", "export", "view", "trace", "bench", "aa-error", "lod-consistency", "hdri", "env-regions", "shader-bundle", "albedo-tables", "extension-schema"};
 
 // The long options of a CLI11 help text: the first column of its option lines, --help left out.
 std::set<std::string> helpOptions(const std::string& help) {

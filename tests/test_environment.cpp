@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "gl/renderer.h"
 #include "gl_support.h"
@@ -636,6 +637,52 @@ TEST(EnvironmentCli, AnEnvironmentReplacesTheDefaultLightsOfAFileWithoutLights) 
       EXPECT_EQ(kept.err.find("replaces the default lights"), std::string::npos) << kept.err;
       EXPECT_GT(centreLuminance(folder / "kept.exr"), 1.3);
     }
+  }
+}
+
+// `glint env-regions` writes the rasteriser's split of a map for another renderer: the same regions
+// (corners in the map's (u, v), radiance) and the residual, bit for bit; bad values give one line
+// and no file.
+TEST(EnvironmentCli, EnvRegionsWritesTheRasterisersSplit) {
+  const std::filesystem::path folder = temporaryFolder("env-regions-cli");
+  ASSERT_EQ(runGlint(folder, "hdri --preset studio --size 256x128 -o studio.hdr").exitCode, 0);
+  const RunResult written = runGlint(folder, "env-regions studio.hdr --lights 0 --regions 8 -o env.json");
+  ASSERT_EQ(written.exitCode, 0) << written.err;
+  const scene::Environment map = scene::loadEnvironmentMap(folder / "studio.hdr");
+  const scene::EnvironmentRegions split =
+      scene::environmentGlintRegions(scene::extractEnvironmentLights(map, 0).residual, 8);
+  ASSERT_GE(split.regions.size(), 4u);
+  const nlohmann::json json = nlohmann::json::parse(slurp(folder / "env.json"));
+  EXPECT_EQ(json["residual"], "env.exr");
+  EXPECT_TRUE(json["lights"].empty());
+  ASSERT_EQ(json["regions"].size(), split.regions.size());
+  for (std::size_t r = 0; r < split.regions.size(); ++r) {
+    const nlohmann::json& region = json["regions"][r];
+    EXPECT_NEAR(region["radiance"][0].get<double>(), split.regions[r].radiance.x, 1e-6);
+    for (int k = 0; k < 4; ++k) {
+      const glm::vec2 uv(region["corners"][k][0].get<float>(), region["corners"][k][1].get<float>());
+      const glm::vec3 corner = scene::directionFromEquirect(uv);
+      EXPECT_GT(glm::dot(corner, split.regions[r].corners[static_cast<std::size_t>(k)]), 1.0f - 1e-5f) << "region " << r;
+    }
+  }
+  const ImageRgbF residual = readImage(folder / "env.exr");
+  ASSERT_EQ(residual.pixels.size(), split.residual.pixels.size());
+  EXPECT_TRUE(residual.pixels == split.residual.pixels);
+  struct Case {
+    std::string arguments;
+    std::string problem;
+  };
+  const Case cases[] = {
+      {"studio.hdr --regions 17 -o bad.json", "--regions must be in [0, 16], got 17"},
+      {"studio.hdr --lights -1 -o bad.json", "--lights must be in [0, 8], got -1"},
+      {"studio.hdr -o bad.txt", "bad.txt: the output must end in .json"},
+      {"missing.hdr -o bad.json", "missing.hdr"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    expectOneLineError(runGlint(folder, "env-regions " + c.arguments), c.problem);
+    EXPECT_FALSE(std::filesystem::exists(folder / "bad.json"));
+    EXPECT_FALSE(std::filesystem::exists(folder / "bad.exr"));
   }
 }
 

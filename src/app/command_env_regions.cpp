@@ -44,10 +44,11 @@ std::vector<std::byte> bytesOf(const std::string& text) {
 
 void runEnvRegions(const EnvRegionsOptions& options) {
   if (!(options.lights >= 0 && options.lights <= gl::kMaxLights)) {
-    throw Error("--lights must be 0 to " + std::to_string(gl::kMaxLights) + ", got " + std::to_string(options.lights));
+    throw Error("--lights must be in [0, " + std::to_string(gl::kMaxLights) + "], got " + std::to_string(options.lights));
   }
   if (!(options.regions >= 0 && options.regions <= gl::kMaxEnvironmentRegions)) {
-    throw Error("--regions must be 0 to " + std::to_string(gl::kMaxEnvironmentRegions) + ", got " + std::to_string(options.regions));
+    throw Error("--regions must be in [0, " + std::to_string(gl::kMaxEnvironmentRegions) + "], got " +
+                std::to_string(options.regions));
   }
   if (lowercaseExtension(options.output) != ".json") throw Error(options.output + ": the output must end in .json");
   std::filesystem::path residualPath = options.output;
