@@ -212,7 +212,7 @@ void gatherLights(GlintSurface surface, out vec3 direction[GLINT_SLOPE_COUNT], o
     direction[i] = vec3(dot(l, surface.t), dot(l, surface.b), dot(l, surface.n));
     falloff[i] = glintSpotAttenuation(uSpotAxis[i], l, uSpotCone[i]) * glintRangeWindow(distance2[i], uLightInverseRange[i]);
 #if SHADOWS
-    falloff[i] *= shadowVisibility(i, vPosition, normalize(vNormal), l, sqrt(distance2[i]));
+    falloff[i] *= shadowVisibility(i, uLightPosition[i], vPosition, normalize(vNormal), l, sqrt(distance2[i]));
 #endif
   }
 }
@@ -275,7 +275,7 @@ uniform int uAreaLightTwoSided[AREA_LIGHT_COUNT];
 // diffuse by its cosine-weighted solid angle, and its specular: its radiance times Fresnel and
 // glintRegionReflectanceAt, times the mass of the lobe over the half vectors it sends the view
 // into: the glint layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's
-// (glintSmoothRegionMoments) in the others. Area lights cast no shadow.
+// (glintSmoothRegionMoments) in the others. An area light's shadow is its centre's (SHADOWS).
 vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   GlintRegionSet regions;
   vec3 centre[EXTENDED_LIGHT_COUNT];
@@ -305,6 +305,14 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
       vec3 front = cross(uAreaLightCorner[4 * a + 1] - uAreaLightCorner[4 * a], uAreaLightCorner[4 * a + 3] - uAreaLightCorner[4 * a]);
       bool lit = uAreaLightTwoSided[a] != 0 || dot(vPosition - uAreaLightCorner[4 * a], front) > 0.0f;
       radiance[r] = lit ? uAreaLightRadiance[a] : vec3(0.0f);
+#if SHADOWS
+      // The shadow of its centre (a cube map from there, caster LIGHT_COUNT + a): hard, where the
+      // tracer's penumbra spans the light's extent.
+      vec3 centre = 0.25f * (uAreaLightCorner[4 * a] + uAreaLightCorner[4 * a + 1] + uAreaLightCorner[4 * a + 2] + uAreaLightCorner[4 * a + 3]);
+      vec3 toCentre = centre - vPosition;
+      float distance = length(toCentre);
+      radiance[r] *= shadowVisibility(LIGHT_COUNT + a, vec4(centre, 1.0f), vPosition, normalize(vNormal), toCentre / max(distance, 1e-20f), distance);
+#endif
     }
 #endif
     for (int k = 0; k < 4; ++k) {

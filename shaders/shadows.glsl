@@ -2,11 +2,12 @@
 // as the path tracer's shadow ray finds it, from the maps src/gl/shadow_maps.cpp draws before
 // the frame (docs/renderer.md, "Shadows"). A spot light has one layer of a 2D array, a directional
 // light uShadowCascades layers (its cascades, nearest first), point lights (and spots too wide for
-// one map) one cube of a cube-map array; bit i of SHADOW_CUBES says which light i has. Light i's
-// maps are entries i * SHADOW_CASCADES + c of the arrays below. Every map holds depth as a linear
-// function of distance, so that the bias below is in world units for all of them.
+// one map) one cube of a cube-map array; bit i of SHADOW_CUBES says which caster i has. The casters
+// are the LIGHT_COUNT lights, then the AREA_LIGHT_COUNT area lights, each a cube map from its centre.
+// Caster i's maps are entries i * SHADOW_CASCADES + c of the arrays below. Every map holds depth as
+// a linear function of distance, so that the bias below is in world units for all of them.
 #if SHADOWS
-#define SHADOW_MAP_COUNT (GLINT_SLOPE_COUNT * SHADOW_CASCADES)
+#define SHADOW_MAP_COUNT ((GLINT_SLOPE_COUNT + AREA_LIGHT_COUNT) * SHADOW_CASCADES)
 layout(binding = 13) uniform sampler2DArrayShadow uShadowMaps;
 layout(binding = 14) uniform samplerCubeArrayShadow uShadowCubes;
 uniform int uShadowCascades;                        // a directional light's maps
@@ -41,9 +42,10 @@ const float kShadowMaxSlope = 8.0f;
 // Percentage-closer filtering: four bilinear depth comparisons (each a 2 x 2 texel test weighed
 // by the lookup's position) half a texel apart across the light's direction, a smooth step about
 // two texels wide where the tracer's shadow has a hard edge.
-float shadowVisibility(int i, vec3 position, vec3 normal, vec3 towardsLight, float lightDistance) {
+// Caster i at `light` (w = 1: a position, w = 0: a direction).
+float shadowVisibility(int i, vec4 light, vec3 position, vec3 normal, vec3 towardsLight, float lightDistance) {
   bool cube = ((SHADOW_CUBES >> i) & 1) != 0;
-  bool positional = uLightPosition[i].w > 0.0f;
+  bool positional = light.w > 0.0f;
   int map = positional ? i * SHADOW_CASCADES : shadowCascade(i * SHADOW_CASCADES, position);
   float texel = uShadowTexel[map] * lightDistance;
   float cosine = dot(normal, towardsLight);
@@ -59,12 +61,12 @@ float shadowVisibility(int i, vec3 position, vec3 normal, vec3 towardsLight, flo
     vec2 tap = 0.5f * texel * vec2((k & 1) != 0 ? 1.0f : -1.0f, (k & 2) != 0 ? 1.0f : -1.0f);
     vec3 q = receiver + tap.x * across + tap.y * up;
     if (cube) {
-      vec3 fromLight = q - uLightPosition[i].xyz;
+      vec3 fromLight = q - light.xyz;
       visible += texture(uShadowCubes, vec4(fromLight, uShadowLayer[map]), (length(fromLight) - bias) * uShadowDepthScale[map]);
     } else {
       vec4 clip = uShadowMatrix[map] * vec4(q, 1.0f);
       vec3 ndc = clip.xyz / clip.w;
-      float depth = positional ? length(q - uLightPosition[i].xyz) * uShadowDepthScale[map] : 0.5f * ndc.z + 0.5f;
+      float depth = positional ? length(q - light.xyz) * uShadowDepthScale[map] : 0.5f * ndc.z + 0.5f;
       visible += texture(uShadowMaps, vec4(0.5f * ndc.xy + 0.5f, uShadowLayer[map], depth - bias * uShadowDepthScale[map]));
     }
   }

@@ -274,7 +274,7 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         material.specular.ndf,
                         material.specular.masking,
                         material.specular.multipleScattering,
-                        settings.shadows && lightCount > 0,
+                        settings.shadows && lightCount + areaLightCount > 0,
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
                         model == SpecularModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
@@ -555,13 +555,14 @@ struct Renderer::FrameState {
   glm::vec3 areaLightCorners[4 * kMaxAreaLights];
   glm::vec3 areaLightRadiances[kMaxAreaLights];
   int areaLightTwoSided[kMaxAreaLights];
+  // The shadows' casters: the lights, then the area lights (shadows.glsl).
   bool shadows = false;
-  int shadowEntries = 0;  // lightCount * kShadowCascades
-  int shadowCubes = 0;    // bit i: light i has a cube map
-  glm::mat4 shadowMatrices[kMaxLights * kShadowCascades];
-  float shadowLayers[kMaxLights * kShadowCascades] = {};
-  float shadowDepthScales[kMaxLights * kShadowCascades] = {};
-  float shadowTexels[kMaxLights * kShadowCascades] = {};
+  int shadowEntries = 0;  // (lightCount + areaLightCount) * kShadowCascades
+  int shadowCubes = 0;    // bit i: caster i has a cube map
+  glm::mat4 shadowMatrices[(kMaxLights + kMaxAreaLights) * kShadowCascades];
+  float shadowLayers[(kMaxLights + kMaxAreaLights) * kShadowCascades] = {};
+  float shadowDepthScales[(kMaxLights + kMaxAreaLights) * kShadowCascades] = {};
+  float shadowTexels[(kMaxLights + kMaxAreaLights) * kShadowCascades] = {};
 };
 
 void Renderer::renderFrame(const FrameSettings& settings) {
@@ -642,8 +643,8 @@ Renderer::FrameState Renderer::beginFrame(const FrameSettings& settings) {
     frame.areaLightRadiances[a] = light.radiance;
     frame.areaLightTwoSided[a] = light.twoSided ? 1 : 0;
   }
-  frame.shadows = settings.shadows && frame.lightCount > 0;
-  frame.shadowEntries = frame.lightCount * kShadowCascades;
+  frame.shadows = settings.shadows && frame.lightCount + frame.areaLightCount > 0;
+  frame.shadowEntries = (frame.lightCount + frame.areaLightCount) * kShadowCascades;
   return frame;
 }
 
@@ -681,8 +682,17 @@ void Renderer::drawDepths(const glm::mat4& viewProjection, bool linearDepth, glm
 void Renderer::shadowPass(const FrameSettings& settings, FrameState& frame) {
   if (!frame.shadows) return;
   Gpu& g = *gpu_;
+  // An area light casts its centre's shadow: a point light's cube map from there. Its own quad lies
+  // in a plane through that point, edge-on to every face of the cube, and so hides nothing.
+  std::vector<scene::Light> casters = frame.lights;
+  for (const scene::AreaLight& area : areaLights_) {
+    scene::Light centre;
+    centre.type = scene::Light::Type::Point;
+    centre.position = area.centre();
+    casters.push_back(centre);
+  }
   std::vector<float> key;
-  for (const scene::Light& l : frame.lights) {
+  for (const scene::Light& l : casters) {
     key.insert(key.end(), {static_cast<float>(l.type), l.position.x, l.position.y, l.position.z, l.direction.x,
                            l.direction.y, l.direction.z, l.outerConeAngle});
   }
@@ -695,7 +705,7 @@ void Renderer::shadowPass(const FrameSettings& settings, FrameState& frame) {
                                              scene_.boundsMin(), scene_.boundsMax());
   shadowView.cameraPosition = settings.camera.position;
   shadowView.cascades = settings.shadowCascades;
-  g.shadowMaps.update(frame.lights, scene_.boundsMin(), scene_.boundsMax(), shadowView, key,
+  g.shadowMaps.update(casters, scene_.boundsMin(), scene_.boundsMax(), shadowView, key,
                       [&](const glm::mat4& viewProjection, bool linearDepth, glm::vec3 origin, float depthScale) {
                         drawDepths(viewProjection, linearDepth, origin, depthScale, false);
                       });
