@@ -668,6 +668,15 @@ TEST(EnvironmentCli, EnvRegionsWritesTheRasterisersSplit) {
   const ImageRgbF residual = readImage(folder / "env.exr");
   ASSERT_EQ(residual.pixels.size(), split.residual.pixels.size());
   EXPECT_TRUE(residual.pixels == split.residual.pixels);
+  // A sun becomes a light whose (u, v) is the direction towards it, with its irradiance.
+  ASSERT_EQ(runGlint(folder, "hdri -o sun.hdr --size 256x128").exitCode, 0);
+  ASSERT_EQ(runGlint(folder, "env-regions sun.hdr --lights 1 --regions 0 -o sun.json").exitCode, 0);
+  const nlohmann::json sun = nlohmann::json::parse(slurp(folder / "sun.json"));
+  ASSERT_EQ(sun["lights"].size(), 1u);
+  EXPECT_TRUE(sun["regions"].empty());
+  const glm::vec3 towards = scene::directionFromEquirect(glm::vec2(sun["lights"][0]["uv"][0].get<float>(), sun["lights"][0]["uv"][1].get<float>()));
+  EXPECT_GT(glm::dot(towards, scene::sunSkyDirection(scene::SunSky{})), std::cos(0.02f));
+  EXPECT_NEAR(sun["lights"][0]["irradiance"][0].get<double>(), 8.0, 0.8);  // the sun's, less the sky behind it
   struct Case {
     std::string arguments;
     std::string problem;

@@ -30,7 +30,8 @@ export async function loadGlintEnvironment(url) {
   if (!Array.isArray(description.regions) || !Array.isArray(description.lights) || typeof description.residual !== 'string') {
     throw new Error(`${url}: not a glint environment (no regions, lights and residual; write it with glint env-regions)`);
   }
-  const residualUrl = new URL(description.residual, new URL(url, document.baseURI)).href;
+  const page = typeof document !== 'undefined' ? document.baseURI : undefined;  // none in node
+  const residualUrl = new URL(description.residual, new URL(url, page)).href;
   const loader = new EXRLoader();
   loader.setDataType(FloatType);
   const residual = await loader.loadAsync(residualUrl).catch((error) => {

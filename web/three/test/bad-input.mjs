@@ -1,6 +1,7 @@
 // Bad input to the package, in node (ctest -R ThreeWeb): a damaged dictionary file and out-of-range
 // extension values must each be refused with one line that names the file or the material and the
-// problem. The dictionary is one `glint dict` writes, then damaged byte by byte.
+// problem. The dictionary is one `glint dict` writes, then damaged byte by byte. So must a glint
+// environment (`glint env-regions`) that is missing, not one, or without its residual map.
 //   node test/bad-input.mjs --glint PATH
 // Exits 77 with one line when the npm packages are missing (ctest's SKIP_RETURN_CODE).
 import { execFileSync } from 'node:child_process';
@@ -23,6 +24,7 @@ build(glint);  // the plugin's module imports the material's, which imports the 
 const { loadGlintDictionary, parseGlintDictionary } = await import('../src/dictionary.js');
 const { GLTFMaterialsGlintExtension, glintLayerFromExtension } = await import('../src/plugin.js');
 const { MeshGlintMaterial } = await import('../src/material.js');
+const { loadGlintEnvironment } = await import('../src/environment.js');
 const { MeshPhysicalMaterial } = await import('three');
 
 let failures = 0;
@@ -278,8 +280,19 @@ try {
   }
 
   // A dictionary that cannot be fetched: its failure comes where the dictionary is used, and not
-  // also as an unhandled rejection.
+  // also as an unhandled rejection. And glint environments: missing, not JSON, JSON of another
+  // kind, one whose residual map is missing.
+  const environments = {
+    '/broken.json': '{"regions": [',
+    '/other.json': '{"asset": {"version": "2.0"}}',
+    '/orphan.json': '{"lights": [], "regions": [], "residual": "orphan.exr"}',
+  };
   const server = http.createServer((request, response) => {
+    if (environments[request.url]) {
+      response.writeHead(200, { 'Content-Type': 'application/json' });
+      response.end(environments[request.url]);
+      return;
+    }
     response.writeHead(404);
     response.end();
   });
@@ -293,6 +306,15 @@ try {
     await new Promise((resolve) => setTimeout(resolve, 300));
     check(unhandled.length === 0, `an unfetchable dictionary that nothing uses is no unhandled rejection (${unhandled.join(' | ') || 'none'})`);
     await expectRejected('a dictionary the server does not have, when used', missing, `${url}: cannot fetch the glint dictionary (HTTP 404)`);
+    const base = `http://127.0.0.1:${server.address().port}`;
+    await expectRejected('a glint environment the server does not have', loadGlintEnvironment(`${base}/missing.json`),
+                         `${base}/missing.json: cannot fetch the glint environment (HTTP 404)`);
+    await expectRejected('a glint environment that is not JSON', loadGlintEnvironment(`${base}/broken.json`),
+                         `${base}/broken.json: not a glint environment (`);
+    await expectRejected('JSON that is not a glint environment', loadGlintEnvironment(`${base}/other.json`),
+                         `${base}/other.json: not a glint environment (no regions, lights and residual; write it with glint env-regions)`);
+    await expectRejected('a glint environment without its residual map', loadGlintEnvironment(`${base}/orphan.json`),
+                         `${base}/orphan.exr: cannot load the residual map (`);
   } finally {
     process.off('unhandledRejection', onUnhandled);
     server.close();
