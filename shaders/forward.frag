@@ -308,10 +308,11 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
 #if SHADOWS
       // The shadow of its centre (a cube map from there, caster LIGHT_COUNT + a): hard, where the
       // tracer's penumbra spans the light's extent.
-      vec3 centre = 0.25f * (uAreaLightCorner[4 * a] + uAreaLightCorner[4 * a + 1] + uAreaLightCorner[4 * a + 2] + uAreaLightCorner[4 * a + 3]);
-      vec3 toCentre = centre - vPosition;
-      float distance = length(toCentre);
-      radiance[r] *= shadowVisibility(LIGHT_COUNT + a, vec4(centre, 1.0f), vPosition, normalize(vNormal), toCentre / max(distance, 1e-20f), distance);
+      vec3 lightCentre = 0.25f * (uAreaLightCorner[4 * a] + uAreaLightCorner[4 * a + 1] + uAreaLightCorner[4 * a + 2] + uAreaLightCorner[4 * a + 3]);
+      vec3 toCentre = lightCentre - vPosition;
+      float centreDistance = length(toCentre);
+      radiance[r] *= shadowVisibility(LIGHT_COUNT + a, vec4(lightCentre, 1.0f), vPosition, normalize(vNormal),
+                                      toCentre / max(centreDistance, 1e-20f), centreDistance);
 #endif
     }
 #endif

@@ -686,13 +686,18 @@ TEST(EnvironmentCli, EnvRegionsWritesTheRasterisersSplit) {
       {"studio.hdr --lights -1 -o bad.json", "--lights must be in [0, 8], got -1"},
       {"studio.hdr -o bad.txt", "bad.txt: the output must end in .json"},
       {"missing.hdr -o bad.json", "missing.hdr"},
+      {"studio.exr -o studio.json", "studio.exr: the residual map would overwrite it; give another -o"},
   };
+  ASSERT_EQ(runGlint(folder, "hdri --preset studio --size 64x32 -o studio.exr").exitCode, 0);
+  const std::string mapBytes = slurp(folder / "studio.exr");
   for (const Case& c : cases) {
     SCOPED_TRACE(c.arguments);
     expectOneLineError(runGlint(folder, "env-regions " + c.arguments), c.problem);
     EXPECT_FALSE(std::filesystem::exists(folder / "bad.json"));
     EXPECT_FALSE(std::filesystem::exists(folder / "bad.exr"));
   }
+  EXPECT_EQ(slurp(folder / "studio.exr"), mapBytes);  // the map is left as it was
+  EXPECT_FALSE(std::filesystem::exists(folder / "studio.json"));
 }
 
 TEST(EnvironmentCli, BadMapsAndValuesGiveOneLineAndNoOutput) {

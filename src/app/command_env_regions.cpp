@@ -53,6 +53,10 @@ void runEnvRegions(const EnvRegionsOptions& options) {
   if (lowercaseExtension(options.output) != ".json") throw Error(options.output + ": the output must end in .json");
   std::filesystem::path residualPath = options.output;
   residualPath.replace_extension(".exr");
+  std::error_code error;
+  if (std::filesystem::weakly_canonical(residualPath, error) == std::filesystem::weakly_canonical(options.map, error)) {
+    throw Error(options.map + ": the residual map would overwrite it; give another -o");
+  }
   const scene::Environment map = scene::loadEnvironmentMap(options.map);
   const scene::EnvironmentLights lights = scene::extractEnvironmentLights(map, options.lights);
   const scene::EnvironmentRegions regions = scene::environmentGlintRegions(lights.residual, options.regions);

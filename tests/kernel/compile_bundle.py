@@ -131,7 +131,9 @@ def main(argv):
     if extended:
         host = host.replace("  result[0] = f;", EXTENDED_CALL + "  result[0] = f;").replace(
             "  colour = vec4(f);", EXTENDED_CALL + "  colour = vec4(f);")
-        host = host.replace("void main() {", CUMULATIVE_READS[language] + CUMULATIVE_HOOK + "void main() {", 1)
+        # After the hook's buffer, before the entry point and its attributes.
+        entry = "[numthreads" if language == "hlsl" else "layout(local_size_x" if language in ("glsl", "vulkan") else "out vec4 colour;"
+        host = host.replace(entry, CUMULATIVE_READS[language] + CUMULATIVE_HOOK + entry, 1)
     with tempfile.TemporaryDirectory() as temporary:
         text = ""
         for part in [[], ["--extended-lights"]] if extended else [[]]:

@@ -7,6 +7,9 @@
 import { DirectionalLight, EquirectangularReflectionMapping, FloatType, Vector3 } from 'three';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 
+// The most regions a program draws, as glint's rasteriser (gl::kMaxEnvironmentRegions).
+const MAX_REGIONS = 16;
+
 // glint env-regions's coordinates, (u, v) from the map's left and top edges, as the direction three
 // looks the map up in (its equirectangular mapping, the texture's rows bottom up).
 export function mapDirection([u, v]) {
@@ -29,6 +32,21 @@ export async function loadGlintEnvironment(url) {
   }
   if (!Array.isArray(description.regions) || !Array.isArray(description.lights) || typeof description.residual !== 'string') {
     throw new Error(`${url}: not a glint environment (no regions, lights and residual; write it with glint env-regions)`);
+  }
+  const numbers = (value, count) => Array.isArray(value) && value.length === count && value.every(Number.isFinite);
+  description.lights.forEach((light, i) => {
+    if (!numbers(light.uv, 2) || !numbers(light.irradiance, 3)) {
+      throw new Error(`${url}: light ${i} needs uv (2 numbers) and irradiance (3 numbers)`);
+    }
+  });
+  description.regions.forEach((region, i) => {
+    if (!Array.isArray(region.corners) || region.corners.length !== 4 || !region.corners.every((c) => numbers(c, 2)) ||
+        !numbers(region.radiance, 3)) {
+      throw new Error(`${url}: region ${i} needs 4 corners (2 numbers each) and radiance (3 numbers)`);
+    }
+  });
+  if (description.regions.length > MAX_REGIONS) {
+    throw new Error(`${url}: ${description.regions.length} regions, more than the ${MAX_REGIONS} a program draws (glint env-regions --regions)`);
   }
   const page = typeof document !== 'undefined' ? document.baseURI : undefined;  // none in node
   const residualUrl = new URL(description.residual, new URL(url, page)).href;

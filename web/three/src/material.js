@@ -196,10 +196,13 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     // The residual map, which lacks the regions' light, as this material's envMap (one it was given
     // stays): three compiles envMap programs apart, so a change asks for the program again.
     const residual = environment ? environment.residual : null;
-    if ((this.envMap === null || this.envMap === this._glintResidual) && this.envMap !== residual) {
-      this.envMap = residual;
+    const ownEnvMap = this.envMap !== null && this.envMap !== this._glintResidual;  // one it was given stays
+    if (!ownEnvMap) {
+      if (this.envMap !== residual) {
+        this.envMap = residual;
+        this.needsUpdate = true;
+      }
       this.envMapIntensity = environment ? environment.intensity : 1;
-      this.needsUpdate = true;
     }
     this._glintResidual = residual;
     const key = this.customProgramCacheKey();

@@ -242,7 +242,9 @@ vec3 glintViewVector(vec3 v, vec3 n) {
 uniform vec3 glintRegionCorner[4 * GLINT_ENV_REGION_COUNT];  // each region's corners, unit world directions in order
 uniform vec3 glintRegionRadiance[GLINT_ENV_REGION_COUNT];
 
-// The environment's regions: both lobes, the diffuse by each region's projected solid angle.
+// The environment's regions: both lobes, the diffuse by each region's projected solid angle. They
+// are part of the environment, so they go to the indirect terms, which three's ambient occlusion
+// (aoMap) dims, as glint's rasteriser dims them by the occlusion texture.
 void glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseColour, inout ReflectedLight reflectedLight) {
   vec3 wo = glintViewVector(v, n);
   GlintRegionSet regions;
@@ -261,9 +263,9 @@ void glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseCol
   vec3 specular[GLINT_REGION_COUNT];
   glintRegionSpecular(regions, centre, wo, f0, f90, specular);
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
-    reflectedLight.directSpecular += glintRegionRadiance[r] * specular[r];
+    reflectedLight.indirectSpecular += glintRegionRadiance[r] * specular[r];
   }
-  reflectedLight.directDiffuse += diffuse * BRDF_Lambert(diffuseColour);
+  reflectedLight.indirectDiffuse += diffuse * BRDF_Lambert(diffuseColour);
 }
 #endif
 

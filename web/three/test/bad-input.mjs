@@ -286,6 +286,9 @@ try {
     '/broken.json': '{"regions": [',
     '/other.json': '{"asset": {"version": "2.0"}}',
     '/orphan.json': '{"lights": [], "regions": [], "residual": "orphan.exr"}',
+    '/cornerless.json': '{"lights": [], "regions": [{"radiance": [1, 1, 1]}], "residual": "r.exr"}',
+    '/crowded.json': JSON.stringify({ lights: [], residual: 'r.exr',
+                                      regions: Array(17).fill({ corners: [[0, 0], [0.1, 0], [0.1, 0.1], [0, 0.1]], radiance: [1, 1, 1] }) }),
   };
   const server = http.createServer((request, response) => {
     if (environments[request.url]) {
@@ -313,6 +316,10 @@ try {
                          `${base}/broken.json: not a glint environment (`);
     await expectRejected('JSON that is not a glint environment', loadGlintEnvironment(`${base}/other.json`),
                          `${base}/other.json: not a glint environment (no regions, lights and residual; write it with glint env-regions)`);
+    await expectRejected('a region without corners', loadGlintEnvironment(`${base}/cornerless.json`),
+                         `${base}/cornerless.json: region 0 needs 4 corners (2 numbers each) and radiance (3 numbers)`);
+    await expectRejected('more regions than a program draws', loadGlintEnvironment(`${base}/crowded.json`),
+                         `${base}/crowded.json: 17 regions, more than the 16 a program draws (glint env-regions --regions)`);
     await expectRejected('a glint environment without its residual map', loadGlintEnvironment(`${base}/orphan.json`),
                          `${base}/orphan.exr: cannot load the residual map (`);
   } finally {

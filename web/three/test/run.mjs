@@ -133,16 +133,16 @@ function withoutLights(file) {
     if (node.extensions) delete node.extensions.KHR_lights_punctual;
   }
   json.extensionsUsed = (json.extensionsUsed || []).filter((name) => name !== 'KHR_lights_punctual');
-  let text = JSON.stringify(json);
-  text += ' '.repeat((4 - (text.length % 4)) % 4);  // chunks are 4-byte aligned
+  const text = Buffer.from(JSON.stringify(json), 'utf8');
+  const padded = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, ' ')]);  // chunks are 4-byte aligned
   const chunk = Buffer.alloc(8);
-  chunk.writeUInt32LE(text.length, 0);
+  chunk.writeUInt32LE(padded.length, 0);
   chunk.writeUInt32LE(0x4e4f534a, 4);  // 'JSON'
   const rest = bytes.subarray(20 + jsonLength);
   const header = Buffer.alloc(12);
   bytes.copy(header, 0, 0, 8);
-  header.writeUInt32LE(12 + 8 + text.length + rest.length, 8);
-  writeFileSync(file, Buffer.concat([header, chunk, Buffer.from(text, 'utf8'), rest]));
+  header.writeUInt32LE(12 + 8 + padded.length + rest.length, 8);
+  writeFileSync(file, Buffer.concat([header, chunk, padded, rest]));
 }
 
 function describe(s) {

@@ -4,7 +4,7 @@
 //                       wrapped as a JavaScript module that src/shader.js imports;
 //   glint-extended-lights-es.js  glints under area lights (`glint shader-bundle --language glsl-es
 //                       --extended-lights`), the kernel's second part, which src/shader.js adds to
-//                       programs lit by RectAreaLights only;
+//                       programs lit by RectAreaLights or an environment's regions only;
 //   glint-fields.js     EXT_materials_glint's JSON schema (`glint extension-schema`), written from
 //                       glint's one table of the layer's fields, as a module that src/fields.js
 //                       imports: the package's field names, kinds, defaults and ranges;
