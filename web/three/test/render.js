@@ -93,7 +93,22 @@ window.renderVariants = async ({ size }) => {
     point: () => placed(new THREE.PointLight(0xffffff, 30)),
     directional: () => placed(new THREE.DirectionalLight(0xffffff, 3)),
     spot: () => placed(new THREE.SpotLight(0xffffff, 30, 0, Math.PI / 4, 0.2)),
+    rectArea: () => {
+      const light = placed(new THREE.RectAreaLight(0xffffff, 300, 0.15, 0.15));
+      light.lookAt(0, 0, 0);
+      return light;
+    },
   };
+  // An environment's region (what applyGlintEnvironment gives the scene): a 0.08-radian square
+  // about the direction (2, 2, 3), of radiance 300.
+  const regionAbout = (centre, half) => {
+    const c = new THREE.Vector3(...centre).normalize();
+    const u = new THREE.Vector3(0, 1, 0).cross(c).normalize();
+    const v = c.clone().cross(u);
+    return [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([a, b]) =>
+      c.clone().addScaledVector(u, a * half).addScaledVector(v, b * half).normalize());
+  };
+  const environmentRegions = { residual: null, intensity: 1, regions: [{ corners: regionAbout([2, 2, 3], 0.04), radiance: [300, 300, 300] }] };
   const variants = {
     'no tangents (uv-derivative frame)': {},
     'computed tangents': { tangents: true },
@@ -105,6 +120,8 @@ window.renderVariants = async ({ size }) => {
     'glint textures': { glint: { roughnessTexture: flatNormals, logDensityTexture: flatNormals, relativeAreaTexture: flatNormals } },
     'directional light': { light: 'directional' },
     'spot light': { light: 'spot' },
+    'rectangle area light': { light: 'rectArea' },
+    'environment regions and a rectangle area light': { light: 'rectArea', regions: true },
     instanced: { instanced: true },
     skinned: { skinned: true },
   };
@@ -143,6 +160,7 @@ window.renderVariants = async ({ size }) => {
       }
       const scene = new THREE.Scene();
       scene.add(mesh, lights[variant.light || 'point']());
+      if (variant.regions) scene.userData.glintEnvironment = environmentRegions;
       const target = new THREE.WebGLRenderTarget(size, size, { type: THREE.FloatType });
       renderer.setRenderTarget(target);
       renderer.setClearColor(0x000000, 0);

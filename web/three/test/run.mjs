@@ -16,7 +16,8 @@
 // (under a tenth of glint's fraction). With the paper's target the core material (GGX, Smith) is
 // not the layer's smooth lobe, which differs from it at grazing angles: printed, not checked.
 // Then three.js's program variants (normal maps, clearcoat, sheen, instancing, skinning, each light
-// type, meshes without tangents): each compiles and shows glints.
+// type, a RectAreaLight with an environment's region, meshes without tangents): each compiles and
+// shows glints.
 //   node test/run.mjs --glint PATH [--backend llvmpipe|swiftshader] [--keep FOLDER]
 // Exits 77 with one line when chromium or the npm packages are missing (ctest's SKIP_RETURN_CODE).
 import { execFileSync } from 'node:child_process';
