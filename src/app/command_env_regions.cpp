@@ -37,11 +37,6 @@ nlohmann::json mapUv(glm::vec3 direction) {
 
 nlohmann::json rgb(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
-std::vector<std::byte> bytesOf(const std::string& text) {
-  const auto* first = reinterpret_cast<const std::byte*>(text.data());
-  return {first, first + text.size()};
-}
-
 void runEnvRegions(const EnvRegionsOptions& options) {
   if (!(options.lights >= 0 && options.lights <= gl::kMaxLights)) {
     throw Error("--lights must be in [0, " + std::to_string(gl::kMaxLights) + "], got " + std::to_string(options.lights));
@@ -84,7 +79,7 @@ void runEnvRegions(const EnvRegionsOptions& options) {
   // The residual as 32-bit float EXR: within a region it is the map less the region's mean, which
   // is negative where the region is darker than its mean (RGBE cannot hold it).
   const ImageRgbF residual{regions.residual.width, regions.residual.height, regions.residual.pixels};
-  writeFilesAtomically({{options.output, bytesOf(out.dump(2) + "\n")}, {residualPath, encodeExr(residualPath, residual)}});
+  writeFilesAtomically({{options.output, textBytes(out.dump(2) + "\n")}, {residualPath, encodeExr(residualPath, residual)}});
   std::fprintf(stderr, "glint: wrote %s (%zu lights, %zu regions) and %s (the residual map)\n", options.output.c_str(),
                lights.lights.size(), regions.regions.size(), residualPath.string().c_str());
 }

@@ -55,11 +55,6 @@ std::string languagePreamble(const std::string& language) {
   throw Error("--language must be glsl, glsl-es, vulkan or hlsl, got '" + language + "'");
 }
 
-std::vector<std::byte> bytesOf(const std::string& text) {
-  const auto* first = reinterpret_cast<const std::byte*>(text.data());
-  return {first, first + text.size()};
-}
-
 void runShaderBundle(const BundleOptions& options) {
   if (options.shadertoy == !options.language.empty()) {
     throw Error("give one of --language LANGUAGE and --shadertoy");
@@ -79,7 +74,7 @@ void runShaderBundle(const BundleOptions& options) {
       std::fputs(text.c_str(), stdout);
       return;
     }
-    writeFileAtomically(options.output, bytesOf(text));
+    writeFileAtomically(options.output, textBytes(text));
     std::fprintf(stderr, "glint: wrote %s (%s)\n", options.output.c_str(), options.language.c_str());
     return;
   }
@@ -96,9 +91,9 @@ void runShaderBundle(const BundleOptions& options) {
   const std::string header = bundleHeader("a Shadertoy shader");
   try {
     writeFilesAtomically(
-        {{folder / "common.glsl", bytesOf(header + "// Paste into the Common tab.\n" + expandedWithoutLines("shadertoy_common.glsl"))},
-         {folder / "buffer_a.glsl", bytesOf(header + "// Paste into Buffer A.\n" + expandedWithoutLines("shadertoy_buffer_a.glsl"))},
-         {folder / "image.glsl", bytesOf(header + "// Paste into the Image tab; set its iChannel0 to Buffer A.\n" +
+        {{folder / "common.glsl", textBytes(header + "// Paste into the Common tab.\n" + expandedWithoutLines("shadertoy_common.glsl"))},
+         {folder / "buffer_a.glsl", textBytes(header + "// Paste into Buffer A.\n" + expandedWithoutLines("shadertoy_buffer_a.glsl"))},
+         {folder / "image.glsl", textBytes(header + "// Paste into the Image tab; set its iChannel0 to Buffer A.\n" +
                                          expandedWithoutLines("shadertoy_image.glsl"))}});
   } catch (const Error&) {
     if (made) std::filesystem::remove(folder, error);  // only if empty: nothing of the user's goes

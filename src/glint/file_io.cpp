@@ -121,6 +121,11 @@ void requireWritablePlace(const std::filesystem::path& path) {
   if (!std::filesystem::is_directory(status)) throw Error(path.string() + ": cannot create (" + std::strerror(ENOTDIR) + ")");
 }
 
+std::vector<std::byte> textBytes(const std::string& text) {
+  const auto* first = reinterpret_cast<const std::byte*>(text.data());
+  return {first, first + text.size()};
+}
+
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes) {
   writeFilesAtomically({{path, std::vector<std::byte>(bytes.begin(), bytes.end())}});
 }

@@ -15,6 +15,9 @@ namespace glint {
 // Reads a whole file; throws Error("<path>: cannot open ...") when it cannot.
 std::vector<std::byte> readFile(const std::filesystem::path& path);
 
+// A text's bytes, as the writes below take them.
+std::vector<std::byte> textBytes(const std::string& text);
+
 // Writes to a temporary file beside `path`, then renames it over `path`, so that a failure (disk
 // full, interrupted process) never leaves a partial file under the final name; a device or a pipe
 // is written directly. Throws Error naming the file and the system's reason ("<path>: cannot write

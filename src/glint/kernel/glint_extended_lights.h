@@ -41,8 +41,9 @@ GLINT_KERNEL_BEGIN
 // The smooth lobe's mass below which a region's flakes are not walked (glintRegionMassSet).
 #define GLINT_REGION_NEGLIGIBLE_MASS 1e-4f
 #define GLINT_REGION_VERTICES 10
-// A cell's mass over a region, below this fraction of the smooth target's mass over it, counted as 0
-// (glintCellRegionMass): the cells average, so the P-SDF's mass loses at most this fraction.
+// The share of the smooth target's mass over a region that a cell may leave uncounted: its strips
+// whose x mass falls below their part of it skip the y marginal (glintCellRegionMass). The cells
+// average, so the P-SDF's mass over the region loses at most this fraction.
 #ifndef GLINT_CELL_NEGLIGIBLE_FRACTION
 #define GLINT_CELL_NEGLIGIBLE_FRACTION 1e-3f
 #endif

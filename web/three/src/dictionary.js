@@ -122,7 +122,10 @@ export function glintCumulativeTexture(dictionary) {
       const i = row + k;
       const a = DataUtils.fromHalfFloat(pairs[2 * i]);
       const next = DataUtils.fromHalfFloat(pairs[2 * i + 1]);  // 0 past the marginal's last texel
-      table.set([mass, moment, a, next], 4 * i);
+      table[4 * i] = mass;
+      table[4 * i + 1] = moment;
+      table[4 * i + 2] = a;
+      table[4 * i + 3] = next;
       const rise = next - a;
       mass += spacing * (a + 0.5 * rise);
       moment += spacing * spacing * (k * (a + 0.5 * rise) + 0.5 * a + rise / 3);

@@ -80,10 +80,13 @@ export function applyGlintEnvironment(scene, environment, { intensity = 1, map =
     scene.add(light);
     return light;
   });
+  // As the glint programs' uniforms take them (src/material.js): every region's corners in turn,
+  // and each one's radiance.
   scene.userData.glintEnvironment = {
     residual: environment.residual,
     intensity,
-    regions: environment.regions.map(({ corners, radiance }) => ({ corners, radiance: radiance.map((c) => c * intensity) })),
+    corners: environment.regions.flatMap(({ corners }) => corners),
+    radiances: environment.regions.map(({ radiance }) => new Vector3(...radiance).multiplyScalar(intensity)),
   };
   return added;
 }

@@ -3,7 +3,7 @@
 // glint's procedural glint layer (Chermain et al. 2020), the layer's
 // parameters those of EXT_materials_glint (extensions/EXT_materials_glint/README.md), evaluated by
 // glint's kernel (src/shader.js). Everything else is MeshPhysicalMaterial's own.
-import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2, Vector3 } from 'three';
+import { DataTexture, MeshPhysicalMaterial, MeshStandardMaterial, RGBAFormat, UnsignedByteType, Vector2 } from 'three';
 import { glintCumulativeTexture } from './dictionary.js';
 import { EXTENSION_FIELD } from './fields.js';
 import { LAYER_NAME_CHOICES, addGlintLayerToShader } from './shader.js';
@@ -112,7 +112,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
     this.glint = new GlintLayer();
     this.glintDictionary = null;
     this.glintSmooth = false;
-    this.glintRegions = [];  // the scene's environment regions as last drawn (applyGlintEnvironment)
+    this.glintEnvironment = null;  // the scene's glint environment as last drawn (applyGlintEnvironment)
     this._glintResidual = null;  // the residual map this material took as its envMap
     this.defines.USE_UV = '';  // vUv, the glint uv's source, in every program
     const { glint, ...rest } = parameters;
@@ -137,8 +137,8 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
       glintDictionaryAlpha: { get value() { return material.glintDictionary ? material.glintDictionary.alpha : 0.5; } },
       // Read only by programs lit by RectAreaLights or regions, which build the tables on first use.
       glintCumulativeTexels: { get value() { return material.glintDictionary ? glintCumulativeTexture(material.glintDictionary) : null; } },
-      glintRegionCorner: { get value() { return material.glintRegions.flatMap((region) => region.corners); } },
-      glintRegionRadiance: { get value() { return material.glintRegions.map((region) => new Vector3(...region.radiance)); } },
+      glintRegionCorner: { get value() { return material.glintEnvironment.corners; } },
+      glintRegionRadiance: { get value() { return material.glintEnvironment.radiances; } },
       glintRoughnessMap: { get value() { return material.glint.roughnessTexture || WHITE; } },
       glintLogDensityMap: { get value() { return material.glint.logDensityTexture || WHITE; } },
       glintRelativeAreaMap: { get value() { return material.glint.relativeAreaTexture || WHITE; } },
@@ -161,7 +161,7 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
       multipleScattering: Boolean(this.glint.multipleScattering),
       lod: this.glint.lod,
       smooth: Boolean(this.glintSmooth),
-      environmentRegions: this.glintRegions.length,
+      environmentRegions: this.glintEnvironment ? this.glintEnvironment.radiances.length : 0,
     };
   }
 
@@ -191,8 +191,8 @@ export class MeshGlintMaterial extends MeshPhysicalMaterial {
   // multipleScattering, lod, glintSmooth, the scene's environment regions) asks for that here,
   // before three picks the program.
   onBeforeRender(renderer, scene) {
-    const environment = scene && scene.userData ? scene.userData.glintEnvironment : undefined;
-    this.glintRegions = environment ? environment.regions : [];
+    const environment = (scene && scene.userData && scene.userData.glintEnvironment) || null;
+    this.glintEnvironment = environment;
     // The residual map, which lacks the regions' light, as this material's envMap (one it was given
     // stays): three compiles envMap programs apart, so a change asks for the program again.
     const residual = environment ? environment.residual : null;

@@ -99,7 +99,7 @@ window.renderVariants = async ({ size }) => {
       return light;
     },
   };
-  // An environment's region (what applyGlintEnvironment gives the scene): a 0.08-radian square
+  // An environment's region: a 0.08-radian square
   // about the direction (2, 2, 3), of radiance 300.
   const regionAbout = (centre, half) => {
     const c = new THREE.Vector3(...centre).normalize();
@@ -108,7 +108,8 @@ window.renderVariants = async ({ size }) => {
     return [[-1, -1], [1, -1], [1, 1], [-1, 1]].map(([a, b]) =>
       c.clone().addScaledVector(u, a * half).addScaledVector(v, b * half).normalize());
   };
-  const environmentRegions = { residual: null, intensity: 1, regions: [{ corners: regionAbout([2, 2, 3], 0.04), radiance: [300, 300, 300] }] };
+  // A loaded glint environment (loadGlintEnvironment's shape) of that one region, no light, no map.
+  const environmentRegions = { residual: null, lights: [], regions: [{ corners: regionAbout([2, 2, 3], 0.04), radiance: [300, 300, 300] }] };
   const variants = {
     'no tangents (uv-derivative frame)': {},
     'computed tangents': { tangents: true },
@@ -160,7 +161,7 @@ window.renderVariants = async ({ size }) => {
       }
       const scene = new THREE.Scene();
       scene.add(mesh, lights[variant.light || 'point']());
-      if (variant.regions) scene.userData.glintEnvironment = environmentRegions;
+      if (variant.regions) applyGlintEnvironment(scene, environmentRegions);
       const target = new THREE.WebGLRenderTarget(size, size, { type: THREE.FloatType });
       renderer.setRenderTarget(target);
       renderer.setClearColor(0x000000, 0);
