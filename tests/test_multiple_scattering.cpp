@@ -23,7 +23,8 @@ constexpr int kMaskings[] = {kernel::GLINT_MASKING_VCAVITY, kernel::GLINT_MASKIN
 
 TEST(MultipleScattering, TablesAreWhatGlintComputes) {
   // 48 random nodes of the committed tables (kernel/albedo_tables.h) against glint's quadrature
-  // (singleScatteringAlbedo), to the 9 digits the header prints; and each E_avg against 2 integral
+  // (singleScatteringAlbedo), to the half step of the 16-bit values the header holds (7.7e-6) and the
+  // quadrature's own 2e-6; and each E_avg against 2 integral
   // of E mu dmu of the kernel's own lookup (directionalAlbedo), by 4096 midpoints.
   Pcg32 rng(17, 3);
   for (int k = 0; k < 48; ++k) {
@@ -34,7 +35,8 @@ TEST(MultipleScattering, TablesAreWhatGlintComputes) {
     const double x = static_cast<double>(j) / (kernel::GLINT_ALBEDO_MU_NODES - 1);
     const double expected =
         std::min(1.0, singleScatteringAlbedo(table / 2, table % 2, kernel::GLINT_ALBEDO_MAX_ALPHA * y * y, std::max(x * x, 1e-4)));
-    EXPECT_NEAR(kernel::GLINT_ALBEDO_TABLE[(table * kernel::GLINT_ALBEDO_ALPHA_NODES + i) * kernel::GLINT_ALBEDO_MU_NODES + j], expected, 1e-6)
+    const int node = (table * kernel::GLINT_ALBEDO_ALPHA_NODES + i) * kernel::GLINT_ALBEDO_MU_NODES + j;
+    EXPECT_NEAR(GLINT_ALBEDO_TABLE_NODE(kernel::GLINT_ALBEDO_WORDS, node), expected, 0.5 / 65535.0 + 2e-6)
         << "table " << table << " alpha node " << i << " mu node " << j;
   }
   for (int ndf : kTargets) {

@@ -8,6 +8,7 @@
 // buffer holding the kernel's C++ tables.
 #include <cstdint>
 #include <iterator>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,9 +47,15 @@ std::vector<KernelValues> evaluateOnVulkan(const VulkanCompute& vulkan, const st
   const std::vector<KernelInput> inputs = kernelInputs(cases);
   const std::vector<KernelValues> outputs(cases.size());
   const std::vector<std::uint16_t> pairs = dictionary.halfTexelPairs();
-  std::vector<float> albedoTables(std::begin(kernel::GLINT_ALBEDO_TABLE), std::end(kernel::GLINT_ALBEDO_TABLE));
-  albedoTables.insert(albedoTables.end(), std::begin(kernel::GLINT_AVERAGE_ALBEDO_TABLE),
-                      std::end(kernel::GLINT_AVERAGE_ALBEDO_TABLE));
+  // The tables' words as 16-bit unsigned normalised texels, the low half of each word first.
+  std::vector<std::uint16_t> albedoTables;
+  for (const std::span<const kernel::uint> words :
+       {std::span<const kernel::uint>(kernel::GLINT_ALBEDO_WORDS), std::span<const kernel::uint>(kernel::GLINT_AVERAGE_ALBEDO_WORDS)}) {
+    for (const kernel::uint word : words) {
+      albedoTables.push_back(static_cast<std::uint16_t>(word & 0xffffu));
+      albedoTables.push_back(static_cast<std::uint16_t>(word >> 16));
+    }
+  }
   using Kind = VulkanBuffer::Kind;
   std::vector<VulkanBuffer> buffers{
       vulkanBuffer<KernelInput>(0, Kind::storage, inputs),
@@ -56,7 +63,7 @@ std::vector<KernelValues> evaluateOnVulkan(const VulkanCompute& vulkan, const st
       vulkanBuffer<std::uint16_t>(2, Kind::uniformTexel, pairs, VK_FORMAT_R16G16_SFLOAT),
       vulkanBuffer<std::uint16_t>(3, Kind::uniformTexel, dictionary.filteredHalfTexels(), VK_FORMAT_R16G16B16A16_SFLOAT),
       vulkanBuffer<DictionaryShape>(4, Kind::uniform, std::span(&shape, 1)),
-      vulkanBuffer<float>(5, Kind::uniformTexel, albedoTables, VK_FORMAT_R32_SFLOAT),
+      vulkanBuffer<std::uint16_t>(5, Kind::uniformTexel, albedoTables, VK_FORMAT_R16_UNORM),
   };
   constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x, numthreads
   vulkan.dispatch(readSpirv(std::string(GLINT_TEST_SPIRV_DIR) + "/" + module), buffers,

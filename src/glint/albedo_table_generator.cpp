@@ -1,6 +1,7 @@
 #include "glint/albedo_table_generator.h"
 
-#include <charconv>
+#include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -19,6 +20,12 @@ namespace {
 constexpr int kRadial = 320;
 constexpr int kAzimuthal = 96;
 constexpr int kTables = 4;
+
+// The header stores each value as a 16-bit unsigned normalised number (kernel/multiple_scattering.h):
+// the tables hold the values it stores, so that E_avg is the mean of what the kernel reads.
+constexpr double kUnorm16Max = 65535.0;
+std::uint32_t unorm16(double value) { return static_cast<std::uint32_t>(std::lround(std::clamp(value, 0.0, 1.0) * kUnorm16Max)); }
+float unorm16Value(double value) { return static_cast<float>(unorm16(value) / kUnorm16Max); }
 
 }  // namespace
 
@@ -66,7 +73,7 @@ AlbedoTables computeAlbedoTables() {
       // A mirror reflects everything; at grazing incidence the lobe's limit (mu -> 0) is taken a
       // hair above the horizon.
       const double e = alpha == 0.0 ? 1.0 : singleScatteringAlbedo(table / 2, table % 2, alpha, std::max(x * x, 1e-4));
-      tables.albedo[static_cast<std::size_t>(row * kMu + j)] = static_cast<float>(std::min(e, 1.0));
+      tables.albedo[static_cast<std::size_t>(row * kMu + j)] = unorm16Value(std::min(e, 1.0));
     }
   });
   // E_avg of the kernel's own interpolation (linear in sqrt(mu)), so that with F = 1 the
@@ -81,24 +88,11 @@ AlbedoTables computeAlbedoTables() {
       const float* e = &tables.albedo[static_cast<std::size_t>(row * kMu)];
       sum += (e[j] + fx * (e[j + 1] - e[j])) * mu;
     }
-    tables.average[static_cast<std::size_t>(row)] = static_cast<float>(2.0 * sum / kPoints);
+    tables.average[static_cast<std::size_t>(row)] = unorm16Value(2.0 * sum / kPoints);
   }
   return tables;
 }
 
-namespace {
-
-// The shortest literal that reads back as `value` in C++, GLSL and HLSL (0.996015847f, 1.0f,
-// 1e-04f): a third of the text of a fixed nine digits, the same floats.
-std::string floatLiteral(float value) {
-  char text[32];
-  const auto written = std::to_chars(text, text + sizeof text, value);
-  std::string literal(text, written.ptr);
-  if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
-  return literal + "f";
-}
-
-}  // namespace
 
 std::string albedoTablesHeader(const AlbedoTables& tables) {
   std::ostringstream out;
@@ -106,32 +100,39 @@ std::string albedoTablesHeader(const AlbedoTables& tables) {
          "// albedo E(mu, alpha) of the single-scattering Cook-Torrance lobe (F = 1) of each smooth target\n"
          "// and masking, and its cosine-weighted mean E_avg(alpha), on the grid of\n"
          "// kernel/multiple_scattering.h. Tables in the order 2 ndf + masking: Beckmann V-cavity, Beckmann\n"
-         "// Smith, GGX V-cavity, GGX Smith. Do not edit: tests/test_multiple_scattering.cpp checks that\n"
-         "// glint computes these values.\n"
+         "// Smith, GGX V-cavity, GGX Smith. Each value is a 16-bit unsigned normalised number, two to a\n"
+         "// word, the first in the low half (GLINT_ALBEDO_TABLE_NODE reads them). Do not edit:\n"
+         "// tests/test_multiple_scattering.cpp checks that glint computes these values.\n"
          "#ifndef GLINT_KERNEL_ALBEDO_TABLES_H\n"
          "#define GLINT_KERNEL_ALBEDO_TABLES_H\n\n"
          "#include \"prelude.h\"\n\n"
          "#ifdef __cplusplus\n"
-         "#define GLINT_TABLE_BEGIN(name, size) inline constexpr float name[size] = {\n"
+         "#define GLINT_TABLE_BEGIN(name, size) inline constexpr uint name[size] = {\n"
          "#define GLINT_TABLE_END };\n"
          "#elif defined(GLINT_HLSL)\n"
-         "#define GLINT_TABLE_BEGIN(name, size) static const float name[size] = {\n"
+         "#define GLINT_TABLE_BEGIN(name, size) static const uint name[size] = {\n"
          "#define GLINT_TABLE_END };\n"
          "#else\n"
-         "#define GLINT_TABLE_BEGIN(name, size) const float name[size] = float[size](\n"
+         "#define GLINT_TABLE_BEGIN(name, size) const uint name[size] = uint[size](\n"
          "#define GLINT_TABLE_END );\n"
          "#endif\n\n"
          "GLINT_KERNEL_BEGIN\n\n";
-  auto table = [&](const char* name, const std::vector<float>& values, int perLine) {
-    out << "GLINT_TABLE_BEGIN(" << name << ", " << values.size() << ")\n";
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      out << (k % perLine == 0 ? "  " : " ") << floatLiteral(values[k]) << (k + 1 < values.size() ? "," : "")
-          << ((k + 1) % perLine == 0 || k + 1 == values.size() ? "\n" : "");
+  auto table = [&](const char* name, const std::vector<float>& values) {
+    constexpr std::size_t kWordsPerLine = 8;
+    const std::size_t words = (values.size() + 1) / 2;
+    out << "GLINT_TABLE_BEGIN(" << name << ", " << words << ")\n";
+    for (std::size_t w = 0; w < words; ++w) {
+      const std::uint32_t low = unorm16(values[2 * w]);
+      const std::uint32_t high = 2 * w + 1 < values.size() ? unorm16(values[2 * w + 1]) : 0;
+      char word[16];
+      std::snprintf(word, sizeof word, "0x%08xu", static_cast<unsigned>(high << 16 | low));
+      out << (w % kWordsPerLine == 0 ? "  " : " ") << word << (w + 1 < words ? "," : "")
+          << ((w + 1) % kWordsPerLine == 0 || w + 1 == words ? "\n" : "");
     }
     out << "GLINT_TABLE_END\n\n";
   };
-  table("GLINT_ALBEDO_TABLE", tables.albedo, 8);
-  table("GLINT_AVERAGE_ALBEDO_TABLE", tables.average, 8);
+  table("GLINT_ALBEDO_WORDS", tables.albedo);
+  table("GLINT_AVERAGE_ALBEDO_WORDS", tables.average);
   out << "GLINT_KERNEL_END\n\n"
          "#undef GLINT_TABLE_BEGIN\n"
          "#undef GLINT_TABLE_END\n\n"

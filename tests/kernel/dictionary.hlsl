@@ -9,10 +9,11 @@
 //                   + index (docs/dictionary.md, "Mip chain");
 //   b4 / binding 4: cbuffer GlintDictionaryShape: int4 (L, N, R, numMips), float alpha_d,
 //                   int mipRowLength, uint caseCount (the number of cases kernel_eval.hlsl reads);
-//   t6 / binding 6, in a shader that includes glint_extended_lights.h: Buffer<float2>, the
-//   cumulative tables, texel (level * N + distribution) * R + k holds (C[k], M[k]);
+//   t6 / binding 6, in a shader that includes glint_extended_lights.h: Buffer<float4>, the
+//   cumulative tables, texel (level * N + distribution) * R + k holds (C[k], M[k], p[k], p[k+1]);
 //   t5 / binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
-//                   Buffer<float>, GLINT_ALBEDO_TABLE's 4096 values, then GLINT_AVERAGE_ALBEDO_TABLE's 128.
+//                   Buffer<float> (R16_UNORM texels), GLINT_ALBEDO_WORDS' 4096 values, then
+//                   GLINT_AVERAGE_ALBEDO_WORDS' 128 (each word's low half first).
 #ifndef DICTIONARY_HLSL
 #define DICTIONARY_HLSL
 

@@ -9,8 +9,8 @@
 //   binding 4: uniform buffer GlintDictionaryShape (std140): ivec4 (L, N, R, numMips), float alpha_d,
 //              int mipRowLength, uint caseCount (the number of cases kernel_eval_vulkan.comp reads);
 //   binding 5, in a shader compiled with GLINT_ALBEDO_TABLE_HOOK 1 (kernel/multiple_scattering.h):
-//              uniform texel buffer, one channel (R32_SFLOAT): GLINT_ALBEDO_TABLE's 4096 values, then
-//              GLINT_AVERAGE_ALBEDO_TABLE's 128.
+//              uniform texel buffer, one channel (R16_UNORM): GLINT_ALBEDO_WORDS' 4096 values, then
+//              GLINT_AVERAGE_ALBEDO_WORDS' 128 (each word's low half first).
 //   binding 6, in a shader that includes glint_extended_lights.h: uniform texel buffer, four
 //   channels a texel (R32G32B32A32_SFLOAT): the cumulative tables, texel (level * N + distribution) * R
 //   + k holds (C[k], M[k], p[k], p[k+1]) (glint::Dictionary::cumulativeTexels).

@@ -64,20 +64,26 @@ GLINT_KERNEL_END
 #if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING
 // The tables' values. A shading-language host may define GLINT_ALBEDO_TABLE_HOOK 1 before including
 // the kernel and then define, like the dictionary hook (prelude.h), the two functions declared
-// below, reading the tables from a buffer it binds (the values of GLINT_ALBEDO_TABLE and
-// GLINT_AVERAGE_ALBEDO_TABLE, which C++ code gets from this header). For compilers that handle a
-// large, dynamically indexed constant array badly: glslang's SPIR-V copies the whole array into a
-// local variable at each read, and Mesa's lavapipe turns each read of the copy into a branch per
-// element, which took its compile of the kernel's test shader from 6 s to over 15 minutes.
+// below, reading the tables from a buffer it binds (the words of GLINT_ALBEDO_WORDS and
+// GLINT_AVERAGE_ALBEDO_WORDS, which C++ code gets from this header, as 16-bit unsigned normalised
+// texels: R16_UNORM). For compilers that handle a large, dynamically indexed constant array badly:
+// glslang's SPIR-V copies the whole array into a local variable at each read, and Mesa's lavapipe
+// turns each read of the copy into a branch per element, which took its compile of the kernel's
+// test shader from 6 s to over 15 minutes.
 #if !defined(__cplusplus) && defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
-float glintAlbedoTableValue(int index);         // GLINT_ALBEDO_TABLE[index]
-float glintAverageAlbedoTableValue(int index);  // GLINT_AVERAGE_ALBEDO_TABLE[index]
+float glintAlbedoTableValue(int index);         // GLINT_ALBEDO_TABLE_NODE(GLINT_ALBEDO_WORDS, index)
+float glintAverageAlbedoTableValue(int index);  // GLINT_ALBEDO_TABLE_NODE(GLINT_AVERAGE_ALBEDO_WORDS, index)
 #define GLINT_ALBEDO_AT(index) glintAlbedoTableValue(index)
 #define GLINT_AVERAGE_ALBEDO_AT(index) glintAverageAlbedoTableValue(index)
 #else
 #include "albedo_tables.h"
-#define GLINT_ALBEDO_AT(index) GLINT_ALBEDO_TABLE[index]
-#define GLINT_AVERAGE_ALBEDO_AT(index) GLINT_AVERAGE_ALBEDO_TABLE[index]
+// Node `index` of a table: 16-bit unsigned normalised values, two to a 32-bit word, the first in the
+// low half (a word of text per two values: half the text of the shortest float literals, within
+// 7.7e-6 of them).
+#define GLINT_ALBEDO_TABLE_NODE(words, index) \
+  (float(((words)[(index) / 2] >> (16u * uint((index) % 2))) & 0xffffu) * (1.0f / 65535.0f))
+#define GLINT_ALBEDO_AT(index) GLINT_ALBEDO_TABLE_NODE(GLINT_ALBEDO_WORDS, index)
+#define GLINT_AVERAGE_ALBEDO_AT(index) GLINT_ALBEDO_TABLE_NODE(GLINT_AVERAGE_ALBEDO_WORDS, index)
 #endif
 
 GLINT_KERNEL_BEGIN
