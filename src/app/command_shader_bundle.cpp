@@ -1,9 +1,12 @@
 // `glint shader-bundle`: the kernel as one file, for a host renderer that takes one include
 // (--language), or as a Shadertoy shader (--shadertoy): docs/integration.md.
 #include <cstddef>
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -46,6 +49,169 @@ std::string expandedWithoutLines(const std::string& name, const std::string& aft
   return out;
 }
 
+// What a bundle's language says of the macros that select the kernel's language branches
+// (prelude.h): defined (true), not defined (false), or not known here (nullopt: the host's).
+std::optional<bool> languageDefines(const std::string& language, const std::string& macro) {
+  if (macro == "__cplusplus") return false;
+  if (macro == "GLINT_HLSL") return language == "hlsl";
+  if (macro == "__HLSL_VERSION") return language == "hlsl" ? std::nullopt : std::optional<bool>(false);
+  if (macro == "GL_ES") return language == "glsl-es";
+  return std::nullopt;
+}
+
+// A preprocessor condition over those macros, in three values: true, false, or not known (a macro
+// of the host's, or an operator this reader leaves to the compiler). Reads defined(X), defined X,
+// !, &&, ||, parentheses, whole numbers and bare names.
+class LanguageCondition {
+ public:
+  LanguageCondition(const std::string& text, const std::string& language) : language_(language) {
+    static const std::regex token(R"(\s*(defined|[A-Za-z_]\w*|\d+|&&|\|\||!|\(|\)|\S))");
+    for (std::sregex_iterator it(text.begin(), text.end(), token), end; it != end; ++it) tokens_.push_back((*it)[1]);
+  }
+
+  std::optional<bool> value() {
+    const std::optional<bool> result = disjunction();
+    return position_ == tokens_.size() && !malformed_ ? result : std::nullopt;
+  }
+
+ private:
+  std::optional<bool> disjunction() {
+    std::optional<bool> result = conjunction();
+    while (accept("||")) {
+      const std::optional<bool> next = conjunction();
+      result = (result == true || next == true) ? std::optional<bool>(true)
+               : (result && next)               ? std::optional<bool>(false)
+                                                : std::nullopt;
+    }
+    return result;
+  }
+  std::optional<bool> conjunction() {
+    std::optional<bool> result = negation();
+    while (accept("&&")) {
+      const std::optional<bool> next = negation();
+      result = (result == false || next == false) ? std::optional<bool>(false)
+               : (result && next)                 ? std::optional<bool>(true)
+                                                  : std::nullopt;
+    }
+    return result;
+  }
+  std::optional<bool> negation() {
+    if (!accept("!")) return primary();
+    const std::optional<bool> inner = negation();
+    return inner ? std::optional<bool>(!*inner) : std::nullopt;
+  }
+  std::optional<bool> primary() {
+    if (accept("(")) {
+      const std::optional<bool> inner = disjunction();
+      if (!accept(")")) malformed_ = true;
+      return inner;
+    }
+    if (accept("defined")) {
+      const bool parenthesised = accept("(");
+      const std::string name = next();
+      if (parenthesised && !accept(")")) malformed_ = true;
+      return languageDefines(language_, name);
+    }
+    const std::string word = next();
+    if (!word.empty() && std::isdigit(static_cast<unsigned char>(word[0]))) return word != "0";
+    // A bare name: 0 where the language leaves it undefined, otherwise the host's value.
+    const std::optional<bool> defined = languageDefines(language_, word);
+    return defined == false ? std::optional<bool>(false) : std::nullopt;
+  }
+  bool accept(const char* expected) {
+    if (position_ < tokens_.size() && tokens_[position_] == expected) return ++position_, true;
+    return false;
+  }
+  std::string next() {
+    if (position_ >= tokens_.size() || !(std::isalnum(static_cast<unsigned char>(tokens_[position_][0])) ||
+                                         tokens_[position_][0] == '_')) {
+      malformed_ = true;
+      return "";
+    }
+    return tokens_[position_++];
+  }
+
+  std::string language_;
+  std::vector<std::string> tokens_;
+  std::size_t position_ = 0;
+  bool malformed_ = false;
+};
+
+// The text without the branches that its language rules out (a GLSL ES bundle keeps neither the
+// C++ nor the HLSL spellings of prelude.h): a group whose condition the language decides keeps only
+// its chosen branch, without the directives; every other group is left to the compiler as written.
+std::string withoutOtherLanguages(const std::string& text, const std::string& language) {
+  static const std::regex directive(R"(^\s*#\s*(if|ifdef|ifndef|elif|else|endif)\b(.*)$)");
+  enum class Group { Kept, Decided, Dropped };  // Kept: the directives stay; Dropped: inside a dead branch
+  struct Frame {
+    Group group;
+    bool live;   // Decided: this branch is kept
+    bool taken;  // Decided: a branch has been chosen
+  };
+  std::vector<Frame> frames;
+  const auto emitting = [&] {
+    return std::all_of(frames.begin(), frames.end(), [](const Frame& f) { return f.group != Group::Dropped && f.live; });
+  };
+  const auto condition = [&](const std::string& keyword, std::string rest) {
+    rest = rest.substr(0, rest.find("//"));
+    if (keyword == "ifdef") return languageDefines(language, std::regex_replace(rest, std::regex(R"(\s)"), ""));
+    if (keyword == "ifndef") {
+      const std::optional<bool> defined = languageDefines(language, std::regex_replace(rest, std::regex(R"(\s)"), ""));
+      return defined ? std::optional<bool>(!*defined) : std::nullopt;
+    }
+    return LanguageCondition(rest, language).value();
+  };
+  std::istringstream lines(text);
+  std::string out;
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch match;
+    if (!std::regex_match(line, match, directive)) {
+      if (emitting()) out += line + '\n';
+      continue;
+    }
+    const std::string keyword = match[1];
+    if (keyword == "if" || keyword == "ifdef" || keyword == "ifndef") {
+      if (!emitting()) {
+        frames.push_back({Group::Dropped, false, false});
+        continue;
+      }
+      const std::optional<bool> value = condition(keyword, match[2]);
+      frames.push_back(value ? Frame{Group::Decided, *value, *value} : Frame{Group::Kept, true, false});
+      if (!value) out += line + '\n';
+      continue;
+    }
+    if (frames.empty()) throw Error("shader bundle: #" + keyword + " without #if: " + line);
+    Frame& frame = frames.back();
+    const bool outerEmitting = std::all_of(frames.begin(), frames.end() - 1, [](const Frame& f) {
+      return f.group != Group::Dropped && f.live;
+    });
+    if (keyword == "endif") {
+      if (frame.group == Group::Kept) out += line + '\n';
+      frames.pop_back();
+    } else if (frame.group == Group::Kept) {
+      out += line + '\n';
+    } else if (frame.group == Group::Decided && keyword == "else") {
+      frame.live = !frame.taken;
+      frame.taken = true;
+    } else if (frame.group == Group::Decided) {  // #elif
+      if (frame.taken) {
+        frame.live = false;
+        continue;
+      }
+      const std::optional<bool> value = condition("elif", match[2]);
+      if (value) {
+        frame.live = frame.taken = *value;
+      } else if (outerEmitting) {
+        // The earlier branches are gone: the rest of the group is left to the compiler from here.
+        out += std::regex_replace(line, std::regex(R"(#\s*elif)"), "#if") + '\n';
+        frame = {Group::Kept, true, false};
+      }
+    }
+  }
+  if (!frames.empty()) throw Error("shader bundle: an #if without #endif");
+  return out;
+}
+
 // The lines that select a language's branch of the kernel's prelude, ahead of the kernel.
 std::string languagePreamble(const std::string& language) {
   if (language == "glsl") return "// Desktop GLSL 4.50 (OpenGL).\n";
@@ -68,8 +234,9 @@ void runShaderBundle(const BundleOptions& options) {
                            options.language) +
                   "// Include it after the kernel's bundle (--language without --extended-lights) and define\n"
                   "// GLINT_REGION_COUNT first; it needs the hook's third function, glintDictionaryCumulativeTexel.\n" +
-                  expandedWithoutLines("glint_extended_lights.h", "glint_kernel.h")
-            : bundleHeader("the whole kernel as " + options.language) + preamble + expandedWithoutLines("glint_kernel.h");
+                  withoutOtherLanguages(expandedWithoutLines("glint_extended_lights.h", "glint_kernel.h"), options.language)
+            : bundleHeader("the whole kernel as " + options.language) + preamble +
+                  withoutOtherLanguages(expandedWithoutLines("glint_kernel.h"), options.language);
     if (options.output.empty()) {
       std::fputs(text.c_str(), stdout);
       return;

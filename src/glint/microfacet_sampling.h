@@ -1,5 +1,5 @@
 // Importance sampling of microfacet normals, host only (docs/sampling.md): the glint P-SDF as the
-// finite mixture it is (Chermain, Cabral, Dischler, Dachsbacher 2021, "Importance Sampling of
+// finite mixture it is (Chermain, Sauvage, Dischler, Dachsbacher 2021, "Importance Sampling of
 // Glittering BSDFs based on Finite Mixture Distributions", EGSR; method.md section 5), the
 // Beckmann slope distribution, visible normals of the V-cavity model (Heitz & d'Eon 2014), and the
 // dielectric interface (Walter, Marschner, Li & Torrance 2007). The BSDF classes of bsdf.h build

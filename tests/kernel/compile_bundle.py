@@ -148,6 +148,13 @@ def main(argv):
             if "#include" in part_text:
                 print("the bundle still has #include lines")
                 return 1
+            # The language's own branches only: prelude.h's C++ branch (namespace glint::kernel)
+            # and, outside HLSL, its HLSL spellings are left out of the text.
+            others = ["namespace glint::kernel {"] + ([] if language == "hlsl" else ["#define vec2 float2"])
+            if any(other in part_text for other in others):
+                print(f"the {language} bundle keeps another language's branch: " +
+                      ", ".join(o for o in others if o in part_text))
+                return 1
             text += ("#define GLINT_REGION_COUNT 1\n" if part else "") + part_text
         source = os.path.join(temporary, "host." + stage)
         with open(source, "w", encoding="utf-8") as f:

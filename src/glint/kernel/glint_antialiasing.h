@@ -42,9 +42,10 @@ GLINT_KERNEL_BEGIN
 
 // ---- 1. Slope correlation --------------------------------------------------------------------
 
-// The linear part of a cell's map to the dictionary's space, M^-1 h (Eq. 18), for the target
-// roughness alpha and correlation rho of a dictionary of roughness alphaD. With rho = 0 it is
-// exactly the 2020 scaling h alpha_d / alpha: the terms rho adds are exact zeros and ones.
+// The linear part of a cell's map to the dictionary's space, M^-1 h (Eq. 18 of Chermain et al. 2021;
+// with the cell's rotation, Eq. 5), for the target roughness alpha and correlation rho of a
+// dictionary of roughness alphaD. With rho = 0 it is exactly the 2020 scaling h alpha_d / alpha: the
+// terms rho adds are exact zeros and ones.
 GLINT_FN vec2 glintCorrelatedUnscale(vec2 slope, vec2 alpha, float rho, float alphaD) {
   float s = sqrt(1.0f - rho * rho);
   vec2 scale = glintSplat2(alphaD) / alpha;
@@ -58,8 +59,8 @@ GLINT_FN vec2 glintCorrelatedScale(vec2 unscaled, vec2 alpha, float rho, float a
   return vec2(scale.x * (s * unscaled.x + rho * unscaled.y), scale.y * unscaled.y);
 }
 
-// The Jacobian det(M^-1) = alpha_d^2 / (alpha_x alpha_y sqrt(1 - rho^2)), so that every cell
-// integrates to 1 (Eq. 15).
+// The Jacobian det(M^-1) = alpha_d^2 / (alpha_x alpha_y sqrt(1 - rho^2)), the factor of Eq. 15 of
+// Chermain et al. 2021 that makes every cell integrate to 1.
 GLINT_FN float glintCorrelatedJacobian(vec2 alpha, float rho, float alphaD) {
   return (alphaD * alphaD) / (alpha.x * alpha.y) / sqrt(1.0f - rho * rho);
 }

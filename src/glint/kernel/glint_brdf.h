@@ -7,7 +7,8 @@
 // The model is in parts, each its own header: its inputs (glint_parameters.h), the pixel footprint
 // and the walk over its cells (glint_footprint.h), a cell's draws (glint_cell.h) and the level-of-
 // detail constructions (glint_lod.h); this one sums the cells into the P-SDF over the footprint and
-// turns it into the P-NDF and the BRDF (method.md 2.4-3).
+// turns it into the P-NDF and the BRDF (Alg. 1 and 2 and Eq. 14 of Chermain et al. 2020; method.md
+// 2.4-3).
 // Shared by the CPU library and the shading languages: see prelude.h for the rules.
 #ifndef GLINT_KERNEL_GLINT_BRDF_H
 #define GLINT_KERNEL_GLINT_BRDF_H
@@ -83,10 +84,12 @@ GLINT_FN vec4 glintLevelAverage(GlintParameters params, float dictionarySum, vec
   return average;
 }
 
-// P22 over the footprint at one level (method.md 2.4), at each slope of the set: the EWA-weighted
-// mean of its cells' P22, in .w; .rgb weighted by the cells' colours. The scaling Jacobian and the
-// Beckmann P22 of the smooth cells are the same for every cell, so they multiply the weighted sums
-// once. Uncoloured cells are white, so their .rgb is .w: only coloured ones sum colours.
+// P22 over the footprint at one level (Alg. 2 of Chermain et al. 2020; method.md 2.4), at each slope
+// of the set: the EWA-weighted mean of its cells' P22, in .w; .rgb weighted by the cells' colours.
+// The scaling Jacobian (Alg. 3, line 19 of Chermain et al. 2020; det(M^-1) of Eq. 15 of Chermain et
+// al. 2021, I3D) and the Beckmann P22 of the smooth cells (Alg. 3, line 10) are the same for every
+// cell, so they multiply the weighted sums once. Uncoloured cells are white, so their .rgb is .w:
+// only coloured ones sum colours.
 GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                                    int level, GlintLevelDraw draw, GlintSlopeSet slopes) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
@@ -163,6 +166,7 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
                                                cellUnscaled);
             p *= cell.scalePrecision;
           }
+          // Alg. 2, line 3 of Chermain et al. 2020.
           float weighted = covered * p;
           dictionarySum[k] += weighted;
           if (params.colouredCells) {
@@ -194,9 +198,9 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   return p22;
 }
 
-// The P-SDF: P22 over the pixel footprint, blended between two levels (method.md 2.3), at each
-// slope of the set, in .w; .rgb weighted by the cells' colours (equal to .w unless
-// params.colouredCells).
+// The P-SDF: P22 over the pixel footprint, blended between two levels (Alg. 1, line 8 of Chermain
+// et al. 2020; method.md 2.3), at each slope of the set, in .w; .rgb weighted by the cells' colours
+// (equal to .w unless params.colouredCells).
 GLINT_FN GlintP22Set glintP22Set(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                  GlintSlopeSet slopes) {
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
@@ -246,7 +250,8 @@ GLINT_FN float glintFilteredP22(GlintDictionaryView dict, GlintParameters params
   return glintP22Set(dict, params, uv, duvdx, duvdy, slopes).p22[0].w;
 }
 
-// The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4.
+// The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4 (Chermain et al.
+// 2020: the slope is Eq. 1, Alg. 1, line 2; D_P is Alg. 1, line 10).
 GLINT_FN float glintNdf(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec3 m) {
   return glintNdfFromP22(glintP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(m)), m.z);
 }
@@ -257,7 +262,8 @@ GLINT_FN float glintMaskedReflectance(GlintParameters params, vec3 wo, vec3 wi, 
   return glintMaskedMicrofacetReflectance(params.masking, params.ndf, params.alpha, params.rho, wo, wi, wh, ndf);
 }
 
-// The glint BRDF without Fresnel and colour (F = 1), without the cosine.
+// The glint BRDF, Eq. 14 of Chermain et al. 2020 (Alg. 1; wh is its line 1), without Fresnel and
+// colour (F = 1), without the cosine.
 GLINT_FN float glintReflectance(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {

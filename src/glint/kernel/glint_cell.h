@@ -1,7 +1,7 @@
-// One cell of the 2020 glint model (Chermain et al. 2020; method.md 2.5): its hash, its
-// dictionary level drawn from its expected number of microfacets with the density randomisation,
-// its random rotation and pair of dictionary distributions, the slope scaling to the material's
-// roughness, and its random colour (coloured cells).
+// One cell of the 2020 glint model (Chermain et al. 2020, Eq. 11 and Alg. 3; method.md 2.5): its
+// hash, its dictionary level drawn from its expected number of microfacets with the density
+// randomisation, its random rotation and pair of dictionary distributions, the slope scaling to the
+// material's roughness, and its random colour (coloured cells).
 // Shared by the CPU library and the shading languages: see prelude.h for the rules.
 #ifndef GLINT_KERNEL_GLINT_CELL_H
 #define GLINT_KERNEL_GLINT_CELL_H
@@ -38,16 +38,18 @@ GLINT_FN vec3 glintTintedP22(float p22, vec2 chroma) {
 // The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
 // below and the importance sampler of the host (src/glint/microfacet_sampling.cpp) both call these.
 //
-// Coherent index: the level-0 index of the cell's first child, so that a cell and its descendants
-// draw the same random numbers (method.md 2.5). Masked to the period, the pair is a collision-free
-// seed; glintPcg4d's four lanes are the cell's four draws.
+// Coherent index (Alg. 3, line 1 of Chermain et al. 2020): the level-0 index of the cell's first
+// child, so that a cell and its descendants draw the same random numbers (method.md 2.5). Masked to
+// the period, the pair is a collision-free seed (in place of Alg. 3, line 2's s + 1549 t, which
+// collides); glintPcg4d's four lanes are the cell's four draws.
 GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
   uint s = (uint(cellX) << uint(level)) & GLINT_CELL_INDEX_MASK;
   uint t = (uint(cellY) << uint(level)) & GLINT_CELL_INDEX_MASK;
   return glintPcg4d(uvec4(s, t, params.patternSeed, 0u));
 }
 
-// Microfacet relative area: the cell holds microfacets with probability MRA (method.md 2.5).
+// Microfacet relative area: the cell holds microfacets with probability MRA (Alg. 3, lines 3-4 of
+// Chermain et al. 2020; method.md 2.5).
 GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
   return !(glintHashToUnitOpen(h.x) > params.relativeArea);
 }
@@ -55,7 +57,8 @@ GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
 // Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
 // log4(n) randomised by a normal of std zeta (method.md 2.5), rounded, and the top level L means "so
 // many microfacets that the smooth Beckmann limit holds": round(log4(n) + zeta N) clamped to [0, L],
-// N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u.
+// N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u (Alg. 3, lines 5-9
+// of Chermain et al. 2020; level L is its line 10).
 //
 // The same draw without inverting the normal per cell: the level reaches j exactly when
 // log4(n) + 1/2 + zeta N >= j, that is when u >= Phi((j - log4(n) - 1/2) / zeta). The L thresholds
@@ -122,11 +125,12 @@ GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   return (b8 ? 8 : 0) + (b4 ? 4 : 0) + (b2 ? 2 : 0) + (b1 ? 1 : 0) + (u >= draw.threshold[15] ? 1 : 0);
 }
 
-// The cell's random rotation theta = 2 pi hash (method.md 2.5), as (cos theta, sin theta). The
-// angle is reduced to [-pi/4, pi/4] in quarter turns, exactly (hash * 4 and its rounding are exact),
-// and cos and sin there are Cephes' single-precision minimax polynomials (cosf, sinf; error below
-// 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle on
-// their own: the pair was 12% of the glint shader's instructions, this is about a third of that.
+// The cell's random rotation theta = 2 pi hash (Alg. 3, line 13 of Chermain et al. 2020; method.md
+// 2.5), as (cos theta, sin theta). The angle is reduced to [-pi/4, pi/4] in quarter turns, exactly
+// (hash * 4 and its rounding are exact), and cos and sin there are Cephes' single-precision minimax
+// polynomials (cosf, sinf; error below 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin
+// and cos each reduce the angle on their own: the pair was 12% of the glint shader's instructions,
+// this is about a third of that.
 GLINT_FN vec2 glintCellRotation(uvec4 h) {
   float quarterTurns = 4.0f * glintHashToUnitOpen(h.z);
   float quadrant = floor(quarterTurns + 0.5f);
@@ -140,16 +144,17 @@ GLINT_FN vec2 glintCellRotation(uvec4 h) {
   return quarter >= 2 ? -rotation : rotation;                     // a half turn
 }
 
-// The cell's two distributions (i, j) from the 16-bit halves of the last lane: exact integer
-// arithmetic, the same in both languages.
+// The cell's two distributions (i, j) (Alg. 3, lines 17-18 of Chermain et al. 2020) from the 16-bit
+// halves of the last lane: exact integer arithmetic, the same in both languages.
 GLINT_FN ivec2 glintCellDistributions(GlintDictionaryView dict, uvec4 h) {
   uint n = uint(dict.numDistributions);
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
 
-// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5), in two steps: undo
-// the roughness scaling and correlation M (the same for every cell of a pixel; with rho = 0 the
-// 2020 model's S = alpha / alpha_d) ...
+// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5; Alg. 3, line 16 of
+// Chermain et al. 2020; Eq. 5 of Chermain et al. 2021, I3D), in two steps: undo the roughness
+// scaling and correlation M (Eq. 18 of the 2021 paper; the same for every cell of a pixel; with
+// rho = 0 the 2020 model's S = alpha / alpha_d) ...
 GLINT_FN vec2 glintUnscaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
   return glintCorrelatedUnscale(slope, params.alpha, params.rho, dict.alpha);
 }
@@ -166,7 +171,8 @@ GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
   return vec2(x, y);
 }
 
-// Jacobian of the scaling, det(M^-1) (method.md 2.5; with correlation, glintCorrelatedJacobian).
+// Jacobian of the scaling, det(M^-1): the 1 / (S_x S_y) of Alg. 3, line 19 of Chermain et al. 2020
+// (method.md 2.5; with correlation, glintCorrelatedJacobian).
 GLINT_FN float glintScalingJacobian(GlintDictionaryView dict, GlintParameters params) {
   return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
 }
@@ -190,11 +196,12 @@ GLINT_FN bool glintSlopeIsNegligible(GlintDictionaryView dict, GlintParameters p
   return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / glintTargetWidestCell(params.ndf));
 }
 
-// One cell's contribution to P22 (method.md 2.5), split so that what is the same for every cell of
-// the footprint is computed once per footprint (glintLevelP22), not once per cell, and what is the
-// same for every slope once per cell: a cell is empty, in the smooth limit (its P22 is the Beckmann
-// P22 at the slope), or reads the dictionary (its P22 is the tensor product of two marginals at its
-// rotated slope, times the scaling Jacobian).
+// One cell's contribution to P22 (method.md 2.5), the cell's SDF of Eq. 11 and Alg. 3 of Chermain
+// et al. 2020 (with the slope correlation, Eq. 4 of Chermain et al. 2021, I3D), split so that what
+// is the same for every cell of the footprint is computed once per footprint (glintLevelP22), not
+// once per cell, and what is the same for every slope once per cell: a cell is empty, in the smooth
+// limit (its P22 is the Beckmann P22 at the slope), or reads the dictionary (its P22 is the tensor
+// product of two marginals at its rotated slope, times the scaling Jacobian).
 struct GlintCell {
   uvec4 hash;
   bool readsDictionary;
@@ -234,7 +241,8 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
     cell.distributions = glintCellDistributions(dict, cell.hash);  // read only where it reads the dictionary
-    // So many microfacets that the smooth limit holds: their colours average out to white too.
+    // So many microfacets that the smooth limit holds (Alg. 3, line 10): their colours average out
+    // to white too.
     cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
     cell.readsDictionary = !cell.smoothLimit;
     if (params.ndf == GLINT_NDF_GGX && cell.readsDictionary) {

@@ -1,7 +1,7 @@
-// The pixel footprint of the 2020 glint model (Chermain et al. 2020; method.md 2.2-2.4):
-// the footprint ellipse in uv and its continuous level of detail, the cells of a level under it and
-// their EWA weights, the walk over them, and the renderer's footprint policies that bound it
-// (docs/antialiasing.md, "Footprint policies").
+// The pixel footprint of the 2020 glint model (Chermain et al. 2020, Alg. 1, lines 3-7, and Alg. 2;
+// method.md 2.2-2.4): the footprint ellipse in uv and its continuous level of detail, the cells of a
+// level under it and their EWA weights, the walk over them, and the renderer's footprint policies
+// that bound it (docs/antialiasing.md, "Footprint policies").
 // Shared by the CPU library and the shading languages: see prelude.h for the rules.
 #ifndef GLINT_KERNEL_GLINT_FOOTPRINT_H
 #define GLINT_KERNEL_GLINT_FOOTPRINT_H
@@ -25,9 +25,10 @@ GLINT_FN float glintFootprintPeriod(int numLevels) {
   return exp2(float(17 - numLevels));
 }
 
-// Footprint ellipse and continuous LOD (method.md 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the
-// pixel's footprint is the ellipse duvdx cos t + duvdy sin t, its minor axis is widened so that
-// the anisotropy is at most maxAnisotropy, and the LOD is the (widened) minor axis in cells.
+// Footprint ellipse and continuous LOD (Alg. 1, lines 3-6 of Chermain et al. 2020; method.md
+// 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the pixel's footprint is the ellipse duvdx cos t + duvdy
+// sin t, its minor axis is widened so that the anisotropy is at most maxAnisotropy, and the LOD is
+// the (widened) minor axis in cells.
 // Going past the paper and pbrt-v3 in two ways:
 //   - The two derivatives are conjugate semi-diameters of the ellipse, not its axes: they are
 //     perpendicular only where the uv map is conformal along the screen axes. pbrt-v3 takes the
@@ -67,8 +68,9 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   vec2 direction = halfDifference >= 0.0f ? vec2(halfDifference + root, b) : vec2(b, root - halfDifference);
   float directionLength = length(direction);
   direction = directionLength > 0.0f ? direction / directionLength : vec2(1.0f, 0.0f);
-  // The anisotropy clamp: the minor axis at least majorLength / maxAnisotropy, set directly (a
-  // ratio of the two lengths overflows for a thin enough ellipse). No area stays no area.
+  // The anisotropy clamp (Alg. 1, lines 4-5): the minor axis at least majorLength / maxAnisotropy,
+  // set directly (a ratio of the two lengths overflows for a thin enough ellipse). No area stays no
+  // area.
   if (minorLength > 0.0f) {
     minorLength = max(minorLength, majorLength / maxAnisotropy);
   }
@@ -86,15 +88,16 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   footprint.majorAxis = major;
   footprint.minorAxis = minor;
   footprint.degenerate = !(minorLength > 0.0f);
+  // Alg. 1, line 6 of Chermain et al. 2020.
   footprint.lod = footprint.degenerate ? 0.0f : max(0.0f, float(numLevels - 1) + log2(minorLength));
   return footprint;
 }
 
-// The cells of one footprint level (method.md 2.4): cells of 2^(L-1-level) per uv unit, weighted by
-// pbrt-v3's EWA Gaussian over the footprint ellipse. The ellipse is walked line by line between its
-// two boundary crossings (glintCellRow), so only cells inside it are visited (no bounding-box
-// waste, no cap). Lines run along the ellipse's longer extent: a footprint long in v is walked in
-// columns, not rows.
+// The cells of one footprint level (Alg. 2 of Chermain et al. 2020; method.md 2.4): cells of
+// 2^(L-1-level) per uv unit, weighted by pbrt-v3's EWA Gaussian over the footprint ellipse. The
+// ellipse is walked line by line between its two boundary crossings (glintCellRow), so only cells
+// inside it are visited (no bounding-box waste, no cap). Lines run along the ellipse's longer
+// extent: a footprint long in v is walked in columns, not rows.
 // The P-SDF and the host's sampler enumerate the cells and weigh them with these functions, so
 // both see the same cells and weights.
 struct GlintCellGrid {
@@ -199,11 +202,12 @@ GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
   return GLINT_PI * sqrt(determinant) + 2.0f * sqrt(determinant / across) + (2.0f * sqrt(across) + 1.1f) * 1.1f;
 }
 
-// The EWA weight of the cell at walk coordinates (s, t) (method.md 2.4): exp(-2 r^2) - exp(-2) for
-// r^2 < 1, else 0. The quadratic form is symmetric in the transposition, so the weights are the
-// cells'. Each cell takes its own exp: stepping the Gaussian along a line by forward differencing
-// needs two exps at the start of every line, which the single-loop walk of glintLevelP22 would pay
-// on every iteration (docs/benchmarks.md, "What made it fast, and why").
+// The EWA weight of the cell at walk coordinates (s, t) (Alg. 2, line 3 of Chermain et al. 2020;
+// method.md 2.4): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0. The quadratic form is symmetric in the
+// transposition, so the weights are the cells'. Each cell takes its own exp: stepping the Gaussian
+// along a line by forward differencing needs two exps at the start of every line, which the
+// single-loop walk of glintLevelP22 would pay on every iteration (docs/benchmarks.md, "What made it
+// fast, and why").
 GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
   float dy = float(t) - grid.centre.y;
@@ -222,8 +226,8 @@ GLINT_FN vec2 glintWrapUv(vec2 uv, int numLevels) {
   return uv - period * floor(uv / period);
 }
 
-// The continuous LOD's two levels (method.md 2.3): floor(lod), blended with the next one by
-// glintLodBlend.
+// The continuous LOD's two levels (Alg. 1, lines 6-7 of Chermain et al. 2020; method.md 2.3):
+// floor(lod), blended with the next one by glintLodBlend.
 GLINT_FN int glintLodLevel(GlintFootprint footprint) {
   return int(floor(footprint.lod));
 }

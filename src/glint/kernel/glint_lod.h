@@ -260,7 +260,8 @@ GLINT_FN float glintFilteredBlockMarginal(GlintDictionaryView dict, GlintMargina
 }
 
 // The product of a dictionary cell's two marginals at an unscaled slope (glintUnscaledSlope),
-// without the scaling Jacobian; 0 outside the cell's rotated support.
+// without the scaling Jacobian (Alg. 3, line 19 of Chermain et al. 2020; Eq. 15 of Chermain et al.
+// 2021, I3D); 0 outside the cell's rotated support.
 GLINT_FN float glintCellMarginals(GlintDictionaryView dict, int dictionaryLevel, ivec2 distributions, ivec2 complement,
                                   vec2 rotation, vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);

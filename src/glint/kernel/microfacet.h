@@ -9,7 +9,8 @@ GLINT_KERNEL_BEGIN
 
 GLINT_CONST float GLINT_PI = 3.14159265358979f;
 
-// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (method.md, notation).
+// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (Eq. 1 of Chermain et al. 2020;
+// method.md, notation).
 GLINT_FN vec2 glintSlopeFromNormal(vec3 m) {
   return vec2(-m.x / m.z, -m.y / m.z);
 }
@@ -18,8 +19,8 @@ GLINT_FN vec2 glintSlopeFromNormal(vec3 m) {
 // standard deviation sigma = alpha / sqrt(2) per axis and correlation rho, covariance
 // [[sx^2, rho sx sy], [rho sx sy, sy^2]] (Walter et al. 2007, Eq. 25 in slope space, with the
 // correlation of Chermain et al. 2021, "Real-Time Geometric Glint Anti-Aliasing with Normal Map
-// Filtering", I3D, Section 5). rho = 0 computes exactly the uncorrelated expression: the terms
-// rho adds are exact zeros and its divisions exact ones.
+// Filtering", I3D). rho = 0 computes exactly the uncorrelated expression: the terms rho adds are
+// exact zeros and its divisions exact ones.
 GLINT_FN float glintBeckmannP22(vec2 slope, vec2 alpha, float rho) {
   vec2 sigma = alpha * 0.70710678f;
   vec2 t = slope / sigma;
@@ -43,7 +44,8 @@ GLINT_FN vec3 glintBeckmannSlopeCovariance(vec2 alpha, float rho) {
   return vec3(sigma.x * sigma.x, rho * sigma.x * sigma.y, sigma.y * sigma.y);
 }
 
-// Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m).
+// Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m); for the P-SDF,
+// Alg. 1, line 10 of Chermain et al. 2020.
 GLINT_FN float glintNdfFromP22(float p22, float cosThetaM) {
   float c2 = cosThetaM * cosThetaM;
   return p22 / (c2 * c2);
@@ -56,8 +58,8 @@ GLINT_FN float glintVCavityG1(vec3 w, vec3 m) {
 }
 
 // The Cook-Torrance frame around any normal distribution value D(wh), Fresnel excluded:
-// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (method.md, section 3). Zero below either horizon and for
-// back-facing microfacets. Without the cosine (docs/conventions.md).
+// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (Eq. 14 of Chermain et al. 2020; method.md, section 3). Zero
+// below either horizon and for back-facing microfacets. Without the cosine (docs/conventions.md).
 GLINT_FN float glintMicrofacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
   if (wo.z <= 0.0f || wi.z <= 0.0f || wh.z <= 0.0f || dot(wo, wh) <= 0.0f || dot(wi, wh) <= 0.0f) {
     return 0.0f;
