@@ -1,5 +1,5 @@
-// Reading the dictionary's marginals in glint's texel convention (docs/dictionary.md, "Texel
-// convention"), shared by the 2020 P-SDF (glint_brdf.h) and its anti-aliasing (glint_antialiasing.h).
+// Reading the dictionary's marginals (docs/dictionary.md, "Texel convention"), for the 2020 P-SDF
+// (glint_brdf.h) and its anti-aliasing (glint_antialiasing.h).
 #ifndef GLINT_KERNEL_DICTIONARY_LOOKUP_H
 #define GLINT_KERNEL_DICTIONARY_LOOKUP_H
 
@@ -12,9 +12,8 @@ GLINT_FN float glintDictionaryDomain(GlintDictionaryView dict) {
   return 2.82842712f * dict.alpha;
 }
 
-// One tabulated 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R and
-// the marginal falls linearly to 0 at 4 sigma_d (docs/dictionary.md, "Texel convention"). The
-// caller guarantees 0 <= absSlope < 4 sigma_d.
+// One 1D marginal at |slope|: texel k holds the density at slope k * 4 sigma_d / R, and past the last
+// texel it falls linearly to 0 at 4 sigma_d. The caller guarantees 0 <= absSlope < 4 sigma_d.
 GLINT_FN float glintMarginal(GlintDictionaryView dict, int level, int distribution, float absSlope) {
   float x = absSlope * (float(dict.texelsPerDistribution) / glintDictionaryDomain(dict));
   int k = min(int(x), dict.texelsPerDistribution - 1);

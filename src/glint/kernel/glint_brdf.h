@@ -1,15 +1,10 @@
-// The glint BRDF of Chermain, Sauvage, Dischler & Dachsbacher 2020, "Procedural Physically based
-// BRDF for Real-Time Rendering of Glints" (Pacific Graphics; CGF 39(7)): the P-SDF over a pixel
-// footprint (docs/conventions.md), its P-NDF, and the BRDF. The walk over the footprint's cells
-// also carries the 2021 extension's slope correlation and anti-aliasing filter
-// (glint_antialiasing.h), which leave the 2020 values unchanged bit for bit when rho = 0 and the
-// slopes have no derivatives.
-// The model is in parts, each its own header: its inputs (glint_parameters.h), the pixel footprint
-// and the walk over its cells (glint_footprint.h), a cell's draws (glint_cell.h) and the level-of-
-// detail constructions (glint_lod.h); this one sums the cells into the P-SDF over the footprint and
-// turns it into the P-NDF and the BRDF (Alg. 1 and 2 and Eq. 14 of Chermain et al. 2020; method.md
-// 2.4-3).
-// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+// The glint BRDF of Chermain, Sauvage, Dischler & Dachsbacher 2020, "Procedural Physically based BRDF
+// for Real-Time Rendering of Glints" (Pacific Graphics; CGF 39(7)): the cells summed into the P-SDF
+// over a pixel footprint, the P-NDF and the BRDF (Alg. 1 and 2 and Eq. 14; method.md 2.4-3). Its
+// parts: inputs (glint_parameters.h), footprint and walk (glint_footprint.h), a cell's draws
+// (glint_cell.h), level-of-detail constructions (glint_lod.h). The walk also carries the 2021 slope
+// correlation and filter (glint_antialiasing.h), which leave the 2020 values unchanged bit for bit
+// when rho = 0 and the slopes have no derivatives.
 #ifndef GLINT_KERNEL_GLINT_BRDF_H
 #define GLINT_KERNEL_GLINT_BRDF_H
 
@@ -26,9 +21,9 @@
 
 GLINT_KERNEL_BEGIN
 
-// The smooth target's P22 convolved with the anti-aliasing kernel of slope covariance K: for
-// Beckmann exactly glintFilteredBeckmannP22; for GGX the Student t of scale covariance Sigma + K, an
-// approximation (a t convolved with a Gaussian is no t), exact where there is no kernel.
+// The smooth target's P22 convolved with the kernel of slope covariance K: for Beckmann
+// glintFilteredBeckmannP22; for GGX the Student t of scale covariance Sigma + K, an approximation (a t
+// convolved with a Gaussian is no t), exact without a kernel.
 GLINT_FN float glintFilteredTargetP22(GlintParameters params, vec2 slope, vec3 kernelCovariance) {
   if (params.ndf != GLINT_NDF_GGX) {
     return glintFilteredBeckmannP22(slope, params.alpha, params.rho, kernelCovariance);
@@ -36,20 +31,18 @@ GLINT_FN float glintFilteredTargetP22(GlintParameters params, vec2 slope, vec3 k
   return glintStudentSlopeP22(slope, glintBeckmannSlopeCovariance(params.alpha, params.rho) + kernelCovariance);
 }
 
-// The P-SDF at several slopes from one walk over the footprint's cells. The renderer shades all of
-// a pixel's lights at once, one half vector each, so that a cell's hash, dictionary level, rotation
-// and distributions are drawn once per pixel instead of once per light (docs/renderer.md, "Cost");
-// each slope gets exactly the sums that a walk for it alone would make. The count is a compile-time
-// constant: the renderer's programs define it as their scene's light count; the CPU library and
-// its sampler evaluate one slope at a time.
+// The P-SDF at several slopes from one walk: the renderer shades a pixel's lights at once, one half
+// vector each, so a cell's draws are made once per pixel, not per light (docs/renderer.md, "Cost");
+// each slope gets exactly the sums of a walk of its own. A compile-time constant: the renderer's
+// programs define their scene's light count; the CPU library and sampler use one.
 #ifndef GLINT_SLOPE_COUNT
 #define GLINT_SLOPE_COUNT 1
 #endif
 
 struct GlintSlopeSet {
   vec2 slope[GLINT_SLOPE_COUNT];
-  // Each slope's screen-space derivatives (d/dx, d/dy) as (dx.x, dx.y, dy.x, dy.y), times the
-  // anti-aliasing kernel's size: the filter's input (glint_antialiasing.h). Zero: no filtering.
+  // Each slope's screen derivatives (dx.x, dx.y, dy.x, dy.y) times the kernel size: the filter's
+  // input (glint_antialiasing.h). Zero: no filtering.
   vec4 derivatives[GLINT_SLOPE_COUNT];
 };
 
@@ -68,10 +61,9 @@ GLINT_FN GlintSlopeSet glintSingleSlope(vec2 slope) {
 }
 
 // A level's average over its walked cells, as glintLevelP22 and the extended lights' region masses
-// (glint_extended_lights.h) take it: the dictionary cells' sum times `dictionaryScale`, .rgb tinted
-// by their chroma sum with coloured cells, plus the smooth cells' and the GGX-tail cells' parts
-// (untinted), over the walk's summed weight. Under the consistent construction a complement's few
-// texels below zero (glintBlockMarginal) never make it negative.
+// take it: the dictionary cells' sum times `dictionaryScale` (.rgb tinted by the chroma sum with
+// coloured cells) plus the untinted smooth and GGX-tail parts, over the summed weight. Clamped at 0
+// under the consistent construction, whose complement texels can dip below 0 (glintBlockMarginal).
 GLINT_FN vec4 glintLevelAverage(GlintParameters params, float dictionarySum, vec2 chromaSum, float dictionaryScale, float smoothPart,
                                 float tailPart, float weightSum) {
   vec3 colourWeighted = params.colouredCells ? glintTintedP22(dictionarySum, chromaSum) : glintSplat3(dictionarySum);
@@ -84,26 +76,24 @@ GLINT_FN vec4 glintLevelAverage(GlintParameters params, float dictionarySum, vec
   return average;
 }
 
-// P22 over the footprint at one level (Alg. 2 of Chermain et al. 2020; method.md 2.4), at each slope
-// of the set: the EWA-weighted mean of its cells' P22, in .w; .rgb weighted by the cells' colours.
-// The scaling Jacobian (Alg. 3, line 19 of Chermain et al. 2020; det(M^-1) of Eq. 15 of Chermain et
-// al. 2021, I3D) and the Beckmann P22 of the smooth cells (Alg. 3, line 10) are the same for every
-// cell, so they multiply the weighted sums once. Uncoloured cells are white, so their .rgb is .w:
-// only coloured ones sum colours.
+// P22 over the footprint at one level (Alg. 2 of Chermain et al. 2020; method.md 2.4), at each slope:
+// the EWA-weighted mean of its cells' P22 in .w, .rgb weighted by the cells' colours (uncoloured
+// cells are white: .rgb = .w). The scaling Jacobian (Alg. 3, line 19 of Chermain et al. 2020;
+// det(M^-1) of Eq. 15 of Chermain et al. 2021, I3D) and the smooth cells' P22 (Alg. 3, line 10) are
+// the same for every cell, so they multiply the weighted sums once.
 GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters params, GlintFootprint footprint, vec2 uv,
                                    int level, GlintLevelDraw draw, GlintSlopeSet slopes) {
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   vec2 unscaled[GLINT_SLOPE_COUNT];
   float dictionarySum[GLINT_SLOPE_COUNT];
   vec2 chromaSum[GLINT_SLOPE_COUNT];
-  // A slope beyond every rotated support reads no dictionary cell (glintCellMarginals' per-axis
-  // test agrees but for the rotation's rounding, so the slope is gated as a walk for it alone
-  // would be); when all are, the cells' rotations and texel reads are skipped.
+  // A slope beyond every rotated support reads no dictionary cell (glintCellMarginals' per-axis test
+  // agrees but for rounding, so the slope is gated as a walk of its own would be); when all are,
+  // rotations and texel reads are skipped.
   bool inSupport[GLINT_SLOPE_COUNT];
   bool anyInSupport = false;
-  // The anti-aliasing kernel of each slope: its covariance in slope space (for the smooth cells)
-  // and, from its covariance in the unscaled space, the level of detail of the dictionary cells'
-  // filtered lookups.
+  // Each slope's kernel: its slope-space covariance (smooth cells) and, from its unscaled covariance,
+  // the dictionary cells' level of detail.
   vec3 slopeKernel[GLINT_SLOPE_COUNT];
   GlintMarginalFilter kernelFilter[GLINT_SLOPE_COUNT];
   float kernelVariance[GLINT_SLOPE_COUNT];  // GGX cells filter at their own scale
@@ -125,18 +115,16 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
     anyDerivative = anyDerivative || slopeKernel[k].x + slopeKernel[k].z > 0.0f;
   }
   bool filtering = GLINT_FILTERS(anyDerivative);
-  // The draws of the parent or own level, for the consistent and tree constructions (glintLodCell).
+  // The parent's or own level's draws, for the consistent and tree constructions (glintLodCell).
   GlintLodDraws draws = glintLodDraws(dict, params, footprint.logDensity, level, draw);
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
   float tailWeightSum = 0.0f;
-  // One loop over the cells, moving to the next line when a line is done, rather than a loop over
-  // lines around a loop over a line's cells: pixels shaded in lockstep (llvmpipe's SIMD lanes, GPU
-  // warps) then pay for the most cells any of them visits, not for the longest line of any of them,
-  // line after line. Where branches are predicated (llvmpipe) every iteration pays for the move to
-  // the next line; measured, the single loop still costs less (docs/benchmarks.md, "What made it
-  // fast, and why").
-  // The cells, their weights and their order are those of the nested loops, bit for bit.
+  // One loop over the cells, not a loop over lines around a loop over a line's cells: pixels shaded in
+  // lockstep (llvmpipe's SIMD lanes, GPU warps) then pay for the most cells any visits, not the longest
+  // line of any, line after line. Measured cheaper even where predication makes every iteration pay for
+  // the line change (docs/benchmarks.md, "What made it fast, and why"). Same cells, weights and order
+  // as the nested loops, bit for bit.
   GlintCellWalk walk = glintWalkStart(grid);
   while (glintWalkGoing(grid, walk)) {
     float weight = glintWalkWeight(grid, walk);
@@ -198,9 +186,8 @@ GLINT_FN GlintP22Set glintLevelP22(GlintDictionaryView dict, GlintParameters par
   return p22;
 }
 
-// The P-SDF: P22 over the pixel footprint, blended between two levels (Alg. 1, line 8 of Chermain
-// et al. 2020; method.md 2.3), at each slope of the set, in .w; .rgb weighted by the cells' colours
-// (equal to .w unless params.colouredCells).
+// The P-SDF: P22 over the pixel footprint, blended between two levels (Alg. 1, line 8 of Chermain et
+// al. 2020; method.md 2.3), at each slope, in .w; .rgb weighted by the cells' colours.
 GLINT_FN GlintP22Set glintP22Set(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                  GlintSlopeSet slopes) {
   GlintFootprint footprint = glintPixelFootprint(duvdx, duvdy, params, dict.numLevels);
@@ -239,8 +226,8 @@ GLINT_FN float glintP22(GlintDictionaryView dict, GlintParameters params, vec2 u
   return glintP22Coloured(dict, params, uv, duvdx, duvdy, slope).w;
 }
 
-// The anti-aliased P-SDF at one slope whose screen derivatives (times the kernel size) are
-// `derivatives` (dx.x, dx.y, dy.x, dy.y) (glint_antialiasing.h); zero derivatives give glintP22.
+// The anti-aliased P-SDF at one slope with screen derivatives (times the kernel size) `derivatives`
+// (glint_antialiasing.h); zero derivatives give glintP22.
 GLINT_FN float glintFilteredP22(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec2 slope, vec4 derivatives) {
   GlintSlopeSet slopes = glintSingleSlope(slope);
@@ -250,20 +237,19 @@ GLINT_FN float glintFilteredP22(GlintDictionaryView dict, GlintParameters params
   return glintP22Set(dict, params, uv, duvdx, duvdy, slopes).p22[0].w;
 }
 
-// The P-NDF at a microfacet normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4 (Chermain et al.
-// 2020: the slope is Eq. 1, Alg. 1, line 2; D_P is Alg. 1, line 10).
+// The P-NDF at a normal m (m.z > 0): D_P(m) = P22_P(slope(m)) / m.z^4 (Chermain et al. 2020: the
+// slope is Eq. 1, Alg. 1, line 2; D_P is Alg. 1, line 10).
 GLINT_FN float glintNdf(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy, vec3 m) {
   return glintNdfFromP22(glintP22(dict, params, uv, duvdx, duvdy, glintSlopeFromNormal(m)), m.z);
 }
 
-// The Cook-Torrance frame around a P-NDF value with the material's masking (microfacet_targets.h):
-// V-cavity is the paper's, Smith takes the smooth target's Lambda.
+// The Cook-Torrance frame around a P-NDF value with the material's masking (microfacet_targets.h).
 GLINT_FN float glintMaskedReflectance(GlintParameters params, vec3 wo, vec3 wi, vec3 wh, float ndf) {
   return glintMaskedMicrofacetReflectance(params.masking, params.ndf, params.alpha, params.rho, wo, wi, wh, ndf);
 }
 
-// The glint BRDF, Eq. 14 of Chermain et al. 2020 (Alg. 1; wh is its line 1), without Fresnel and
-// colour (F = 1), without the cosine.
+// The glint BRDF, Eq. 14 of Chermain et al. 2020 (Alg. 1; wh is its line 1), F = 1, no colour or
+// cosine.
 GLINT_FN float glintReflectance(GlintDictionaryView dict, GlintParameters params, vec2 uv, vec2 duvdx, vec2 duvdy,
                                 vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {

@@ -1,8 +1,6 @@
 // One cell of the 2020 glint model (Chermain et al. 2020, Eq. 11 and Alg. 3; method.md 2.5): its
-// hash, its dictionary level drawn from its expected number of microfacets with the density
-// randomisation, its random rotation and pair of dictionary distributions, the slope scaling to the
-// material's roughness, and its random colour (coloured cells).
-// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+// hash, its dictionary level drawn from its expected microfacet count with the density
+// randomisation, its rotation and pair of distributions, the slope scaling, and its colour.
 #ifndef GLINT_KERNEL_GLINT_CELL_H
 #define GLINT_KERNEL_GLINT_CELL_H
 
@@ -13,60 +11,51 @@
 
 GLINT_KERNEL_BEGIN
 
-// A cell's random colour (the paper's "cheap iridescence"), as its offset from white in the
-// chroma plane, the colours whose channels average 1: white + a U + b V, with U and V the plane's
-// orthonormal axes (glintTintedP22). (a, b) is uniform on a square of half-width 0.85, so the
-// expected colour is white and the mean appearance that of uncoloured glints; at two of the
-// square's corners the weakest channel is 1 - 0.85 (1 / sqrt 6 + 1 / sqrt 2) = 0.05, never below 0.
-// It reads the bits the model's draws leave (glintHashToUnitOpen takes the top 24 of a lane): the
-// low 8 of the first two lanes, so the draws stay untouched and there is no second hash. Being
-// linear in (a, b), a footprint's colour sums two numbers a slope, not three. With a second hash
-// and a hue wheel, the coloured car paint's fragment shader ran 8% more instructions than the
-// uncoloured one; now 3% (docs/benchmarks.md, "What made it fast, and why").
+// A cell's random colour (the paper's "cheap iridescence"), as its offset from white in the chroma
+// plane (colours whose channels average 1): white + a U + b V (glintTintedP22), (a, b) uniform on a
+// square of half-width 0.85, so the expected colour is white; at two corners the weakest channel is
+// 1 - 0.85 (1 / sqrt 6 + 1 / sqrt 2) = 0.05, never below 0. It reads the low 8 bits the draws leave of
+// the first two lanes (glintHashToUnitOpen takes the top 24): no second hash. Linear in (a, b), so a
+// footprint's colour sums two numbers a slope. A second hash and a hue wheel cost the coloured car
+// paint 8% more fragment instructions than the uncoloured; this 3% (docs/benchmarks.md, "What made it
+// fast, and why").
 GLINT_FN vec2 glintCellChroma(uvec4 h) {
   return vec2(float(h.x & 0xFFu) - 127.5f, float(h.y & 0xFFu) - 127.5f) * (0.85f / 127.5f);
 }
 
-// The colour-weighted P22 of a footprint from its P22 sum and its chroma sum (the P22-weighted sum
-// of its cells' glintCellChroma): white times the P22 plus the chroma along the plane's axes
-// U = (2, -1, -1) / sqrt 6 and V = (0, 1, -1) / sqrt 2.
+// The colour-weighted P22 from the P22 sum and the chroma sum (P22-weighted glintCellChroma): white
+// times the P22 plus the chroma along U = (2, -1, -1) / sqrt 6 and V = (0, 1, -1) / sqrt 2.
 GLINT_FN vec3 glintTintedP22(float p22, vec2 chroma) {
   return glintSplat3(p22) + chroma.x * vec3(0.81649658f, -0.40824829f, -0.40824829f) +
          chroma.y * vec3(0.0f, 0.70710678f, -0.70710678f);
 }
 
-// The random properties of one cell (method.md 2.5), each drawn in exactly one place: the P-SDF
-// below and the importance sampler of the host (src/glint/microfacet_sampling.cpp) both call these.
+// The random properties of one cell (method.md 2.5), each drawn in one place, which the P-SDF and the
+// host's importance sampler (src/glint/microfacet_sampling.cpp) both call.
 //
 // Coherent index (Alg. 3, line 1 of Chermain et al. 2020): the level-0 index of the cell's first
-// child, so that a cell and its descendants draw the same random numbers (method.md 2.5). Masked to
-// the period, the pair is a collision-free seed (in place of Alg. 3, line 2's s + 1549 t, which
-// collides); glintPcg4d's four lanes are the cell's four draws.
+// child, so a cell and its descendants draw the same numbers. Masked to the period, the pair is a
+// collision-free seed (in place of Alg. 3, line 2's s + 1549 t, which collides); glintPcg4d's four
+// lanes are the cell's four draws.
 GLINT_FN uvec4 glintCellHash(GlintParameters params, int cellX, int cellY, int level) {
   uint s = (uint(cellX) << uint(level)) & GLINT_CELL_INDEX_MASK;
   uint t = (uint(cellY) << uint(level)) & GLINT_CELL_INDEX_MASK;
   return glintPcg4d(uvec4(s, t, params.patternSeed, 0u));
 }
 
-// Microfacet relative area: the cell holds microfacets with probability MRA (Alg. 3, lines 3-4 of
-// Chermain et al. 2020; method.md 2.5).
+// Microfacet relative area: microfacets with probability MRA (Alg. 3, lines 3-4 of Chermain et al.
+// 2020).
 GLINT_FN bool glintCellHasMicrofacets(GlintParameters params, uvec4 h) {
   return !(glintHashToUnitOpen(h.x) > params.relativeArea);
 }
 
-// Number of microfacets n = cellArea * e^D, cellArea = 4^(level - (L-1)); the dictionary level is
-// log4(n) randomised by a normal of std zeta (method.md 2.5), rounded, and the top level L means "so
-// many microfacets that the smooth Beckmann limit holds": round(log4(n) + zeta N) clamped to [0, L],
-// N = sqrt 2 erfinv(2 u - 1) the standard normal drawn from the cell's uniform u (Alg. 3, lines 5-9
-// of Chermain et al. 2020; level L is its line 10).
-//
-// The same draw without inverting the normal per cell: the level reaches j exactly when
-// log4(n) + 1/2 + zeta N >= j, that is when u >= Phi((j - log4(n) - 1/2) / zeta). The L thresholds
-// depend on the footprint level only, so glintLevelDraw computes them once per footprint and a
-// cell's level is the number of thresholds its u passes, found by a binary search of five
-// comparisons, instead of a logarithm and two polynomials per cell (the inverse error function was
-// 19% of the glint shader's instructions). Thresholds past the dictionary's L are above every u,
-// so the search has a fixed length.
+// n = cellArea * e^D microfacets, cellArea = 4^(level - (L-1)); the dictionary level is
+// round(log4(n) + zeta N) clamped to [0, L], N = sqrt 2 erfinv(2 u - 1) from the cell's uniform u,
+// level L the smooth limit (Alg. 3, lines 5-9 of Chermain et al. 2020; level L is its line 10).
+// Without inverting the normal per cell: the level reaches j when u >= Phi((j - log4(n) - 1/2) / zeta),
+// L thresholds that glintLevelDraw computes once per footprint level; a cell's level is the count its
+// u passes, a binary search of five comparisons (erfinv was 19% of the glint shader's instructions).
+// Thresholds past the dictionary's L are above every u, so the search has a fixed length.
 GLINT_CONST int GLINT_MAX_DICTIONARY_LEVELS = 16;  // the largest L a Dictionary accepts
 
 struct GlintLevelDraw {
@@ -74,8 +63,8 @@ struct GlintLevelDraw {
 };
 
 // The threshold from which a cell of this footprint level reaches dictionary level j. The margin
-// j - log4(n) - 1/2 is an exact integer minus a part that is the same at every level, so the
-// thresholds of level + 1 are bit for bit those of level shifted by one (glintNextLevelDraw).
+// j - log4(n) - 1/2 is an exact integer minus a part the same at every level, so level + 1's
+// thresholds are level's shifted by one, bit for bit (glintNextLevelDraw).
 GLINT_FN float glintLevelThreshold(GlintDictionaryView dict, GlintParameters params, float logDensity, int level, int j) {
   if (j > dict.numLevels) {
     return 2.0f;  // never: u < 2
@@ -95,9 +84,8 @@ GLINT_FN GlintLevelDraw glintLevelDraw(GlintDictionaryView dict, GlintParameters
   return draw;
 }
 
-// glintLevelDraw(level + 1) from glintLevelDraw(level), with one glintNormalCdf instead of L: the next
-// level's cells are 4 times larger, so log4(n) is one more and its threshold for j is this level's
-// for j - 1.
+// glintLevelDraw(level + 1) from glintLevelDraw(level) with one glintNormalCdf instead of L: cells 4
+// times larger, log4(n) one more, so its threshold for j is this level's for j - 1.
 GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParameters params, float logDensity, int level,
                                            GlintLevelDraw draw) {
   GlintLevelDraw next;
@@ -110,11 +98,10 @@ GLINT_FN GlintLevelDraw glintNextLevelDraw(GlintDictionaryView dict, GlintParame
 
 GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   float u = glintHashToUnitOpen(h.y);
-  // The thresholds rise with j, so the count is a binary search over the GLINT_MAX_DICTIONARY_LEVELS
-  // = 16 of them: four comparisons, each against a threshold chosen by the ones before (selects of
-  // constant indices, no indexed read), and the last threshold's. Exact: the same count as 16
-  // comparisons; the car's fragment shader runs 0.8% fewer instructions (docs/benchmarks.md, item 10 of
-  // "What made it fast").
+  // The thresholds rise with j: a binary search over the 16, four comparisons each against a threshold
+  // the earlier ones select (selects of constant indices, no indexed read), plus the last threshold's.
+  // The same count as 16 comparisons; 0.8% fewer instructions in the car's fragment shader
+  // (docs/benchmarks.md, item 10 of "What made it fast").
   bool b8 = u >= draw.threshold[7];
   bool b4 = u >= (b8 ? draw.threshold[11] : draw.threshold[3]);
   float t2 = b8 ? (b4 ? draw.threshold[13] : draw.threshold[9]) : (b4 ? draw.threshold[5] : draw.threshold[1]);
@@ -125,12 +112,11 @@ GLINT_FN int glintCellDictionaryLevel(GlintLevelDraw draw, uvec4 h) {
   return (b8 ? 8 : 0) + (b4 ? 4 : 0) + (b2 ? 2 : 0) + (b1 ? 1 : 0) + (u >= draw.threshold[15] ? 1 : 0);
 }
 
-// The cell's random rotation theta = 2 pi hash (Alg. 3, line 13 of Chermain et al. 2020; method.md
-// 2.5), as (cos theta, sin theta). The angle is reduced to [-pi/4, pi/4] in quarter turns, exactly
-// (hash * 4 and its rounding are exact), and cos and sin there are Cephes' single-precision minimax
-// polynomials (cosf, sinf; error below 2e-7, GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin
-// and cos each reduce the angle on their own: the pair was 12% of the glint shader's instructions,
-// this is about a third of that.
+// The cell's rotation theta = 2 pi hash (Alg. 3, line 13 of Chermain et al. 2020), as (cos theta,
+// sin theta). Reduced exactly to [-pi/4, pi/4] in quarter turns (hash * 4 and its rounding are
+// exact), then Cephes' single-precision minimax cosf and sinf (error below 2e-7,
+// GlintBrdf.CellRotationMatchesTheAngle). llvmpipe's sin and cos each reduce the angle: the pair was
+// 12% of the glint shader's instructions, this about a third of that.
 GLINT_FN vec2 glintCellRotation(uvec4 h) {
   float quarterTurns = 4.0f * glintHashToUnitOpen(h.z);
   float quadrant = floor(quarterTurns + 0.5f);
@@ -144,17 +130,16 @@ GLINT_FN vec2 glintCellRotation(uvec4 h) {
   return quarter >= 2 ? -rotation : rotation;                     // a half turn
 }
 
-// The cell's two distributions (i, j) (Alg. 3, lines 17-18 of Chermain et al. 2020) from the 16-bit
-// halves of the last lane: exact integer arithmetic, the same in both languages.
+// The cell's two distributions (i, j) (Alg. 3, lines 17-18 of Chermain et al. 2020) from the last
+// lane's 16-bit halves: exact integer arithmetic in every language.
 GLINT_FN ivec2 glintCellDistributions(GlintDictionaryView dict, uvec4 h) {
   uint n = uint(dict.numDistributions);
   return ivec2(int(((h.w >> 16u) * n) >> 16u), int(((h.w & 0xFFFFu) * n) >> 16u));
 }
 
-// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (method.md 2.5; Alg. 3, line 16 of
-// Chermain et al. 2020; Eq. 5 of Chermain et al. 2021, I3D), in two steps: undo the roughness
-// scaling and correlation M (Eq. 18 of the 2021 paper; the same for every cell of a pixel; with
-// rho = 0 the 2020 model's S = alpha / alpha_d) ...
+// Into the dictionary's space, (x', y') = R(-theta) M^-1 slope (Alg. 3, line 16 of Chermain et al.
+// 2020; Eq. 5 of Chermain et al. 2021, I3D), in two steps: undo the scaling and correlation M (Eq.
+// 18 of the 2021 paper; with rho = 0 the 2020 S = alpha / alpha_d), the same for every cell ...
 GLINT_FN vec2 glintUnscaledSlope(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
   return glintCorrelatedUnscale(slope, params.alpha, params.rho, dict.alpha);
 }
@@ -171,57 +156,53 @@ GLINT_FN vec2 glintDictionarySlope(vec2 rotation, vec2 unscaled) {
   return vec2(x, y);
 }
 
-// Jacobian of the scaling, det(M^-1): the 1 / (S_x S_y) of Alg. 3, line 19 of Chermain et al. 2020
-// (method.md 2.5; with correlation, glintCorrelatedJacobian).
+// Jacobian of the scaling, det(M^-1): the 1 / (S_x S_y) of Alg. 3, line 19 of Chermain et al. 2020.
 GLINT_FN float glintScalingJacobian(GlintDictionaryView dict, GlintParameters params) {
   return glintCorrelatedJacobian(params.alpha, params.rho, dict.alpha);
 }
 
-// Whether an unscaled slope (glintUnscaledSlope) lies beyond the circumradius of the dictionary's
-// square support, 4 sigma_d sqrt 2: outside it at every cell rotation.
+// Whether an unscaled slope lies beyond the dictionary's square support at every rotation: past its
+// circumradius 4 sigma_d sqrt 2.
 GLINT_FN bool glintBeyondEveryRotatedSupport(GlintDictionaryView dict, vec2 unscaled) {
   float fourSigma = glintDictionaryDomain(dict);
   return dot(unscaled, unscaled) >= 2.0f * fourSigma * fourSigma;
 }
 
-// The real-time renderer's one approximation (docs/renderer.md, "Cost"): beyond every rotated
-// support no dictionary cell reflects, and the smooth cells' Beckmann P22 there is below exp(-16)
-// = 1.1e-7 of its peak (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for
-// that light, and skips the walk of the footprint's cells when no light is left. The CPU BSDF
-// keeps the exact value: its sampler can draw such a slope from a smooth cell and must find a
-// non-zero pdf there. With the GGX target the widest cell reaches GLINT_GGX_WIDEST_CELL = 10 times
-// further, a slope of 40 alpha, where the smooth GGX P22 (and its remainder) is below
-// (1 + 1600)^-2 = 3.9e-7 of its peak.
+// The real-time renderer's one approximation (docs/renderer.md, "Cost"): beyond every rotated support
+// no dictionary cell reflects and the smooth P22 is below exp(-16) = 1.1e-7 of its peak
+// (|unscaled|^2 / (2 sigma_d^2) >= 16), so the renderer takes P22 = 0 for that light and skips the
+// walk when no light is left. The CPU BSDF keeps the exact value: its sampler can draw such a slope
+// from a smooth cell and needs a non-zero pdf there. With GGX the widest cell reaches 10 times
+// further, a slope of 40 alpha, where GGX's P22 (and remainder) is below (1 + 1600)^-2 = 3.9e-7 of its
+// peak.
 GLINT_FN bool glintSlopeIsNegligible(GlintDictionaryView dict, GlintParameters params, vec2 slope) {
   return glintBeyondEveryRotatedSupport(dict, glintUnscaledSlope(dict, params, slope) / glintTargetWidestCell(params.ndf));
 }
 
-// One cell's contribution to P22 (method.md 2.5), the cell's SDF of Eq. 11 and Alg. 3 of Chermain
-// et al. 2020 (with the slope correlation, Eq. 4 of Chermain et al. 2021, I3D), split so that what
-// is the same for every cell of the footprint is computed once per footprint (glintLevelP22), not
-// once per cell, and what is the same for every slope once per cell: a cell is empty, in the smooth
-// limit (its P22 is the Beckmann P22 at the slope), or reads the dictionary (its P22 is the tensor
-// product of two marginals at its rotated slope, times the scaling Jacobian).
+// One cell's contribution to P22 (method.md 2.5): its SDF of Eq. 11 and Alg. 3 of Chermain et al.
+// 2020 (with correlation, Eq. 4 of Chermain et al. 2021, I3D). What is the same for every cell is
+// computed once per footprint (glintLevelP22), what is the same for every slope once per cell: a cell
+// is empty, smooth (the target's P22) or reads the dictionary (two marginals at its rotated slope
+// times the scaling Jacobian).
 struct GlintCell {
   uvec4 hash;
   bool readsDictionary;
   bool smoothLimit;
   bool ggxTail;         // a GGX cell in the smooth remainder of the scale mixture (microfacet_targets.h)
   int dictionaryLevel;  // when it reads the dictionary: the level of the tables it reads (glintTreeTableLevel)
-  // Its two distributions (i, j): glintCellDistributions of its hash, but under the tree LOD
-  // construction those its descent from its own cell chose (glintLodCell).
+  // Its distributions (i, j): glintCellDistributions, but under the tree construction those chosen
+  // by its descent from its own cell (glintLodCell).
   ivec2 distributions;
-  // Consistent LOD (glintLodCell): 1 on an axis whose marginal is the lobes that dictionary level
-  // dictionaryLevel + 1 adds to level dictionaryLevel (glintBlockMarginal), 0 where it is the level
-  // itself. Always 0 under GLINT_LOD_PAPER and GLINT_LOD_TREE.
+  // Consistent LOD (glintLodCell): 1 on an axis whose marginal is the lobes dictionary level
+  // dictionaryLevel + 1 adds (glintBlockMarginal), 0 for the level itself. 0 under paper and tree.
   ivec2 complement;
-  // GGX: the cell's precision w of the scale mixture; its dictionary slopes are the unscaled
-  // slope times sqrt(w) (unscale) and its P22 is multiplied by w (the Jacobian). 1 for Beckmann.
+  // GGX: the cell's precision w; its dictionary slopes are the unscaled slope times sqrt(w) (unscale),
+  // its P22 times w (the Jacobian). 1 for Beckmann.
   float scalePrecision;
   float unscale;
-  // The share of the cell's area its microfacets cover, which multiplies its P22 (so its P-NDF
-  // integrates to it): 1 but under the tree LOD construction, which carries the relative area
-  // down an own cell's subtree as coverage instead of drawing it (glintTreeOwnCell).
+  // The share of the cell's area its microfacets cover, multiplying its P22: 1 but under the tree
+  // construction, which carries the relative area down as coverage instead of drawing it
+  // (glintTreeOwnCell).
   float coverage;
 };
 
@@ -241,13 +222,11 @@ GLINT_FN GlintCell glintCell(GlintDictionaryView dict, GlintParameters params, G
   if (glintCellHasMicrofacets(params, cell.hash)) {
     cell.dictionaryLevel = glintCellDictionaryLevel(draw, cell.hash);
     cell.distributions = glintCellDistributions(dict, cell.hash);  // read only where it reads the dictionary
-    // So many microfacets that the smooth limit holds (Alg. 3, line 10): their colours average out
-    // to white too.
+    // The smooth limit (Alg. 3, line 10): colours average out to white too.
     cell.smoothLimit = cell.dictionaryLevel == dict.numLevels;
     cell.readsDictionary = !cell.smoothLimit;
     if (params.ndf == GLINT_NDF_GGX && cell.readsDictionary) {
-      // The GGX scale mixture (microfacet_targets.h): glints of roughness alpha / sqrt(w), or the
-      // smooth remainder below the cut.
+      // GGX scale mixture: glints of roughness alpha / sqrt(w), or the smooth remainder below the cut.
       float w = glintCellPrecision(cell.hash);
       cell.ggxTail = w < GLINT_GGX_TAIL_PRECISION;
       cell.readsDictionary = !cell.ggxTail;

@@ -1,8 +1,7 @@
 // The pixel footprint of the 2020 glint model (Chermain et al. 2020, Alg. 1, lines 3-7, and Alg. 2;
-// method.md 2.2-2.4): the footprint ellipse in uv and its continuous level of detail, the cells of a
-// level under it and their EWA weights, the walk over them, and the renderer's footprint policies
-// that bound it (docs/antialiasing.md, "Footprint policies").
-// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+// method.md 2.2-2.4): the ellipse in uv and its continuous LOD, a level's cells under it with their
+// EWA weights and the walk over them, and the footprint policies that bound it (docs/antialiasing.md,
+// "Footprint policies").
 #ifndef GLINT_KERNEL_GLINT_FOOTPRINT_H
 #define GLINT_KERNEL_GLINT_FOOTPRINT_H
 
@@ -26,35 +25,26 @@ GLINT_FN float glintFootprintPeriod(int numLevels) {
 }
 
 // Footprint ellipse and continuous LOD (Alg. 1, lines 3-6 of Chermain et al. 2020; method.md
-// 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the pixel's footprint is the ellipse duvdx cos t + duvdy
-// sin t, its minor axis is widened so that the anisotropy is at most maxAnisotropy, and the LOD is
-// the (widened) minor axis in cells.
-// Going past the paper and pbrt-v3 in two ways:
-//   - The two derivatives are conjugate semi-diameters of the ellipse, not its axes: they are
-//     perpendicular only where the uv map is conformal along the screen axes. pbrt-v3 takes the
-//     shorter one as the minor axis; as conjugate semi-diameters satisfy |duvdx|^2 + |duvdy|^2 =
-//     major^2 + minor^2, the shorter can be up to sqrt((major^2 + minor^2) / 2), about the
-//     anisotropy / sqrt 2 times the minor axis. The LOD then picks cells that many times longer
-//     across the ellipse than the pixel, which neighbouring pixels share as streaks (at a UV
-//     sphere's pole u's derivative is ten times v's, and the screen axes turn around the pole:
-//     docs/renderer.md, "Footprint"). Here the axes are the ellipse's principal axes, from the
-//     singular value decomposition of J = [duvdx duvdy], whichever way the screen axes turn.
-//   - A footprint whose minor axis exceeds one uv unit is shrunk to one and the area it loses is
-//     added to the density, so the LOD stays within the dictionary and the cost stays bounded,
-//     while the number of microfacets seen is unchanged.
+// 2.2-2.3), after pbrt-v3 MIPMap::Lookup: the ellipse duvdx cos t + duvdy sin t, its minor axis
+// widened to an anisotropy of at most maxAnisotropy, the LOD the minor axis in cells. Past the paper
+// and pbrt-v3 (docs/conventions.md, "Where glint goes past the reference implementation"):
+//   - the ellipse's principal axes, from the SVD of J = [duvdx duvdy]: the derivatives are conjugate
+//     semi-diameters, and pbrt-v3's shorter one, up to about anisotropy / sqrt 2 times the minor axis,
+//     picks cells that many times too long (streaks at a UV sphere's pole: docs/renderer.md,
+//     "Footprint");
+//   - a minor axis over one uv unit is shrunk to one and the lost area added to the density: the LOD
+//     stays in the dictionary and the cost bounded, the microfacets seen unchanged.
 GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotropy, float logDensity,
                                        int numLevels) {
-  // Derivatives beyond 1e6 uv units (the pattern's period is 2) are scaled down together, so that
-  // their squares stay finite in float (1e20 squared is not); such a footprint is in the smooth
-  // limit either way. Below that, the scale is exactly 1.
+  // Derivatives beyond 1e6 uv units (the period is 2) are scaled down together so that their squares
+  // stay finite (such a footprint is in the smooth limit anyway); below, the scale is exactly 1.
   float longest = max(max(abs(duvdx.x), abs(duvdx.y)), max(abs(duvdy.x), abs(duvdy.y)));
   float fit = longest > 1e6f ? 1e6f / longest : 1.0f;
   vec2 dx = duvdx * fit;
   vec2 dy = duvdy * fit;
-  // J J^T = [[a, b], [b, c]]: its eigenvalues are the squared semi-axes. The larger one,
-  // (a + c) / 2 + sqrt(((a - c) / 2)^2 + b^2), is a sum of non-negative terms; the smaller is
-  // taken as det(J)^2 over it (|det J| = the product of the semi-axes), which does not cancel
-  // when the ellipse is thin.
+  // J J^T = [[a, b], [b, c]], eigenvalues the squared semi-axes. The larger, (a + c) / 2 +
+  // sqrt(((a - c) / 2)^2 + b^2), sums non-negative terms; the smaller is taken as det(J)^2 over it,
+  // which does not cancel for a thin ellipse.
   float a = dx.x * dx.x + dy.x * dy.x;
   float b = dx.x * dx.y + dy.x * dy.y;
   float c = dx.y * dx.y + dy.y * dy.y;
@@ -62,15 +52,13 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   float root = sqrt(halfDifference * halfDifference + b * b);
   float majorLength = sqrt(0.5f * (a + c) + root);
   float minorLength = majorLength > 0.0f ? abs(dx.x * dy.y - dx.y * dy.x) / majorLength : 0.0f;
-  // The major axis's direction, the eigenvector of the larger eigenvalue: (lambda - c, b) or
-  // (b, lambda - a), whichever sums non-negative terms (lambda - c = halfDifference + root). A
-  // circle has no preferred direction: u.
+  // The major axis: the larger eigenvalue's eigenvector, (lambda - c, b) or (b, lambda - a), whichever
+  // sums non-negative terms (lambda - c = halfDifference + root). A circle's is u.
   vec2 direction = halfDifference >= 0.0f ? vec2(halfDifference + root, b) : vec2(b, root - halfDifference);
   float directionLength = length(direction);
   direction = directionLength > 0.0f ? direction / directionLength : vec2(1.0f, 0.0f);
-  // The anisotropy clamp (Alg. 1, lines 4-5): the minor axis at least majorLength / maxAnisotropy,
-  // set directly (a ratio of the two lengths overflows for a thin enough ellipse). No area stays no
-  // area.
+  // The anisotropy clamp (Alg. 1, lines 4-5), set directly (a ratio of the lengths overflows for a thin
+  // enough ellipse). No area stays no area.
   if (minorLength > 0.0f) {
     minorLength = max(minorLength, majorLength / maxAnisotropy);
   }
@@ -93,13 +81,11 @@ GLINT_FN GlintFootprint glintFootprint(vec2 duvdx, vec2 duvdy, float maxAnisotro
   return footprint;
 }
 
-// The cells of one footprint level (Alg. 2 of Chermain et al. 2020; method.md 2.4): cells of
-// 2^(L-1-level) per uv unit, weighted by pbrt-v3's EWA Gaussian over the footprint ellipse. The
-// ellipse is walked line by line between its two boundary crossings (glintCellRow), so only cells
-// inside it are visited (no bounding-box waste, no cap). Lines run along the ellipse's longer
-// extent: a footprint long in v is walked in columns, not rows.
-// The P-SDF and the host's sampler enumerate the cells and weigh them with these functions, so
-// both see the same cells and weights.
+// The cells of one footprint level (Alg. 2 of Chermain et al. 2020; method.md 2.4): 2^(L-1-level)
+// per uv unit, weighted by pbrt-v3's EWA Gaussian. The ellipse is walked line by line between its
+// boundary crossings (glintCellRow): only cells inside it, no bounding-box waste, no cap. Lines run
+// along its longer extent (a footprint long in v is walked in columns). The P-SDF and the host's
+// sampler both use these functions, so both see the same cells and weights.
 struct GlintCellGrid {
   vec2 centre;      // the footprint's centre in walk coordinates: (along a line, across lines)
   float ea;         // implicit ellipse ea x^2 + eb x y + ec y^2 < 1 around the centre, same axes
@@ -115,13 +101,13 @@ GLINT_FN GlintCellGrid glintCellGrid(GlintFootprint footprint, vec2 uv, int numL
   vec2 centre = uv * cellsPerUv - glintSplat2(0.5f);  // cell (s, t) is centred on integer (s, t)
   vec2 a0 = footprint.majorAxis * cellsPerUv;
   vec2 a1 = footprint.minorAxis * cellsPerUv;
-  // Implicit ellipse A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so it covers at least a cell.
+  // A x^2 + B x y + C y^2 < 1, with pbrt-v3's +1 so that it covers at least a cell.
   float ea = a0.y * a0.y + a1.y * a1.y + 1.0f;
   float eb = -2.0f * (a0.x * a0.y + a1.x * a1.y);
   float ec = a0.x * a0.x + a1.x * a1.x + 1.0f;
   float invF = 1.0f / (ea * ec - 0.25f * eb * eb);
   GlintCellGrid grid;
-  // The ellipse's extent in t over its extent in s is sqrt(ea / ec): taller than wide, walk columns.
+  // Extent in t over extent in s is sqrt(ea / ec): taller than wide, walk columns.
   grid.transposed = ea > ec;
   grid.centre = grid.transposed ? vec2(centre.y, centre.x) : centre;
   grid.ea = (grid.transposed ? ec : ea) * invF;
@@ -151,10 +137,9 @@ GLINT_FN ivec2 glintCellAt(GlintCellGrid grid, int x, int y) {
   return grid.transposed ? ivec2(y, x) : ivec2(x, y);
 }
 
-// The walk over a level's cells, one step at a time: the cells of line t from row.x to row.y, then
-// the next line. A line that misses the ellipse (row.y < row.x) still takes one step. The P-SDF
-// (glintLevelP22) and the host's sampler walk with these, and the cost bound of the `cells`
-// footprint policy (glintWalkBound) bounds the steps they take.
+// The walk over a level's cells, one step at a time: line t from row.x to row.y, then the next line;
+// a line that misses the ellipse (row.y < row.x) still takes a step. The P-SDF (glintLevelP22) and
+// the host's sampler walk with these; glintWalkBound bounds the steps.
 struct GlintCellWalk {
   int s;      // the current cell along the line, in walk coordinates
   int t;      // the current line
@@ -184,16 +169,14 @@ GLINT_FN GlintCellWalk glintWalkStep(GlintCellGrid grid, GlintCellWalk walk) {
   return next;
 }
 
-// A bound on the steps of the walk of a footprint on cells of 1 / cellsPerUv uv units, from the
-// ellipse that glintCellGrid walks (its axes a0, a1 in cells, pbrt-v3's +1 on the quadratic form's
-// diagonal). That form's determinant is F = (|a0|^2 + 1)(|a1|^2 + 1), its area pi sqrt(F); lines
-// run along its longer extent, P = min(A, C) the smaller diagonal entry, so the walk has at most
-// 2 sqrt(P) + 1 lines (its half height is sqrt(P)), the longest is 2 sqrt(F / P) cells long, and a
-// line of chord c holds at most c + 1 cells. The chords are a unimodal function of the line, so
-// their sum over the lines is at most the area plus the longest chord:
+// A bound on the walk's steps on cells of 1 / cellsPerUv uv units (axes a0, a1 in cells, pbrt-v3's +1
+// on the quadratic form's diagonal). The form's determinant is F = (|a0|^2 + 1)(|a1|^2 + 1), its
+// area pi sqrt(F); with P = min(A, C), the walk has at most 2 sqrt(P) + 1 lines, the longest
+// 2 sqrt(F / P) cells, and a chord c holds at most c + 1 cells. The chords are unimodal in the line,
+// so their sum is at most the area plus the longest:
 //   steps <= pi sqrt(F) + 2 sqrt(F / P) + (2 sqrt(P) + 1 + 2 delta)(1 + 2 delta),
-// each line and each end of a line allowed delta = 0.05 cells of rounding (the walk's float
-// coordinates reach 2^16 cells, where a float's spacing is 2^-7). Increasing in cellsPerUv.
+// with delta = 0.05 cells of rounding per line end (float coordinates reach 2^16 cells, spacing
+// 2^-7). Increasing in cellsPerUv.
 GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
   vec2 a0 = footprint.majorAxis * cellsPerUv;
   vec2 a1 = footprint.minorAxis * cellsPerUv;
@@ -203,10 +186,9 @@ GLINT_FN float glintWalkBound(GlintFootprint footprint, float cellsPerUv) {
 }
 
 // The EWA weight of the cell at walk coordinates (s, t) (Alg. 2, line 3 of Chermain et al. 2020;
-// method.md 2.4): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0. The quadratic form is symmetric in the
-// transposition, so the weights are the cells'. Each cell takes its own exp: stepping the Gaussian
-// along a line by forward differencing needs two exps at the start of every line, which the
-// single-loop walk of glintLevelP22 would pay on every iteration (docs/benchmarks.md, "What made it
+// method.md 2.4): exp(-2 r^2) - exp(-2) for r^2 < 1, else 0 (the form is symmetric in the
+// transposition). Each cell takes its own exp: forward differencing along a line needs two exps per
+// line start, which the single-loop walk would pay every iteration (docs/benchmarks.md, "What made it
 // fast, and why").
 GLINT_FN float glintCellWeight(GlintCellGrid grid, int s, int t) {
   float dx = float(s) - grid.centre.x;
@@ -226,8 +208,7 @@ GLINT_FN vec2 glintWrapUv(vec2 uv, int numLevels) {
   return uv - period * floor(uv / period);
 }
 
-// The continuous LOD's two levels (Alg. 1, lines 6-7 of Chermain et al. 2020; method.md 2.3):
-// floor(lod), blended with the next one by glintLodBlend.
+// The continuous LOD's two levels (Alg. 1, lines 6-7 of Chermain et al. 2020; method.md 2.3).
 GLINT_FN int glintLodLevel(GlintFootprint footprint) {
   return int(floor(footprint.lod));
 }
@@ -236,15 +217,12 @@ GLINT_FN float glintLodBlend(GlintFootprint footprint) {
   return footprint.lod - float(glintLodLevel(footprint));
 }
 
-// The `cells=K` policy's level of detail: the smallest continuous level x* at which the walk is
-// bounded by K (glintWalkBound(x*) <= K, by bisection; the bound falls as the level rises), and the
-// footprint's LOD raised to at least x* + 1, so that both walked levels, floor(lod) and the next,
-// lie above x*. x* + 1 rather than ceil(x*): the LOD must vary continuously with the footprint, or
-// the P-SDF would jump where x* crosses an integer. The cells are larger and each holds
-// proportionally more microfacets (glintLevelThreshold), so the microfacets seen are unchanged.
-// Past the top level, the footprint is shrunk instead, and the area it loses added to the density,
-// as glintFootprint's size clamp does. The bound needs K >= 12 (the host's check): the walk of any
-// footprint on cells much larger than it is still bounded by 8.6.
+// The `cells=K` policy: the smallest continuous level x* with glintWalkBound(x*) <= K (bisection; the
+// bound falls as the level rises), the LOD raised to at least x* + 1 so both walked levels lie above
+// x*; not ceil(x*), as the LOD must vary continuously or the P-SDF would jump. Larger cells hold
+// proportionally more microfacets (glintLevelThreshold): the microfacets seen are unchanged. Past the
+// top level the footprint is shrunk and the lost area added to the density, as in glintFootprint.
+// Needs K >= 12 (the host checks): any footprint's walk on cells much larger than it is bounded by 8.6.
 GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float maxCells, int numLevels) {
   float top = float(numLevels - 1);
   float low = footprint.lod - 1.0f;  // where the walk has at least twice the exact walk's cells across
@@ -272,23 +250,21 @@ GLINT_FN GlintFootprint glintBoundedFootprint(GlintFootprint footprint, float ma
   return footprint;
 }
 
-// The words of the policy that glintPixelFootprint applies, as bits: 1 aniso, 2 cells, 4 drop. The
-// renderer compiles each program with GLINT_FOOTPRINT_POLICY set to the words its policy uses
-// (0 for exact), so that a policy pays for its own words only and the paper's footprint for none
-// (llvmpipe runs both sides of a branch); C++ and programs that leave it undefined apply all three,
-// each of which does nothing when its field of params.footprintPolicy is zero.
+// The policy words glintPixelFootprint applies, as bits: 1 aniso, 2 cells, 4 drop. The renderer sets
+// GLINT_FOOTPRINT_POLICY to its policy's words (0 for exact), so a policy pays only for its own and
+// the paper's footprint for none (llvmpipe runs both sides of a branch); C++ and programs without it
+// apply all three, each a no-op where its field of params.footprintPolicy is zero.
 #if defined(__cplusplus) || !defined(GLINT_FOOTPRINT_POLICY)
 #define GLINT_FOOTPRINT_WORDS 7
 #else
 #define GLINT_FOOTPRINT_WORDS GLINT_FOOTPRINT_POLICY
 #endif
 
-// The pixel's footprint under the renderer's footprint policy (GlintFootprintPolicy;
-// docs/antialiasing.md, "Footprint policies"): aniso=A clamps the anisotropy at min(A, the
-// material's), cells=K raises the LOD until each walked level has at most K cells
-// (glintBoundedFootprint), drop=W rounds the LOD down to its level when the next level's blend
-// weight is below W, so that level alone is walked. The P-SDF and the host's sampler both take
-// their footprint from here. With the zero policy it is glintFootprint's, bit for bit.
+// The pixel's footprint under the footprint policy (GlintFootprintPolicy; docs/antialiasing.md,
+// "Footprint policies"): aniso=A clamps the anisotropy at min(A, the material's), cells=K raises the
+// LOD until each walked level has at most K cells, drop=W walks floor(lod) alone when the next level's
+// blend is below W. The P-SDF and the host's sampler both take it; the zero policy is glintFootprint's,
+// bit for bit.
 GLINT_FN GlintFootprint glintPixelFootprint(vec2 duvdx, vec2 duvdy, GlintParameters params, int numLevels) {
   GlintFootprintPolicy policy = params.footprintPolicy;
   float maxAnisotropy = params.maxAnisotropy;

@@ -1,13 +1,10 @@
-// The whole kernel in one include, for a host's shader or C++ code and for
-// `glint shader-bundle` (docs/integration.md): the 2020 model (glint_brdf.h) with the 2021
-// anti-aliasing (glint_antialiasing.h), a material's parameters (glint_material.h), a glTF surface
-// assembled from its textures' samples (surface.h), the smooth targets and masking (microfacet.h,
-// microfacet_targets.h), multiple scattering
-// (multiple_scattering.h, albedo_tables.h), normal-map filtering (normal_map_filtering.h), lights
-// (lights.h), display encoding (tonemap.h) and the procedural dictionary (procedural_dictionary.h).
-// Before calling into it, a shading language host defines the dictionary hook (prelude.h). The
-// Zirr & Kaplanyan 2016 baseline (zirr_kaplanyan.h), which glint measures itself against, is not
-// part of it: a host that wants it includes that header too.
+// The whole kernel in one include, for a host's shaders or C++ and for `glint shader-bundle`
+// (docs/integration.md): the 2020 model (glint_brdf.h) with the 2021 anti-aliasing
+// (glint_antialiasing.h), material parameters (glint_material.h), glTF surfaces (surface.h), targets
+// and masking (microfacet.h, microfacet_targets.h), multiple scattering (multiple_scattering.h,
+// albedo_tables.h), normal-map filtering, lights, display encoding and the procedural dictionary. A
+// shading-language host defines the dictionary hook (prelude.h). The Zirr & Kaplanyan 2016 baseline
+// (zirr_kaplanyan.h) is not included: a host that wants it includes it too.
 #ifndef GLINT_KERNEL_GLINT_KERNEL_H
 #define GLINT_KERNEL_GLINT_KERNEL_H
 

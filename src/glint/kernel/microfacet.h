@@ -1,5 +1,5 @@
 // Microfacet terms shared by the glint BRDF and the Cook-Torrance baseline, in the local shading
-// frame (z = normal; directions point away from the surface).
+// frame (docs/conventions.md: z the normal, directions away from the surface).
 #ifndef GLINT_KERNEL_MICROFACET_H
 #define GLINT_KERNEL_MICROFACET_H
 
@@ -9,18 +9,14 @@ GLINT_KERNEL_BEGIN
 
 GLINT_CONST float GLINT_PI = 3.14159265358979f;
 
-// Slope of a microfacet normal m: (x, y) = (-m.x / m.z, -m.y / m.z) (Eq. 1 of Chermain et al. 2020;
-// method.md, notation).
+// Slope of a normal m: (-m.x / m.z, -m.y / m.z) (Eq. 1 of Chermain et al. 2020).
 GLINT_FN vec2 glintSlopeFromNormal(vec3 m) {
   return vec2(-m.x / m.z, -m.y / m.z);
 }
 
-// Anisotropic Beckmann slope distribution P22 with slope correlation rho: a centred Gaussian of
-// standard deviation sigma = alpha / sqrt(2) per axis and correlation rho, covariance
-// [[sx^2, rho sx sy], [rho sx sy, sy^2]] (Walter et al. 2007, Eq. 25 in slope space, with the
-// correlation of Chermain et al. 2021, "Real-Time Geometric Glint Anti-Aliasing with Normal Map
-// Filtering", I3D). rho = 0 computes exactly the uncorrelated expression: the terms rho adds are
-// exact zeros and its divisions exact ones.
+// Anisotropic Beckmann P22: a centred Gaussian, sigma = alpha / sqrt(2) per axis, correlation rho,
+// covariance [[sx^2, rho sx sy], [rho sx sy, sy^2]] (Walter et al. 2007, Eq. 25 in slope space; rho
+// of Chermain et al. 2021, I3D). rho = 0 is exactly the uncorrelated expression (exact zeros, ones).
 GLINT_FN float glintBeckmannP22(vec2 slope, vec2 alpha, float rho) {
   vec2 sigma = alpha * 0.70710678f;
   vec2 t = slope / sigma;
@@ -29,8 +25,8 @@ GLINT_FN float glintBeckmannP22(vec2 slope, vec2 alpha, float rho) {
   return exp(-0.5f * q) / (2.0f * GLINT_PI * sigma.x * sigma.y * sqrt(oneMinusRho2));
 }
 
-// A centred Gaussian slope distribution of any covariance (xx, xy, yy), positive definite: the
-// Beckmann P22 widened by a filter kernel of covariance K is this with covariance Sigma + K.
+// A centred Gaussian P22 of covariance (xx, xy, yy), positive definite: Beckmann widened by a kernel
+// of covariance K is this with Sigma + K.
 GLINT_FN float glintGaussianSlopeP22(vec2 slope, vec3 covariance) {
   float determinant = covariance.x * covariance.z - covariance.y * covariance.y;
   float q = (covariance.z * slope.x * slope.x - 2.0f * covariance.y * slope.x * slope.y +
@@ -44,8 +40,7 @@ GLINT_FN vec3 glintBeckmannSlopeCovariance(vec2 alpha, float rho) {
   return vec3(sigma.x * sigma.x, rho * sigma.x * sigma.y, sigma.y * sigma.y);
 }
 
-// Slope distribution to normal distribution: D(m) = P22(slope(m)) / cos^4(theta_m); for the P-SDF,
-// Alg. 1, line 10 of Chermain et al. 2020.
+// D(m) = P22(slope(m)) / cos^4(theta_m); for the P-SDF, Alg. 1, line 10 of Chermain et al. 2020.
 GLINT_FN float glintNdfFromP22(float p22, float cosThetaM) {
   float c2 = cosThetaM * cosThetaM;
   return p22 / (c2 * c2);
@@ -57,9 +52,9 @@ GLINT_FN float glintVCavityG1(vec3 w, vec3 m) {
   return min(1.0f, 2.0f * m.z * w.z / dot(w, m));
 }
 
-// The Cook-Torrance frame around any normal distribution value D(wh), Fresnel excluded:
-// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (Eq. 14 of Chermain et al. 2020; method.md, section 3). Zero
-// below either horizon and for back-facing microfacets. Without the cosine (docs/conventions.md).
+// The Cook-Torrance frame around any D(wh), without Fresnel and the cosine:
+// f = G1(wo) G1(wi) D / (4 wo.z wi.z) (Eq. 14 of Chermain et al. 2020; method.md 3). Zero below
+// either horizon and for back-facing microfacets.
 GLINT_FN float glintMicrofacetReflectance(vec3 wo, vec3 wi, vec3 wh, float ndf) {
   if (wo.z <= 0.0f || wi.z <= 0.0f || wh.z <= 0.0f || dot(wo, wh) <= 0.0f || dot(wi, wh) <= 0.0f) {
     return 0.0f;
@@ -74,9 +69,8 @@ GLINT_FN vec3 glintFresnelSchlick(vec3 f0, float cosThetaI) {
   return f0 + (glintSplat3(1.0f) - f0) * (c2 * c2 * c);
 }
 
-// Fresnel reflectance of a conductor with complex index of refraction eta + i k (relative to the
-// outside medium), unpolarised light; the exact expression of Born & Wolf as written in pbrt-v3
-// (FrConductor), per colour channel.
+// Conductor Fresnel, complex IOR eta + i k (relative to the outside), unpolarised, per channel: Born &
+// Wolf's exact expression as in pbrt-v3 (FrConductor).
 GLINT_FN vec3 glintFresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
   float c = clamp(cosThetaI, 0.0f, 1.0f);
   float c2 = c * c;
@@ -95,8 +89,7 @@ GLINT_FN vec3 glintFresnelConductor(vec3 eta, vec3 k, float cosThetaI) {
   return 0.5f * (rp + rs);
 }
 
-// The Cook-Torrance baseline the glint BRDF converges to: Beckmann D (correlation rho), V-cavity G,
-// F = 1.
+// The Cook-Torrance baseline the glint BRDF converges to: Beckmann (rho), V-cavity, F = 1.
 GLINT_FN float glintCookTorranceReflectance(vec2 alpha, float rho, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return 0.0f;

@@ -1,17 +1,15 @@
-// Multiple scattering between the microfacets, as a compensation lobe: Kulla & Conty 2017,
-// "Revisiting Physically Based Shading at Imageworks" (SIGGRAPH course "Physically Based Shading
-// in Theory and Practice"), after Jakob et al. 2014 and Turquin 2019's form of the energy lost:
+// Multiple scattering as a compensation lobe: Kulla & Conty 2017, "Revisiting Physically Based
+// Shading at Imageworks" (SIGGRAPH course "Physically Based Shading in Theory and Practice"), after
+// Jakob et al. 2014 and Turquin 2019's form of the energy lost (docs/method.md 6.3):
 //   f_ms(wo, wi) = (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - E_avg)),
-// E(mu) the directional albedo of the single-scattering lobe (F = 1) and E_avg = 2 integral of
-// E(mu) mu dmu, so that with F = 1 the albedo of f + f_ms is 1 at every view angle. With Fresnel,
-// f_ms is multiplied by F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg the cosine-weighted
-// hemispherical mean of F (the light that leaves after one more bounce, each bounce keeping F_avg).
-// E and E_avg are tabulated by glint for each smooth target and masking (kernel/albedo_tables.h,
-// written by `glint albedo-tables`), for isotropic roughness; an anisotropic or correlated lobe
-// takes the table of alpha = sqrt(alpha_x alpha_y). The glint BRDF adds the same lobe as its smooth
-// target: its mean over positions has the target's albedo, so the mean is compensated.
-// Shared by the CPU library and the GLSL renderer (a GLSL program includes the tables only when
-// compiled with GLINT_MULTIPLE_SCATTERING 1): see prelude.h for the rules.
+// E(mu) the single-scattering lobe's directional albedo (F = 1), E_avg = 2 integral of E(mu) mu dmu,
+// so that with F = 1 the albedo of f + f_ms is 1 at every view angle. With Fresnel, f_ms is times
+// F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), F_avg the cosine-weighted hemispherical mean of F (each
+// further bounce keeps F_avg). E and E_avg are glint's tables (kernel/albedo_tables.h, `glint
+// albedo-tables`) per target and masking, for isotropic roughness; an anisotropic or correlated lobe
+// reads alpha = sqrt(alpha_x alpha_y). The glint BRDF adds its smooth target's lobe: its mean over
+// positions has the target's albedo. Shading languages include the tables only with
+// GLINT_MULTIPLE_SCATTERING 1.
 #ifndef GLINT_KERNEL_MULTIPLE_SCATTERING_H
 #define GLINT_KERNEL_MULTIPLE_SCATTERING_H
 
@@ -21,9 +19,9 @@
 
 GLINT_KERNEL_BEGIN
 
-// The tables' grid: mu_j = (j / 31)^2 and alpha_i = 2 (i / 31)^2, denser towards grazing views and
-// smooth surfaces, where E changes fastest; read with bilinear interpolation in (sqrt(mu),
-// sqrt(alpha / 2)), clamped to the grid (alpha above 2 reads alpha = 2).
+// The tables' grid: mu_j = (j / 31)^2, alpha_i = 2 (i / 31)^2, denser at grazing views and smooth
+// surfaces, where E changes fastest; bilinear in (sqrt(mu), sqrt(alpha / 2)), clamped (alpha above 2
+// reads 2).
 GLINT_CONST int GLINT_ALBEDO_MU_NODES = 32;
 GLINT_CONST int GLINT_ALBEDO_ALPHA_NODES = 32;
 GLINT_CONST float GLINT_ALBEDO_MAX_ALPHA = 2.0f;
@@ -47,8 +45,7 @@ GLINT_FN float glintCompensationAlpha(vec2 alpha) {
   return sqrt(alpha.x * alpha.y);
 }
 
-// Fresnel's cosine-weighted hemispherical mean for Schlick's approximation: 2 integral of
-// (f0 + (1 - f0)(1 - mu)^5) mu dmu = f0 + (1 - f0) / 21.
+// Schlick's F_avg: 2 integral of (f0 + (1 - f0)(1 - mu)^5) mu dmu = f0 + (1 - f0) / 21.
 GLINT_FN vec3 glintSchlickAverageFresnel(vec3 f0) {
   return f0 + (glintSplat3(1.0f) - f0) * (1.0f / 21.0f);
 }
@@ -62,14 +59,11 @@ GLINT_FN vec3 glintMultipleScatteringFresnel(vec3 averageFresnel, float averageA
 GLINT_KERNEL_END
 
 #if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING
-// The tables' values. A shading-language host may define GLINT_ALBEDO_TABLE_HOOK 1 before including
-// the kernel and then define, like the dictionary hook (prelude.h), the two functions declared
-// below, reading the tables from a buffer it binds (the words of GLINT_ALBEDO_WORDS and
-// GLINT_AVERAGE_ALBEDO_WORDS, which C++ code gets from this header, as 16-bit unsigned normalised
-// texels: R16_UNORM). For compilers that handle a large, dynamically indexed constant array badly:
-// glslang's SPIR-V copies the whole array into a local variable at each read, and Mesa's lavapipe
-// turns each read of the copy into a branch per element, which took its compile of the kernel's
-// test shader from 6 s to over 15 minutes.
+// The tables' values. A shading-language host may define GLINT_ALBEDO_TABLE_HOOK 1 and then define,
+// like the dictionary hook, the two functions below, reading GLINT_ALBEDO_WORDS and
+// GLINT_AVERAGE_ALBEDO_WORDS from a buffer it binds as R16_UNORM texels: glslang's SPIR-V copies a
+// large constant array into a local at each dynamic read, and Mesa's lavapipe made each read a branch
+// per element, taking the test shader's compile from 6 s to over 15 minutes (docs/integration.md).
 #if !defined(__cplusplus) && defined(GLINT_ALBEDO_TABLE_HOOK) && GLINT_ALBEDO_TABLE_HOOK
 float glintAlbedoTableValue(int index);         // GLINT_ALBEDO_TABLE_NODE(GLINT_ALBEDO_WORDS, index)
 float glintAverageAlbedoTableValue(int index);  // GLINT_ALBEDO_TABLE_NODE(GLINT_AVERAGE_ALBEDO_WORDS, index)
@@ -77,9 +71,8 @@ float glintAverageAlbedoTableValue(int index);  // GLINT_ALBEDO_TABLE_NODE(GLINT
 #define GLINT_AVERAGE_ALBEDO_AT(index) glintAverageAlbedoTableValue(index)
 #else
 #include "albedo_tables.h"
-// Node `index` of a table: 16-bit unsigned normalised values, two to a 32-bit word, the first in the
-// low half (a word of text per two values: half the text of the shortest float literals, within
-// 7.7e-6 of them).
+// Node `index` of a table: 16-bit unorm values, two a 32-bit word, the first in the low half (half
+// the text of the shortest float literals, within 7.7e-6 of them).
 #define GLINT_ALBEDO_TABLE_NODE(words, index) \
   (float(((words)[(index) / 2] >> (16u * uint((index) % 2))) & 0xffffu) * (1.0f / 65535.0f))
 #define GLINT_ALBEDO_AT(index) GLINT_ALBEDO_TABLE_NODE(GLINT_ALBEDO_WORDS, index)

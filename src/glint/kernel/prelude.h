@@ -1,59 +1,35 @@
-// The kernel's language bridge. Every file under kernel/ compiles from the same text as C++20
-// (with glm) and as four shading languages, so that the model's equations are written once
-// (docs/conventions.md, "One model, five languages"):
+// The kernel's language bridge: every file under kernel/ compiles from one text as C++20 (with glm)
+// and as four shading languages (docs/conventions.md, "One model, five languages"):
 //   - C++ (__cplusplus): namespace glint::kernel, over glm;
-//   - GLSL 4.50 for OpenGL and GLSL 4.50 for Vulkan (SPIR-V through glslang): the default;
-//   - GLSL ES 3.00 (WebGL2): selected by the compiler's own GL_ES;
-//   - HLSL, shader model 6 rules (DXC; glslang's HLSL front end): selected by GLINT_HLSL, which the
-//     host defines before including the kernel, or by __HLSL_VERSION, which DXC predefines
-//     (glslang's HLSL front end predefines no such macro).
+//   - GLSL 4.50 for OpenGL and for Vulkan (SPIR-V through glslang): the default;
+//   - GLSL ES 3.00 (WebGL2): the compiler's own GL_ES;
+//   - HLSL, shader model 6 rules: GLINT_HLSL, defined by the host before including the kernel, or
+//     DXC's predefined __HLSL_VERSION (glslang's HLSL front end predefines no such macro).
 //
-// Including the kernel in another renderer's shaders. The kernel declares no resource (no uniform,
-// buffer, texture or binding) and every name it defines carries its prefix: functions glintXxx,
-// types GlintXxx, constants and macros GLINT_XXX. It reads the glint dictionary through one hook,
-// two functions that the host defines after including the kernel (GLSL and HLSL accept a
-// prototype with a later definition); their prototypes are below:
+// The kernel declares no resource and prefixes every name (glintXxx, GlintXxx, GLINT_XXX). It reads
+// the dictionary through a hook, functions the host defines after including it (prototypes below;
+// docs/integration.md, "The dictionary hook"):
+//   glintDictionaryTexelPair: texels k and k + 1 of a marginal, the second 0 past its last texel
+//     (docs/dictionary.md, "Texel convention");
+//   glintDictionaryFilteredTexels: texel glintMipOffset(R, m) + k of a distribution's mip-chain row,
+//     (p_m[k], p_m[k+1], q_m[k], q_m[k+1]) (docs/dictionary.md, "Mip chain"); read only with
+//     GLINT_FILTERED 1, so a host without the chain may return (glintDictionaryTexelPair(...), 0, 0);
+//   glintDictionaryCumulativeTexel, for glint_extended_lights.h only: (C[k], M[k], p[k], p[k+1]), the
+//     marginal's and slope-weighted marginal's integrals from 0 to texel k and its pair, as 32-bit
+//     floats (glint::Dictionary::cumulativeTexels(); docs/dictionary.md, "Cumulative tables").
+// A shader that includes a header that reads the dictionary (dictionary_lookup.h and those including
+// it) defines the first two even if it calls none: Mesa's GLSL linker resolves every function's calls.
+// GlintDictionaryView is the host's dictionary: in shaders its shape, filled by the host; in C++
+// pointers to host memory, with the hook defined here. Example hosts: shaders/glint_dictionary_gl.glsl,
+// tests/kernel/dictionary_vulkan.glsl, dictionary.hlsl. A GLSL ES host declares highp float and int
+// (the hashing needs 32-bit integers).
 //
-//   vec2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distribution, int texel)
-//     texels k = texel and k + 1 of the marginal `distribution` of dictionary level `level`, the
-//     second 0 past the distribution's last texel (docs/dictionary.md, "Texel convention");
-//   vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index)
-//     texel `index` of that distribution's row of the mip chain (docs/dictionary.md, "Mip chain"),
-//     glintMipOffset(R, m) + k for texel k of mip m: (p_m[k], p_m[k+1], q_m[k], q_m[k+1]). Only the
-//     anti-aliased P-SDF (GLINT_FILTERED 1) reads it; a host without the mip chain may return
-//     (glintDictionaryTexelPair(...), 0, 0).
-// A shader that includes a header whose functions read the dictionary (dictionary_lookup.h, and so
-// glint_antialiasing.h, glint_brdf.h, zirr_kaplanyan.h) defines both, even if it calls none of
-// those functions: some GLSL linkers (Mesa's) resolve the calls of every function. A shader that
-// includes glint_extended_lights.h (glints under area lights and environments) defines a third:
-//   vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel)
-//     (C[k], M[k], p[k], p[k+1]), k = texel: the integrals of that marginal and of the slope times it
-//     from slope 0 to texel k's slope, then texel k's pair as glintDictionaryTexelPair returns it, as
-//     glint::Dictionary::cumulativeTexels() holds them (docs/dictionary.md, "Cumulative tables"):
-//     32-bit floats, as a difference of two binary16 values would lose the narrow regions' mass; the
-//     pair beside them so that one read serves an integral.
-//
-// GlintDictionaryView is the host's description of its dictionary: in shaders its shape and
-// roughness (which the host fills, from its own uniforms or constant buffer), in C++ pointers to
-// host memory, for which this file defines the hook itself. The host decides where the texels
-// live: glint's renderer reads two buffer textures (shaders/glint_dictionary_gl.glsl); the tests'
-// Vulkan and HLSL hosts read texel and typed buffers (tests/kernel/dictionary_vulkan.glsl,
-// dictionary.hlsl). A GLSL ES host declares high precision for floats and ints (the hashing needs
-// 32-bit integers).
-//
-// Rules for kernel code, so that the same text is valid in every language:
-//   - every input is a function argument: no uniforms, no derivatives, no globals;
-//   - integer hashing on uint (wrap-around is defined in every language);
-//   - float literals carry the f suffix, unsigned ones the u suffix;
-//   - no swizzle assignment, no struct constructors (assign fields), no recursion;
-//   - functions are declared with GLINT_FN, constants with GLINT_CONST, out-parameters with
-//     GLINT_OUT(T), in-out ones with GLINT_INOUT(T);
-//   - GLSL's vocabulary, except where HLSL spells a built-in differently: then a helper below
-//     (glintMix for mix/lerp, glintFract for fract/frac, glintInverseSqrt for inversesqrt/rsqrt,
-//     glintFloatBitsToInt for floatBitsToInt/asint, glintFindLSB for findLSB/firstbitlow,
-//     glintLdexp); a vector of one repeated scalar through glintSplat2/3/4 (HLSL has no vec3(x));
-//     a matrix times a vector through GLINT_MUL (HLSL's mul); no mod (GLSL's floors, HLSL's fmod
-//     truncates): x - y * floor(x / y); no two-argument atan (HLSL's atan2).
+// Rules, so that one text is valid in every language (docs/conventions.md, "Kernel rules"): every
+// input an argument (no uniforms, derivatives or globals); hashing on uint; literals with the f and u
+// suffixes; no swizzle assignment, struct constructors or recursion; GLINT_FN, GLINT_CONST,
+// GLINT_OUT(T), GLINT_INOUT(T); GLSL's built-ins, or the helpers below where HLSL spells one
+// differently; glintSplat2/3/4 for vec3(x), GLINT_MUL for mul; no mod (GLSL's floors, HLSL's fmod
+// truncates: x - y * floor(x / y)); no two-argument atan.
 #ifndef GLINT_KERNEL_PRELUDE_H
 #define GLINT_KERNEL_PRELUDE_H
 
@@ -85,8 +61,7 @@
 #define GLINT_OUT(T) out T
 #define GLINT_INOUT(T) inout T
 #define GLINT_MUL(m, v) mul(m, v)
-// GLSL's vector type names, which the kernel is written in, as HLSL's (a host that maps them
-// already keeps its own macros).
+// GLSL's vector names as HLSL's (unless the host already maps them).
 #ifndef vec2
 #define vec2 float2
 #endif
@@ -127,10 +102,10 @@
 
 #endif
 
-// The kernel's compile-time configuration, which the host may define before including it:
+// Compile-time configuration a host may define before including the kernel:
 //   GLINT_FILTERED 1: the P-SDF's walk filters (glint_antialiasing.h; C++ decides per call);
-//   GLINT_MULTIPLE_SCATTERING 1: the albedo tables and the compensation lobe (multiple_scattering.h);
-//   GLINT_SLOPE_COUNT: the slopes of one walk (glint_brdf.h, 1 by default);
+//   GLINT_MULTIPLE_SCATTERING 1: the albedo tables and compensation lobe (multiple_scattering.h);
+//   GLINT_SLOPE_COUNT: slopes a walk (glint_brdf.h, 1 by default);
 //   GLINT_FOOTPRINT_POLICY: the footprint policy's words the walk applies (glint_footprint.h, all).
 #ifndef GLINT_FILTERED
 #define GLINT_FILTERED 0
@@ -195,8 +170,7 @@ GLINT_FN int glintFloatBitsToInt(float x) {
   return floatBitsToInt(x);
 }
 #if defined(GL_ES)
-// GLSL ES 3.00 (WebGL2) lacks findLSB and ldexp (ES 3.10 built-ins): written out exactly, through
-// the float's bits (no exp2 or log2 rounding).
+// GLSL ES 3.00 lacks findLSB and ldexp: exact, through the float's bits (no exp2 or log2 rounding).
 GLINT_FN int glintFindLSB(uint v) {
   return v == 0u ? -1 : (floatBitsToInt(float(v & (0u - v))) >> 23) - 127;
 }
@@ -271,7 +245,7 @@ struct GlintDictionaryView {
   int mipRowLength;           // texels of all mip levels of one distribution
 };
 
-// The hook, defined by the host (see the top of this file).
+// The hook, defined by the host (top of this file).
 vec2 glintDictionaryTexelPair(GlintDictionaryView view, int level, int distribution, int texel);
 vec4 glintDictionaryFilteredTexels(GlintDictionaryView view, int level, int distribution, int index);
 vec4 glintDictionaryCumulativeTexel(GlintDictionaryView view, int level, int distribution, int texel);

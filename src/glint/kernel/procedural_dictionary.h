@@ -1,11 +1,9 @@
-// A dictionary texel computed where it is read, for hosts that can load no file: a Shadertoy
-// buffer pass (`glint shader-bundle --shadertoy`, docs/integration.md) makes the whole dictionary
-// with it every frame. Same construction as glint's generator (docs/dictionary.md, "Generation"):
-// level l of distribution n is the even mixture of its first 2^l Gaussian lobes of standard
-// deviation s, whose means are drawn from the half-normal |Normal(0, sigma_d)|, so levels are
-// nested. The means come from a hash of (n, k, seed) instead of PCG32 streams (the paper's
-// "independent" placement: each lobe on its own), and the analytic normalisation of the mixture
-// replaces the generator's numerical one; docs/integration.md gives the difference it makes.
+// A dictionary texel computed where it is read, for hosts that load no file (a Shadertoy buffer pass,
+// `glint shader-bundle --shadertoy`, makes the whole dictionary every frame). glint's generator's
+// construction (docs/dictionary.md, "Generation"): level l of distribution n is the even mixture of
+// its first 2^l Gaussian lobes of std s, means from the half-normal |Normal(0, sigma_d)|, so levels
+// are nested. The means come from a hash of (n, k, seed), not PCG32 streams (the paper's "independent"
+// placement), and the mixture is normalised analytically; docs/integration.md gives the difference.
 #ifndef GLINT_KERNEL_PROCEDURAL_DICTIONARY_H
 #define GLINT_KERNEL_PROCEDURAL_DICTIONARY_H
 
@@ -22,11 +20,11 @@ GLINT_FN float glintProceduralLobeMean(int distribution, int lobe, uint seed, fl
   return sigmaD * 1.41421356f * glintErfinvApprox(u);
 }
 
-// Texel k of level l of distribution n in glint's texel convention (docs/dictionary.md, "Texel
-// convention"): the density at slope x_k = k 4 sigma_d / R of
+// Texel k of level l of distribution n (docs/dictionary.md, "Texel convention"): the density at slope
+// x_k = k 4 sigma_d / R of
 //   p_l(x) = 1 / (2 2^l) sum_{k' < 2^l} [ g(x; mu_k', s) + g(-x; mu_k', s) ],
-// g the normal density; lobes further than 6 s from x (under 1.6e-8 of their peak) are skipped.
-// Costs 2^l lobe means (a hash and an erfinv each): a host calls it once per texel and keeps it.
+// g the normal density; lobes over 6 s from x (under 1.6e-8 of their peak) are skipped. Costs 2^l lobe
+// means (a hash and an erfinv each): a host calls it once per texel and keeps it.
 GLINT_FN float glintProceduralDictionaryTexel(int level, int distribution, int texel, int texelsPerDistribution,
                                               float alphaD, float lobeStd, uint seed) {
   float sigmaD = alphaD * 0.70710678f;

@@ -7,9 +7,8 @@
 GLINT_KERNEL_BEGIN
 
 // Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): their pcg4d, a bijection of
-// uvec4 (every step is invertible), so distinct inputs never give the same 128-bit output. The
-// glint model feeds it a collision-free cell seed and takes its four lanes as four independent
-// uniform draws.
+// uvec4, so distinct inputs never collide. The model feeds it a collision-free cell seed and takes
+// its four lanes as four independent uniform draws.
 GLINT_FN uvec4 glintPcg4d(uvec4 v) {
   v = v * 1664525u + 1013904223u;
   v.x += v.y * v.w;
@@ -24,8 +23,8 @@ GLINT_FN uvec4 glintPcg4d(uvec4 v) {
   return v;
 }
 
-// The same paper's one-lane hash (their "pcg", PCG's RXS-M-XS output on one LCG step), a bijection
-// of uint: for a single word, where glintPcg4d's four lanes would cost four times as much.
+// The same paper's one-lane "pcg" (PCG's RXS-M-XS output on one LCG step), a bijection of uint: a
+// quarter of glintPcg4d's cost for a single word.
 GLINT_FN uint glintPcg(uint v) {
   uint state = v * 747796405u + 2891336453u;
   uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
@@ -33,16 +32,15 @@ GLINT_FN uint glintPcg(uint v) {
 }
 
 // A uniform float in (0, 1] from the top 24 bits k of a hash, identical on CPU and GPU:
-// (k + 1/2) / 2^24, which float rounds to a multiple of 2^-24 once k >= 2^23 (24-bit mantissa), so
-// the top value is exactly 1 (a 2^-24 chance, which every caller tolerates). Never 0: erfinv(2u - 1)
-// and log(u) stay finite.
+// (k + 1/2) / 2^24, which rounds to a multiple of 2^-24 once k >= 2^23, so the top value is exactly
+// 1 (a 2^-24 chance, which every caller tolerates). Never 0: erfinv(2u - 1) and log(u) stay finite.
 GLINT_FN float glintHashToUnitOpen(uint h) {
   return (float(h >> 8u) + 0.5f) * (1.0f / 16777216.0f);
 }
 
-// Inverse error function, single precision: Giles 2010, "Approximating the erfinv function"
-// (GPU Computing Gems Jade, ch. 10), relative error below 4e-7 on (-1, 1). Branch on w as in the
-// paper: central and tail polynomials in w = -log((1-x)(1+x)).
+// Inverse error function, single precision: Giles 2010, "Approximating the erfinv function" (GPU
+// Computing Gems Jade, ch. 10), relative error below 4e-7 on (-1, 1): central and tail polynomials
+// in w = -log((1-x)(1+x)).
 GLINT_FN float glintErfinvApprox(float x) {
   float w = -log((1.0f - x) * (1.0f + x));
   float p;
@@ -72,10 +70,9 @@ GLINT_FN float glintErfinvApprox(float x) {
   return p * x;
 }
 
-// Standard normal CDF Phi(z) = erfc(-z / sqrt 2) / 2, with erfc from the Chebyshev fit of Press et
-// al., "Numerical Recipes" (2nd ed., section 6.2, erfcc): fractional error below 1.2e-7 for every
-// argument, so Phi keeps its relative precision deep in the lower tail, where the dictionary-level
-// thresholds of glintLevelDraw lie.
+// Standard normal CDF Phi(z) = erfc(-z / sqrt 2) / 2, erfc from the Chebyshev fit of Press et al.,
+// "Numerical Recipes" (2nd ed., section 6.2, erfcc): fractional error below 1.2e-7 everywhere, so Phi
+// keeps its relative precision deep in the lower tail, where glintLevelDraw's thresholds lie.
 GLINT_FN float glintNormalCdf(float z) {
   float x = abs(z) * 0.70710678f;
   float t = 1.0f / (1.0f + 0.5f * x);

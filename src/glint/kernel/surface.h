@@ -1,16 +1,11 @@
-// A glTF metal-roughness surface with an optional glint layer, assembled at a shading point once
-// for every renderer: the rasteriser's fragment shader (shaders/forward.frag, which the page
-// compiles too) and the path tracer (src/trace/material.cpp) look up their textures as each
-// must (GLSL's sampler, the tracer's ray-differential mip chains) and hand the samples here;
-// what the surface is made of them, its shading frame, its lobes' inputs and its glint layer's
-// parameters, is this file's (docs/architecture.md, "A glint parameter, from a glTF file to a
-// pixel"). The lobes themselves are the renderers': the rasteriser evaluates them for its lights
-// (glintP22Set, one walk for every light), the tracer builds its sampled BSDFs of them.
-//
+// A glTF metal-roughness surface with an optional glint layer, assembled at a shading point for both
+// renderers (shaders/forward.frag, which the page compiles too; src/trace/material.cpp), which look up
+// their textures their own way and hand the samples here: the shading frame, the lobes' inputs and
+// the glint layer's parameters are this file's (docs/architecture.md, "A glint parameter, from a glTF
+// file to a pixel"); the lobes are the renderers'.
 // glTF 2.0 metal-roughness (Khronos, glTF 2.0 specification, Appendix B): base colour, metallic and
-// roughness as factor times texture; diffuse baseColour (1 - metallic) / pi; a specular lobe with
-// Schlick's Fresnel of F0 = mix(0.04, baseColour, metallic); the normal map in the tangent frame.
-// Shared by the CPU library and the shading languages: see prelude.h for the rules.
+// roughness as factor times texture; diffuse baseColour (1 - metallic) / pi; specular with Schlick's
+// F0 = mix(0.04, baseColour, metallic); the normal map in the tangent frame.
 #ifndef GLINT_KERNEL_SURFACE_H
 #define GLINT_KERNEL_SURFACE_H
 
@@ -20,10 +15,9 @@
 
 GLINT_KERNEL_BEGIN
 
-// The perceptual roughness range both renderers shade a glTF surface's smooth lobe with: at least
-// 0.03 (alpha 0.0009), below which a lobe is narrower than the renderers' sampling of it. The path
-// tracer's CPU BSDFs take alpha from 0.005 (roughness 0.07; glint_fields.h), and it raises a
-// smoother lobe to that.
+// The least perceptual roughness both renderers shade a smooth lobe with: 0.03 (alpha 0.0009); a
+// narrower lobe is finer than their sampling of it. The path tracer's CPU BSDFs raise alpha further,
+// to 0.005 (roughness 0.07; glint_fields.h).
 GLINT_CONST float GLINT_SURFACE_MIN_ROUGHNESS = 0.03f;
 
 // What a renderer looked up at a shading point, in world space.
@@ -45,9 +39,9 @@ struct GlintSurfaceSamples {
 
 // The surface as both renderers shade it.
 struct GlintSurface {
-  // The shading frame: n the mapped normal, turned towards the viewer (a sheet seen from behind is
-  // shaded on its visible side), t the tangent re-orthogonalised against it, b = cross(n, t) times
-  // the tangent's handedness (so the frame may be left-handed; the layer's alpha_y and rho follow b).
+  // The shading frame: n the mapped normal turned towards the viewer (a sheet seen from behind shows its
+  // visible side), t the tangent re-orthogonalised, b = cross(n, t) times the tangent's handedness (the
+  // frame may be left-handed; the layer's alpha_y and rho follow b).
   vec3 t;
   vec3 b;
   vec3 n;
@@ -59,8 +53,8 @@ struct GlintSurface {
   vec3 f0;           // Schlick's F0
   vec3 emission;
   float occlusion;
-  // The specular lobe: the glint layer's when the material has one (its textures applied, widened by
-  // the normal map's covariance), else a smooth lobe of alpha = roughness^2 along both axes.
+  // The specular lobe: the glint layer's (its textures applied, widened by the normal map's
+  // covariance), else a smooth lobe of alpha = roughness^2.
   uint hasGlintLayer;
   GlintParameters glint;
   vec2 smoothAlpha;  // the lobe's roughness: glint.alpha with a layer, roughness^2 without
@@ -73,15 +67,14 @@ GLINT_FN vec3 glintAnyPerpendicular(vec3 n) {
   return normalize(cross(axis, n));
 }
 
-// v without its component along the unit vector n, normalised; `fallback` where nothing is left
-// (a tangent along the normal: degenerate mesh data).
+// v orthogonalised against the unit n and normalised; `fallback` where nothing is left (degenerate
+// mesh data).
 GLINT_FN vec3 glintOrthogonalised(vec3 v, vec3 n, vec3 fallback) {
   vec3 w = v - n * dot(n, v);
   return dot(w, w) > 1e-12f ? normalize(w) : fallback;
 }
 
-// The surface at a shading point, `layer` its material's glint layer (layer.enabled 0: none) with
-// the renderer's footprint policy.
+// The surface at a shading point; `layer` the material's glint layer (enabled 0: none).
 GLINT_FN GlintSurface glintSurface(GlintSurfaceSamples s, GlintMaterial layer, GlintFootprintPolicy policy) {
   GlintSurface surface;
   surface.baseColour = s.baseColour;
@@ -112,9 +105,8 @@ GLINT_FN GlintSurface glintSurface(GlintSurfaceSamples s, GlintMaterial layer, G
   surface.diffuse = base * (1.0f - surface.metallic) / GLINT_PI;
   surface.f0 = clamp(glintMix(glintSplat3(0.04f), base, surface.metallic), glintSplat3(0.0f), glintSplat3(1.0f));
 
-  // The glint layer from its textures' samples (glint_material.h), widened by the normal map's
-  // slope covariance (Chermain et al. 2021, I3D, section 5: the covariances add; a small-tilt
-  // approximation in the tilted frame, as the authors').
+  // The glint layer from its textures' samples, widened by the normal map's slope covariance (Chermain
+  // et al. 2021, I3D, section 5: the covariances add; a small-tilt approximation, as the authors').
   surface.hasGlintLayer = layer.enabled;
   surface.glint = glintMaterialParameters(layer, s.glintSamples.x, s.glintSamples.y, s.glintSamples.z, policy);
   vec3 widened = glintLeanCombinedRoughness(surface.glint.alpha, surface.glint.rho, s.normalMapCovariance);
