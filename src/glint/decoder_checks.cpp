@@ -86,6 +86,12 @@ void checkPngForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixel
     const std::uint32_t length = bigEndian32(bytes, at);
     if (length > 0x7FFFFFFFu) throw Error("corrupt PNG (a chunk of " + std::to_string(length) + " bytes)");
     if (isType(bytes, at + 4, "IEND")) break;
+    // The decoder allocates what a chunk declares before it reads it: a length past the file's end
+    // would have it ask for up to 2 GiB for a file of a few bytes.
+    if (12 + static_cast<std::uint64_t>(length) > bytes.size() - at) {
+      throw Error("truncated or corrupt PNG (a chunk declares " + std::to_string(length) + " bytes of data, " +
+                  std::to_string(bytes.size() - at - 8) + " follow its header)");
+    }
     if (isType(bytes, at + 4, "IDAT")) {
       if (length == 0 && !seenData) throw Error("corrupt PNG (an empty IDAT chunk before the image data)");
       seenData = true;
