@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iterator>
 #include <set>
+#include <string>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -92,25 +94,40 @@ json evaluate(const json& input, const Dictionary& dictionary) {
   for (const auto& [key, value] : input.items()) {
     if (!isKnownField(key)) throw Error("unknown field '" + key + "'");
   }
-  GlintParameters parameters = defaultGlintParameters();
-  parameters.alpha = readVector<2>(input, name(GlintField::Alpha), parameters.alpha);
-  parameters.rho = readNumber(input, name(GlintField::Rho), parameters.rho);
-  parameters.logDensity = readNumber(input, name(GlintField::LogDensity), parameters.logDensity);
-  parameters.relativeArea = readNumber(input, name(GlintField::RelativeArea), parameters.relativeArea);
-  parameters.densityRandomisation = readNumber(input, name(GlintField::DensityRandomization), parameters.densityRandomisation);
-  parameters.maxAnisotropy = readNumber(input, name(GlintField::MaxAnisotropy), parameters.maxAnisotropy);
-  // In double, which holds every 32-bit seed exactly (a float rounds those above 2^24).
-  const auto seedField = input.find(name(GlintField::PatternSeed));
-  const double seed = seedField == input.end() ? 0.0 : seedField->is_number() ? seedField->get<double>() : -1.0;
-  if (!(seed >= 0.0 && seed <= 4294967295.0 && seed == std::floor(seed))) {
-    throw Error("field 'pattern_seed' must be an integer in [0, 2^32)");
+  // The layer's fields into the material block, each through its row's member (glint_fields.h),
+  // from the model's defaults (the 2020 paper's target, defaultGlintParameters).
+  const GlintParameters defaults = defaultGlintParameters();
+  kernel::GlintMaterial material = glintDefaultMaterial();
+  material.ndf = defaults.ndf;
+  material.masking = defaults.masking;
+  material.multipleScattering = defaults.multipleScattering ? 1u : 0u;
+  for (const GlintField field : kLayerFields) {
+    const GlintFieldSpec& spec = glintField(field);
+    const char* key = name(field);
+    if (!input.contains(key)) continue;
+    const std::string quoted = std::string("field '") + key + "'";
+    if (const auto* member = std::get_if<float kernel::GlintMaterial::*>(&spec.member)) {
+      material.**member = readNumber(input, key, 0.0f);
+    } else if (const auto* pair = std::get_if<glm::vec2 kernel::GlintMaterial::*>(&spec.member)) {
+      material.**pair = readVector<2>(input, key, glm::vec2(0.0f));
+    } else if (const auto* word = std::get_if<kernel::uint kernel::GlintMaterial::*>(&spec.member)) {
+      if (spec.kind == GlintFieldKind::Boolean) {
+        material.**word = readBool(input, key, false) ? 1u : 0u;
+      } else {
+        // In double, which holds every 32-bit integer exactly (a float rounds those above 2^24).
+        const json& value = input.at(key);
+        const double whole = value.is_number() ? value.get<double>() : -1.0;
+        if (!(whole >= spec.minimum && whole <= spec.maximum && whole == std::floor(whole))) {
+          throw Error(quoted + " must be an integer in [" + std::to_string(static_cast<std::uint64_t>(spec.minimum)) + ", " +
+                      std::to_string(static_cast<std::uint64_t>(spec.maximum)) + "]");
+        }
+        material.**word = static_cast<kernel::uint>(whole);
+      }
+    } else if (const auto* choice = std::get_if<int kernel::GlintMaterial::*>(&spec.member)) {
+      material.**choice = glintChoiceFromName(field, quoted, readString(input, key));
+    }
   }
-  parameters.patternSeed = static_cast<std::uint32_t>(seed);
-  if (const std::string ndf = readString(input, name(GlintField::Ndf)); !ndf.empty()) parameters.ndf = ndfFromName("field 'ndf'", ndf);
-  if (const std::string masking = readString(input, name(GlintField::Masking)); !masking.empty()) {
-    parameters.masking = maskingFromName("field 'masking'", masking);
-  }
-  parameters.multipleScattering = readBool(input, name(GlintField::MultipleScattering), parameters.multipleScattering);
+  const GlintParameters parameters = kernel::glintMaterialConstants(material, defaults.footprintPolicy);
   SurfaceFootprint footprint;
   footprint.uv = readVector<2>(input, "uv", footprint.uv);
   footprint.duvdx = readVector<2>(input, "duvdx", footprint.duvdx);

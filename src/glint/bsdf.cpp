@@ -105,21 +105,11 @@ void validateFootprintPolicy(const FootprintPolicy& policy) {
 }
 
 GlintParameters defaultGlintParameters() {
-  GlintParameters p;
-  p.alpha = glm::vec2(0.5f);
-  p.rho = glintDefaultFloat(GlintField::Rho);
-  p.logDensity = glintDefaultFloat(GlintField::LogDensity);
-  p.relativeArea = glintDefaultFloat(GlintField::RelativeArea);
-  p.densityRandomisation = glintDefaultFloat(GlintField::DensityRandomization);
-  p.maxAnisotropy = glintDefaultFloat(GlintField::MaxAnisotropy);
-  p.patternSeed = static_cast<std::uint32_t>(glintField(GlintField::PatternSeed).defaultValue);
-  p.colouredCells = glintDefaultBoolean(GlintField::RandomColors);
+  GlintParameters p = kernel::glintMaterialConstants(glintDefaultMaterial(), exactFootprintPolicy());
   // The 2020 paper's target (glTF's is glint_fields.h's default, scene::kGltfSpecular).
   p.ndf = kernel::GLINT_NDF_BECKMANN;
   p.masking = kernel::GLINT_MASKING_VCAVITY;
   p.multipleScattering = false;
-  p.lod = glintDefaultChoice(GlintField::Lod);
-  p.footprintPolicy = exactFootprintPolicy();
   return p;
 }
 
@@ -140,21 +130,17 @@ std::string glintChoiceList(GlintField field) {
   return list;
 }
 
-namespace {
-
-int choiceFromName(GlintField choice, const std::string& field, const std::string& name) {
+int glintChoiceFromName(GlintField choice, const std::string& field, const std::string& name) {
   const int value = glintChoiceValue(choice, name);
   if (value < 0) throw Error(field + " must be " + glintChoiceList(choice) + ", got \"" + name + "\"");
   return value;
 }
 
-}  // namespace
-
-int ndfFromName(const std::string& field, const std::string& name) { return choiceFromName(GlintField::Ndf, field, name); }
+int ndfFromName(const std::string& field, const std::string& name) { return glintChoiceFromName(GlintField::Ndf, field, name); }
 int maskingFromName(const std::string& field, const std::string& name) {
-  return choiceFromName(GlintField::Masking, field, name);
+  return glintChoiceFromName(GlintField::Masking, field, name);
 }
-int lodFromName(const std::string& field, const std::string& name) { return choiceFromName(GlintField::Lod, field, name); }
+int lodFromName(const std::string& field, const std::string& name) { return glintChoiceFromName(GlintField::Lod, field, name); }
 const char* lodName(int lod) { return glintChoiceName(GlintField::Lod, lod); }
 const char* ndfName(int ndf) { return glintChoiceName(GlintField::Ndf, ndf); }
 const char* maskingName(int masking) { return glintChoiceName(GlintField::Masking, masking); }
@@ -202,13 +188,11 @@ void validateSlopeCorrelation(float rho) {
 
 void validateGlintParameters(const GlintParameters& p) {
   validateRoughness(p.alpha);
-  validateSlopeCorrelation(p.rho);
-  // Named as extras.glint and `glint eval` spell them; the glTF reader renames them as its file does.
-  requireFieldRange(glintField(GlintField::LogDensity).extras, GlintField::LogDensity, p.logDensity);
-  requireFieldRange(glintField(GlintField::RelativeArea).extras, GlintField::RelativeArea, p.relativeArea);
-  requireFieldRange(glintField(GlintField::DensityRandomization).extras, GlintField::DensityRandomization,
-                    p.densityRandomisation);
-  requireFieldRange(glintField(GlintField::MaxAnisotropy).extras, GlintField::MaxAnisotropy, p.maxAnisotropy);
+  // The numbers the model takes as they are, each through its row (glint_fields.h), named as
+  // extras.glint and `glint eval` spell them; the glTF reader renames them as its file does.
+  for (const GlintFieldSpec& spec : kGlintFields) {
+    if (spec.parameter != nullptr) requireFieldRange(spec.extras, spec.field, p.*spec.parameter);
+  }
   validateTarget(microfacetTarget(p));
   if (glintChoiceName(GlintField::Lod, p.lod)[0] == '\0') {
     throw Error("lod must be paper (0), consistent (1) or tree (2), got " + std::to_string(p.lod));

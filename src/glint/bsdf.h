@@ -117,6 +117,8 @@ const char* maskingName(int masking);
 int lodFromName(const std::string& field, const std::string& name);
 // A Choice field's names as a message lists them: "paper", "consistent" or "tree" (glint_fields.h).
 std::string glintChoiceList(GlintField field);
+// The value of a Choice field's name; throws Error naming `field` (as the input spells it) otherwise.
+int glintChoiceFromName(GlintField choice, const std::string& field, const std::string& name);
 const char* lodName(int lod);
 
 // Cook-Torrance with the target's NDF (roughness alpha, slope correlation rho) and masking:

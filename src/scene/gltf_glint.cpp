@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 #include <utility>
+#include <variant>
 
 #include "glint/error.h"
 #include "scene/gltf_field_types.h"
@@ -221,49 +222,44 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
                                                            : " must be an array of two numbers"));
     }
   }
-  const std::pair<GlintField, float GlintLayer::*> numbers[] = {
-      {GlintField::Rho, &GlintLayer::rho},
-      {GlintField::LogDensity, &GlintLayer::logDensity},
-      {GlintField::RelativeArea, &GlintLayer::relativeArea},
-      {GlintField::DensityRandomization, &GlintLayer::densityRandomisation},
-      {GlintField::MaxAnisotropy, &GlintLayer::maxAnisotropy},
-      {GlintField::UvScale, &GlintLayer::uvScale}};
-  for (const auto& number : numbers) {
-    const GlintField field = number.first;
-    float GlintLayer::*const member = number.second;  // a named variable: lambdas cannot capture bindings in clang 14
-    if (!reader.has(field)) continue;
-    const float value = numberField(reader.at(field), reader.name(field));
-    try {
-      checkRange(reader.name(field), [&](GlintLayer& probe) { probe.*member = value; });
-    } catch (const Error& e) {
-      // A number no float holds but 0 (relativeArea 1e-46) is refused as 0: said why it is 0.
-      if (value == 0.0f && reader.at(field).get<double>() != 0.0) {
-        throw Error(std::string(reader.name(field)) + " " + describeJsonValue(reader.at(field)) +
-                    " is too small for a 32-bit float and would be 0: " + e.what());
+  // Every other field of the block, through its row's member: the specular target's fields went
+  // to `result.specular` above, alpha has its own rule, textures follow.
+  for (const GlintFieldSpec& spec : kGlintFields) {
+    const GlintField field = spec.field;
+    if (field == GlintField::Alpha || !reader.has(field) ||
+        std::find(kTargetFields.begin(), kTargetFields.end(), field) != kTargetFields.end()) {
+      continue;
+    }
+    const json& value = reader.at(field);
+    const std::string name = reader.name(field);
+    if (const auto* member = std::get_if<float kernel::GlintMaterial::*>(&spec.member)) {
+      const float number = numberField(value, name);
+      const auto pointer = *member;  // a named variable: lambdas cannot capture bindings in clang 14
+      try {
+        checkRange(name, [&](GlintLayer& probe) { probe.*pointer = number; });
+      } catch (const Error& e) {
+        // A number no float holds but 0 (relativeArea 1e-46) is refused as 0: said why it is 0.
+        if (number == 0.0f && value.get<double>() != 0.0) {
+          throw Error(name + " " + describeJsonValue(value) + " is too small for a 32-bit float and would be 0: " + e.what());
+        }
+        throw;
       }
-      throw;
-    }
-    layer.*member = value;
-  }
-  if (reader.has(GlintField::PatternSeed)) {
-    layer.patternSeed =
-        static_cast<std::uint32_t>(wholeField(reader.at(GlintField::PatternSeed), reader.name(GlintField::PatternSeed), 0, 0xffffffffu));
-  }
-  if (reader.has(GlintField::RandomColors)) {
-    layer.colouredCells = booleanField(reader.at(GlintField::RandomColors), reader.name(GlintField::RandomColors));
-  }
-  if (reader.has(GlintField::Lod)) {
-    const json& lod = reader.at(GlintField::Lod);
-    if (!lod.is_string()) {
-      throw Error(std::string(reader.name(GlintField::Lod)) + " must be " + glintChoiceList(GlintField::Lod));
-    }
-    layer.lod = lodFromName(reader.name(GlintField::Lod), lod.get<std::string>());
-  }
-  if (reader.has(GlintField::LogDensityRange)) {
-    const std::string name = reader.name(GlintField::LogDensityRange);
-    layer.logDensityRange = pairField(reader.at(GlintField::LogDensityRange), name);
-    for (int k = 0; k < 2; ++k) {
-      checkRange(name + "[" + std::to_string(k) + "]", [&](GlintLayer& probe) { probe.logDensityRange[k] = layer.logDensityRange[k]; });
+      layer.*pointer = number;
+    } else if (const auto* pair = std::get_if<glm::vec2 kernel::GlintMaterial::*>(&spec.member)) {
+      const glm::vec2 numbers = pairField(value, name);
+      const auto pointer = *pair;
+      for (int k = 0; k < 2; ++k) {
+        checkRange(name + "[" + std::to_string(k) + "]", [&](GlintLayer& probe) { (probe.*pointer)[k] = numbers[k]; });
+      }
+      layer.*pointer = numbers;
+    } else if (const auto* word = std::get_if<kernel::uint kernel::GlintMaterial::*>(&spec.member)) {
+      layer.**word = spec.kind == GlintFieldKind::Boolean
+                         ? (booleanField(value, name) ? 1u : 0u)
+                         : static_cast<kernel::uint>(wholeField(value, name, static_cast<std::uint64_t>(spec.minimum),
+                                                                static_cast<std::uint64_t>(spec.maximum)));
+    } else if (const auto* choice = std::get_if<int kernel::GlintMaterial::*>(&spec.member)) {
+      if (!value.is_string()) throw Error(name + " must be " + glintChoiceList(field));
+      layer.**choice = glintChoiceFromName(field, name, value.get<std::string>());
     }
   }
   const std::pair<GlintField, int GlintLayer::*> textureFields[] = {

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <variant>
 
 #include <glm/gtc/type_ptr.hpp>
 // Debian's libtinygltf-dev ships the implementation compiled (libtinygltf.so), writer included.
@@ -54,20 +55,31 @@ tinygltf::Value glintExtension(const GlintLayer& layer, const MicrofacetTarget& 
   auto name = [](GlintField field) { return glintFieldName(field, kSpelling); };
   tinygltf::Value::Object glint;
   writeSpecularTarget(glint, specular, kSpelling);
-  glint[name(GlintField::Alpha)] = pair(layer.alpha);
-  glint[name(GlintField::Rho)] = number(layer.rho);
-  glint[name(GlintField::LogDensity)] = number(layer.logDensity);
-  glint[name(GlintField::RelativeArea)] = number(layer.relativeArea);
-  glint[name(GlintField::DensityRandomization)] = number(layer.densityRandomisation);
-  glint[name(GlintField::MaxAnisotropy)] = number(layer.maxAnisotropy);
-  // tinygltf's integers are 32-bit ints: a seed beyond them is written as a whole double.
-  glint[name(GlintField::PatternSeed)] = layer.patternSeed <= static_cast<std::uint32_t>(std::numeric_limits<int>::max())
-                                            ? tinygltf::Value(static_cast<int>(layer.patternSeed))
-                                            : tinygltf::Value(static_cast<double>(layer.patternSeed));
-  glint[name(GlintField::UvScale)] = number(layer.uvScale);
-  glint[name(GlintField::RandomColors)] = tinygltf::Value(layer.colouredCells);
-  glint[name(GlintField::Lod)] = tinygltf::Value(std::string(lodName(layer.lod)));
-  glint[name(GlintField::LogDensityRange)] = pair(layer.logDensityRange);
+  // Every field of the block through its row's member, as its kind writes it; the specular target's
+  // fields are the material's, written above.
+  for (const GlintFieldSpec& spec : kGlintFields) {
+    if (spec.field == GlintField::Ndf || spec.field == GlintField::Masking || spec.field == GlintField::MultipleScattering) {
+      continue;
+    }
+    tinygltf::Value value;
+    if (const auto* member = std::get_if<float kernel::GlintMaterial::*>(&spec.member)) {
+      value = number(layer.**member);
+    } else if (const auto* vector = std::get_if<glm::vec2 kernel::GlintMaterial::*>(&spec.member)) {
+      value = pair(layer.**vector);
+    } else if (const auto* word = std::get_if<kernel::uint kernel::GlintMaterial::*>(&spec.member)) {
+      const kernel::uint held = layer.**word;
+      // tinygltf's integers are 32-bit ints: a seed beyond them is written as a whole double.
+      value = spec.kind == GlintFieldKind::Boolean ? tinygltf::Value(held != 0u)
+              : held <= static_cast<kernel::uint>(std::numeric_limits<int>::max())
+                  ? tinygltf::Value(static_cast<int>(held))
+                  : tinygltf::Value(static_cast<double>(held));
+    } else if (const auto* choice = std::get_if<int kernel::GlintMaterial::*>(&spec.member)) {
+      value = tinygltf::Value(std::string(glintChoiceName(spec.field, layer.**choice)));
+    } else {
+      continue;  // a texture: below
+    }
+    glint[name(spec.field)] = std::move(value);
+  }
   const std::pair<GlintField, int> textures[] = {{GlintField::RoughnessTexture, layer.roughnessTexture},
                                                  {GlintField::LogDensityTexture, layer.logDensityTexture},
                                                  {GlintField::RelativeAreaTexture, layer.relativeAreaTexture}};

@@ -39,44 +39,15 @@ glm::vec3 Scene::boundsMax() const {
 
 float alphaFromRoughness(float roughness) { return std::max(roughness * roughness, 0.01f); }
 
-// The layout of kernel/glint_material.h, which the renderers' buffers and shaders rely on.
-static_assert(sizeof(kernel::GlintMaterial) == 80, "GlintMaterial: 80 bytes, five 16-byte rows");
-static_assert(offsetof(kernel::GlintMaterial, alpha) == 0);
-static_assert(offsetof(kernel::GlintMaterial, rho) == 8);
-static_assert(offsetof(kernel::GlintMaterial, logDensity) == 12);
-static_assert(offsetof(kernel::GlintMaterial, relativeArea) == 16);
-static_assert(offsetof(kernel::GlintMaterial, densityRandomisation) == 20);
-static_assert(offsetof(kernel::GlintMaterial, maxAnisotropy) == 24);
-static_assert(offsetof(kernel::GlintMaterial, patternSeed) == 28);
-static_assert(offsetof(kernel::GlintMaterial, logDensityRange) == 32);
-static_assert(offsetof(kernel::GlintMaterial, uvScale) == 40);
-static_assert(offsetof(kernel::GlintMaterial, hasLogDensityTexture) == 44);
-static_assert(offsetof(kernel::GlintMaterial, ndf) == 48);
-static_assert(offsetof(kernel::GlintMaterial, masking) == 52);
-static_assert(offsetof(kernel::GlintMaterial, colouredCells) == 56);
-static_assert(offsetof(kernel::GlintMaterial, multipleScattering) == 60);
-static_assert(offsetof(kernel::GlintMaterial, enabled) == 64);
-static_assert(offsetof(kernel::GlintMaterial, lod) == 68);
-static_assert(offsetof(kernel::GlintMaterial, padding1) == 72);
-
 kernel::GlintMaterial glintMaterial(const GlintLayer& layer, const MicrofacetTarget& target) {
-  kernel::GlintMaterial m{};  // the padding zero too, so that equal layers pack to equal bytes
-  m.alpha = layer.alpha;
-  m.rho = layer.rho;
-  m.logDensity = layer.logDensity;
-  m.relativeArea = layer.relativeArea;
-  m.densityRandomisation = layer.densityRandomisation;
-  m.maxAnisotropy = layer.maxAnisotropy;
-  m.patternSeed = layer.patternSeed;
-  m.logDensityRange = layer.logDensityRange;
-  m.uvScale = layer.uvScale;
+  kernel::GlintMaterial m = layer;  // the block as the layer holds it, then what the material decides
   m.hasLogDensityTexture = layer.logDensityTexture >= 0 ? 1u : 0u;
   m.ndf = target.ndf;
   m.masking = target.masking;
-  m.colouredCells = layer.colouredCells ? 1u : 0u;
   m.multipleScattering = target.multipleScattering ? 1u : 0u;
-  m.enabled = layer.enabled ? 1u : 0u;
-  m.lod = layer.lod;
+  m.enabled = layer.enabled != 0u ? 1u : 0u;
+  m.colouredCells = layer.colouredCells != 0u ? 1u : 0u;
+  m.padding1 = m.padding2 = 0u;  // so that equal layers pack to equal bytes
   return m;
 }
 

@@ -42,28 +42,19 @@ struct Texture {
   bool srgb = false;  // colour textures (base colour, emissive) are sRGB; data textures linear
 };
 
-// The glint layer of a material (docs/scenes.md, "Glint parameters in glTF"). When
-// enabled, the material's specular lobe is the glint BRDF; with `--brdf cook-torrance` it is
-// Cook-Torrance with the same roughness.
-struct GlintLayer {
-  bool enabled = false;
-  glm::vec2 alpha{0.5f};  // roughness alpha_x, alpha_y (x along the tangent); a glTF file's default is its roughness^2
-  // The others' defaults and ranges are glint_fields.h's (kGlintFields), their meaning too.
-  float rho = glintDefaultFloat(GlintField::Rho);
-  float logDensity = glintDefaultFloat(GlintField::LogDensity);
-  float relativeArea = glintDefaultFloat(GlintField::RelativeArea);
-  float densityRandomisation = glintDefaultFloat(GlintField::DensityRandomization);
-  float maxAnisotropy = glintDefaultFloat(GlintField::MaxAnisotropy);
-  std::uint32_t patternSeed = static_cast<std::uint32_t>(glintField(GlintField::PatternSeed).defaultValue);
-  float uvScale = glintDefaultFloat(GlintField::UvScale);  // glint uv = mesh uv * uvScale
-  bool colouredCells = glintDefaultBoolean(GlintField::RandomColors);
-  int lod = glintDefaultChoice(GlintField::Lod);  // kernel::GLINT_LOD_PAPER, _CONSISTENT or _TREE (docs/method.md 2.7, 2.8)
+// The glint layer of a material (docs/scenes.md, "Glint parameters in glTF"): the kernel's material
+// block (kernel/glint_material.h; its fields' names, defaults, ranges and meaning are
+// glint_fields.h's table, kGlintFields) and the layer's textures. When enabled, the material's
+// specular lobe is the glint BRDF; with `--brdf cook-torrance` it is Cook-Torrance with the same
+// roughness. The block's ndf, masking and multipleScattering are the material's specular target
+// (Material::specular), and hasLogDensityTexture follows logDensityTexture: glintMaterial() writes
+// them when it packs the layer for a renderer.
+struct GlintLayer : kernel::GlintMaterial {
+  GlintLayer() : kernel::GlintMaterial(glintDefaultMaterial()) {}
   // Optional textures (indices into Scene::textures, -1 for none); each multiplies or replaces
-  // the constant above as documented in docs/scenes.md.
+  // the constant of the block as documented in docs/scenes.md.
   int roughnessTexture = -1;       // R channel multiplies alpha (result clamped to [0.01, 2])
   int logDensityTexture = -1;      // R channel maps linearly onto logDensityRange
-  glm::vec2 logDensityRange{glintDefaultFloat(GlintField::LogDensityRange),
-                            static_cast<float>(glintField(GlintField::LogDensityRange).defaultSecond)};
   int relativeAreaTexture = -1;    // R channel multiplies relativeArea
 };
 

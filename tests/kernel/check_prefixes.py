@@ -90,7 +90,7 @@ def definitions(path):
 def declared(statement, line, opens_body):
     """The names a top-level statement declares."""
     s = " ".join(statement.split())
-    if not s:
+    if not s or s.startswith("static_assert"):  # a C++ check (in a C++-only block), no name
         return []
     match = re.match(r"^struct\s+(\w+)$", s)
     if match:

@@ -26,9 +26,8 @@ GLINT_KERNEL_BEGIN
 //                                           60  uint  multipleScattering
 //          64  uint  enabled                68  int   lod
 //                                           72, 76  padding (zero)
-// static_asserts pin these offsets in C++ (src/scene/scene.cpp, next to the packing of a scene's
-// glint layer); tests/test_gl_kernel.cpp checks that the GLSL compiler reports the same ones for
-// the renderer's block (shaders/glint_material_block.glsl).
+// static_asserts below pin these offsets in C++; tests/test_gl_kernel.cpp checks that the GLSL
+// compiler reports the same ones for the renderer's block (shaders/glint_material_block.glsl).
 struct GlintMaterial {
   vec2 alpha;                  // roughness alpha_x, alpha_y (the roughness texture's R multiplies them)
   float rho;                   // slope correlation
@@ -49,6 +48,28 @@ struct GlintMaterial {
   uint padding1;
   uint padding2;
 };
+
+#ifdef __cplusplus
+// The layout of kernel/glint_material.h, which the renderers' buffers and shaders rely on.
+static_assert(sizeof(GlintMaterial) == 80, "GlintMaterial: 80 bytes, five 16-byte rows");
+static_assert(offsetof(GlintMaterial, alpha) == 0);
+static_assert(offsetof(GlintMaterial, rho) == 8);
+static_assert(offsetof(GlintMaterial, logDensity) == 12);
+static_assert(offsetof(GlintMaterial, relativeArea) == 16);
+static_assert(offsetof(GlintMaterial, densityRandomisation) == 20);
+static_assert(offsetof(GlintMaterial, maxAnisotropy) == 24);
+static_assert(offsetof(GlintMaterial, patternSeed) == 28);
+static_assert(offsetof(GlintMaterial, logDensityRange) == 32);
+static_assert(offsetof(GlintMaterial, uvScale) == 40);
+static_assert(offsetof(GlintMaterial, hasLogDensityTexture) == 44);
+static_assert(offsetof(GlintMaterial, ndf) == 48);
+static_assert(offsetof(GlintMaterial, masking) == 52);
+static_assert(offsetof(GlintMaterial, colouredCells) == 56);
+static_assert(offsetof(GlintMaterial, multipleScattering) == 60);
+static_assert(offsetof(GlintMaterial, enabled) == 64);
+static_assert(offsetof(GlintMaterial, lod) == 68);
+static_assert(offsetof(GlintMaterial, padding1) == 72);
+#endif
 
 // The glint uv of a mesh uv, or of its derivatives (the map is linear): the layer's density is per
 // glint-uv area.

@@ -35,6 +35,7 @@
 
 #if defined(__cplusplus)
 
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 
