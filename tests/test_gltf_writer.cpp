@@ -266,6 +266,45 @@ TEST(GltfWriter, ALoadedFileWritesBackAsItself) {
   expectSameScene(first, loadGltf(folder / "second.gltf"));
 }
 
+// What glint made for a loaded file (the two lights it invents for a file without lights, the
+// bounding-box presets and the "default" that stands for the file's first camera) is not written
+// back as if the file had it; --with-defaults writes it.
+TEST(GltfWriter, NothingInventedIsWrittenUnlessAsked) {
+  const fs::path folder = test::temporaryFolder("gltf_writer_invented");
+  Scene bare = makeBuiltinScene("sphere");
+  bare.lights.clear();
+  bare.cameras.clear();
+  writeGltf(folder / "bare.glb", bare);
+  const Scene loaded = loadGltf(folder / "bare.glb");
+  ASSERT_TRUE(loaded.defaultLights);
+  ASSERT_EQ(loaded.lights.size(), 2u);
+  ASSERT_EQ(loaded.cameras.size(), 5u);  // default, front, side, top, close
+  const auto parsed = [&](const char* file) { return json::parse(std::ifstream(folder / file)); };
+  writeGltf(folder / "again.gltf", loaded);
+  const json again = parsed("again.gltf");
+  EXPECT_FALSE(again.contains("cameras")) << again.dump().substr(0, 200);
+  EXPECT_FALSE(again.contains("extensions") && again["extensions"].contains("KHR_lights_punctual"));
+  expectSameScene(loaded, loadGltf(folder / "again.gltf"));  // glint lights and frames it the same
+  writeGltf(folder / "defaults.gltf", loaded, true);
+  const json defaults = parsed("defaults.gltf");
+  EXPECT_EQ(defaults["cameras"].size(), 5u);
+  EXPECT_EQ(defaults["extensions"]["KHR_lights_punctual"]["lights"].size(), 2u);
+
+  // A file's cameras: written once each (not again as "default"), its first camera first, so that
+  // it is the default view when read back, whatever the names' order.
+  Scene framed = bare;
+  framed.cameras["zenith"] = Camera{{0.0f, 4.0f, 0.5f}, glm::vec3(0.0f), {0, 1, 0}};
+  framed.cameras["apse"] = Camera{{3.0f, 0.5f, 0.0f}, glm::vec3(0.0f), {0, 1, 0}};
+  framed.cameras["default"] = framed.cameras["zenith"];
+  framed.cameras["default"].preset = true;  // as the loader marks a file's first camera
+  writeGltf(folder / "framed.gltf", framed);
+  const json cameras = parsed("framed.gltf")["cameras"];
+  ASSERT_EQ(cameras.size(), 2u);
+  EXPECT_EQ(cameras[0]["name"], "zenith");
+  const Scene reread = loadGltf(folder / "framed.gltf");
+  EXPECT_EQ(reread.cameras.at("default").position, glm::vec3(0.0f, 4.0f, 0.5f));
+}
+
 TEST(GltfWriter, SaysWhatGltfCannotHold) {
   Scene scene = makeBuiltinScene("carpaint");
   EXPECT_EQ(gltfLosses(scene), std::vector<std::string>{"the environment (an environment map)"});

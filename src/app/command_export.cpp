@@ -16,11 +16,12 @@ namespace {
 struct ExportOptions {
   SceneOptions scene;
   std::string output;
+  bool withDefaults = false;
 };
 
 void runExport(const ExportOptions& options) {
   const scene::Scene scene = options.scene.loadScene();
-  scene::writeGltf(options.output, scene);
+  scene::writeGltf(options.output, scene, options.withDefaults);
   std::string losses;
   for (const std::string& loss : scene::gltfLosses(scene)) losses += (losses.empty() ? "" : ", ") + loss;
   std::fprintf(stderr,
@@ -33,8 +34,8 @@ void runExport(const ExportOptions& options) {
   std::fprintf(stderr, "glint: wrote %s (%s: %s, %s, %s, %s, %s, %s)\n", options.output.c_str(),
                options.scene.scene.c_str(), count(scene.meshes.size(), "mesh", "meshes").c_str(),
                count(triangles, "triangle", "triangles").c_str(), count(scene.materials.size(), "material", "materials").c_str(),
-               count(scene.textures.size(), "texture", "textures").c_str(), count(scene.lights.size(), "light", "lights").c_str(),
-               count(scene.cameras.size(), "camera", "cameras").c_str());
+               count(scene.textures.size(), "texture", "textures").c_str(), count(scene::writtenLights(scene, options.withDefaults).size(), "light", "lights").c_str(),
+               count(scene::writtenCameras(scene, options.withDefaults).size(), "camera", "cameras").c_str());
 }
 
 }  // namespace
@@ -46,6 +47,9 @@ void registerExportCommand(CLI::App& app) {
   options->scene.addSceneAndMaterialsTo(*command);
   command->add_option("-o,--output", options->output, "Output file: .glb (binary) or .gltf (JSON, data embedded)")
       ->required();
+  command->add_flag("--with-defaults", options->withDefaults,
+                    "Also write what glint made for the scene: the lights it invents for a file without lights and "
+                    "the preset cameras (front, side, top, close, default)");
   command->callback([options] { runExport(*options); });
 }
 

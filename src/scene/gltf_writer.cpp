@@ -117,7 +117,7 @@ std::vector<double> frameMatrix(glm::dvec3 position, glm::dvec3 forward, glm::dv
 
 class GltfWriter {
  public:
-  explicit GltfWriter(const Scene& scene) : scene_(scene) {}
+  GltfWriter(const Scene& scene, bool withDefaults) : scene_(scene), withDefaults_(withDefaults) {}
 
   tinygltf::Model write() {
     model_.asset.version = "2.0";
@@ -129,8 +129,8 @@ class GltfWriter {
     tinygltf::Scene root;
     root.name = scene_.name;
     for (std::size_t i = 0; i < scene_.meshes.size(); ++i) root.nodes.push_back(addMesh(i));
-    for (const Light& light : scene_.lights) root.nodes.push_back(addLight(light));
-    for (const auto& [name, camera] : scene_.cameras) root.nodes.push_back(addCamera(name, camera));
+    for (const Light& light : writtenLights(scene_, withDefaults_)) root.nodes.push_back(addLight(light));
+    for (const auto& [name, camera] : writtenCameras(scene_, withDefaults_)) root.nodes.push_back(addCamera(name, camera));
     model_.scenes.push_back(std::move(root));
     model_.defaultScene = 0;
     if (usesTextureTransforms_) model_.extensionsUsed.push_back("KHR_texture_transform");
@@ -409,6 +409,7 @@ class GltfWriter {
   }
 
   const Scene& scene_;
+  bool withDefaults_;
   tinygltf::Model model_;
   bool usesTextureTransforms_ = false;
   bool usesEmissiveStrength_ = false;
@@ -417,11 +418,38 @@ class GltfWriter {
 
 }  // namespace
 
-std::vector<std::byte> encodeGltf(const Scene& scene, GltfEncoding encoding) {
+std::vector<Light> writtenLights(const Scene& scene, bool withDefaults) {
+  return scene.defaultLights && !withDefaults ? std::vector<Light>() : scene.lights;
+}
+
+std::vector<std::pair<std::string, Camera>> writtenCameras(const Scene& scene, bool withDefaults) {
+  std::vector<std::pair<std::string, Camera>> cameras;
+  for (const auto& [name, camera] : scene.cameras) {
+    if (withDefaults || !camera.preset) cameras.emplace_back(name, camera);
+  }
+  // A reader takes the first camera for its default view: the one "default" stands for goes first,
+  // and where it is none of those written while others are, it is written too, as "default".
+  const auto fallback = scene.cameras.find("default");
+  if (fallback != scene.cameras.end() && !cameras.empty()) {
+    auto first = std::find_if(cameras.begin(), cameras.end(), [](const auto& named) { return named.first == "default"; });
+    if (first == cameras.end()) {
+      first = std::find_if(cameras.begin(), cameras.end(),
+                           [&](const auto& named) { return sameView(named.second, fallback->second); });
+    }
+    if (first != cameras.end()) {
+      std::rotate(cameras.begin(), first, first + 1);
+    } else {
+      cameras.insert(cameras.begin(), *fallback);
+    }
+  }
+  return cameras;
+}
+
+std::vector<std::byte> encodeGltf(const Scene& scene, GltfEncoding encoding, bool withDefaults) {
   std::size_t triangles = 0;
   for (const Mesh& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
   if (triangles == 0) throw Error("scene '" + scene.name + "' has no triangles to write");
-  const tinygltf::Model model = GltfWriter(scene).write();
+  const tinygltf::Model model = GltfWriter(scene, withDefaults).write();
   std::ostringstream stream;
   tinygltf::TinyGLTF writer;
   const bool binary = encoding == GltfEncoding::Binary;
@@ -446,12 +474,12 @@ std::vector<std::string> gltfLosses(const Scene& scene) {
   return losses;
 }
 
-void writeGltf(const std::filesystem::path& path, const Scene& scene) {
+void writeGltf(const std::filesystem::path& path, const Scene& scene, bool withDefaults) {
   const std::string extension = lowercaseExtension(path);
   if (extension != ".glb" && extension != ".gltf") throw Error(path.string() + ": a glTF file must end in .glb or .gltf");
   std::vector<std::byte> bytes;
   try {
-    bytes = encodeGltf(scene, extension == ".glb" ? GltfEncoding::Binary : GltfEncoding::Json);
+    bytes = encodeGltf(scene, extension == ".glb" ? GltfEncoding::Binary : GltfEncoding::Json, withDefaults);
   } catch (const Error& e) {
     throw Error(path.string() + ": " + e.what());
   }

@@ -173,6 +173,7 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
     Camera camera = base;
     camera.position = centre + offset;
     camera.up = up;
+    camera.preset = true;
     return camera;
   };
   return {
@@ -182,6 +183,11 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
       {"top", at({0, distance, 0}, {0, 0, -1})},
       {"close", at({0, 0, 0.5f * distance}, {0, 1, 0})},
   };
+}
+
+bool sameView(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.target == b.target && a.up == b.up && a.projection == b.projection &&
+         a.verticalFovDegrees == b.verticalFovDegrees && a.orthographicHalfHeight == b.orthographicHalfHeight;
 }
 
 glm::mat2 UvTransform::linear() const {

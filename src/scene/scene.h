@@ -171,6 +171,10 @@ struct Camera {
   Projection projection = Projection::Perspective;
   float verticalFovDegrees = 45.0f;      // perspective
   float orthographicHalfHeight = 1.0f;   // orthographic, scene units (glTF's ymag)
+  // Made by glint, not the scene's own: the bounding box's presets (standardCameras), or "default"
+  // standing for a file's first camera. `glint export` leaves such cameras out (a reader makes them
+  // again) unless asked to write them.
+  bool preset = false;
 };
 
 struct Scene {
@@ -250,6 +254,8 @@ std::vector<std::size_t> applyGlint(Scene& scene, const std::vector<std::string>
 // far enough that the bounding sphere fits the 45 degree vertical field of view with a 10% margin;
 // "side" from +x, "top" from +y (up = -z), "close" at half the default distance.
 std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high);
+// The same view (position, target, up, projection and its angle or height), whoever made it.
+bool sameView(const Camera& a, const Camera& b);
 
 // Lighting for a scene that brings none: a point light above, right and in front of the bounding
 // box, a directional light from the upper left, and a uniform grey-blue environment (0.3), scaled
