@@ -295,8 +295,7 @@ TEST(GltfWriter, NothingInventedIsWrittenUnlessAsked) {
   Scene framed = bare;
   framed.cameras["zenith"] = Camera{{0.0f, 4.0f, 0.5f}, glm::vec3(0.0f), {0, 1, 0}};
   framed.cameras["apse"] = Camera{{3.0f, 0.5f, 0.0f}, glm::vec3(0.0f), {0, 1, 0}};
-  framed.cameras["default"] = framed.cameras["zenith"];
-  framed.cameras["default"].preset = true;  // as the loader marks a file's first camera
+  framed.cameras["default"] = framed.cameras["zenith"];  // as the loader names a file's first camera
   writeGltf(folder / "framed.gltf", framed);
   const json cameras = parsed("framed.gltf")["cameras"];
   ASSERT_EQ(cameras.size(), 2u);

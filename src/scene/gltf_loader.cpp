@@ -574,11 +574,7 @@ class GltfReader {
     }
     const bool namedDefault =
         std::any_of(fileCameras_.begin(), fileCameras_.end(), [](const FileCamera& c) { return c.name == "default"; });
-    if (!fileCameras_.empty() && !namedDefault) {
-      Camera first = fileCameras_.front().camera;
-      first.preset = true;  // the file's first camera under glint's name for it, not a camera of its own
-      scene_.cameras["default"] = first;
-    }
+    if (!fileCameras_.empty() && !namedDefault) scene_.cameras["default"] = fileCameras_.front().camera;
   }
 
   // KHR_lights_punctual: point, spot and directional lights. Its photometric units become

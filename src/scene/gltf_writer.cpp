@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <variant>
 
@@ -423,24 +424,38 @@ std::vector<Light> writtenLights(const Scene& scene, bool withDefaults) {
 }
 
 std::vector<std::pair<std::string, Camera>> writtenCameras(const Scene& scene, bool withDefaults) {
+  // glint's presets are the cameras standardCameras makes for these bounds, under their names and
+  // unchanged; "default" is glint's name for another camera when it has that camera's view.
+  const std::map<std::string, Camera> presets = standardCameras(scene.boundsMin(), scene.boundsMax());
+  const auto invented = [&](const std::string& name, const Camera& camera) {
+    const auto preset = presets.find(name);
+    return preset != presets.end() && sameView(preset->second, camera);
+  };
   std::vector<std::pair<std::string, Camera>> cameras;
   for (const auto& [name, camera] : scene.cameras) {
-    if (withDefaults || !camera.preset) cameras.emplace_back(name, camera);
+    if (withDefaults || !invented(name, camera)) cameras.emplace_back(name, camera);
   }
-  // A reader takes the first camera for its default view: the one "default" stands for goes first,
-  // and where it is none of those written while others are, it is written too, as "default".
   const auto fallback = scene.cameras.find("default");
-  if (fallback != scene.cameras.end() && !cameras.empty()) {
-    auto first = std::find_if(cameras.begin(), cameras.end(), [](const auto& named) { return named.first == "default"; });
-    if (first == cameras.end()) {
-      first = std::find_if(cameras.begin(), cameras.end(),
-                           [&](const auto& named) { return sameView(named.second, fallback->second); });
+  if (fallback == scene.cameras.end() || cameras.empty()) return cameras;
+  // A reader takes the first camera for its default view: the default view's camera goes first,
+  // once; where glint's own default view stands among the scene's cameras, it is written too.
+  const auto named = [&](const std::string& name) {
+    return std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return c.first == name; });
+  };
+  auto first = named("default");
+  if (!withDefaults) {
+    const auto same = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) {
+      return c.first != "default" && sameView(c.second, fallback->second);
+    });
+    if (same != cameras.end()) {
+      if (first != cameras.end()) cameras.erase(first);
+      first = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return sameView(c.second, fallback->second); });
     }
-    if (first != cameras.end()) {
-      std::rotate(cameras.begin(), first, first + 1);
-    } else {
-      cameras.insert(cameras.begin(), *fallback);
-    }
+  }
+  if (first != cameras.end()) {
+    std::rotate(cameras.begin(), first, first + 1);
+  } else {
+    cameras.insert(cameras.begin(), *fallback);
   }
   return cameras;
 }

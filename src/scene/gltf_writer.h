@@ -24,7 +24,8 @@ enum class GltfEncoding { Binary, Json };
 // KHR_materials_emissive_strength where used; every texture as an embedded PNG; the lights as
 // KHR_lights_punctual; the scene's own cameras by name. What glint made for the scene rather than
 // took from it (the lights addDefaultLighting invents for a file without lights, Scene::defaultLights;
-// the preset cameras, Camera::preset) is left out unless `withDefaults`: a reader lights and frames the
+// the bounding box's preset cameras, standardCameras, where unchanged; "default" where it is
+// another camera's view) is left out unless `withDefaults`: a reader lights and frames the
 // file as it chooses, and glint makes them again when it loads the file. Throws Error for what glTF or the loader cannot take (a mesh index out of range, a texture of
 // the wrong size, a colour outside [0, 1]).
 std::vector<std::byte> encodeGltf(const Scene& scene, GltfEncoding encoding, bool withDefaults = false);

@@ -173,7 +173,6 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
     Camera camera = base;
     camera.position = centre + offset;
     camera.up = up;
-    camera.preset = true;
     return camera;
   };
   return {

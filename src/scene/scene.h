@@ -171,10 +171,6 @@ struct Camera {
   Projection projection = Projection::Perspective;
   float verticalFovDegrees = 45.0f;      // perspective
   float orthographicHalfHeight = 1.0f;   // orthographic, scene units (glTF's ymag)
-  // Made by glint, not the scene's own: the bounding box's presets (standardCameras), or "default"
-  // standing for a file's first camera. `glint export` leaves such cameras out (a reader makes them
-  // again) unless asked to write them.
-  bool preset = false;
 };
 
 struct Scene {
