@@ -118,6 +118,26 @@ TEST(RenderCli, RendersAnExportedFileWithAndWithoutAddedGlints) {
       << "a glint layer on the floor changed nothing";
 }
 
+// A model lying in the xz plane (a floor, a mat), a file without cameras or lights: the default view
+// sees it from above, not edge-on from the front, so the picture is not empty.
+TEST(RenderCli, AFlatModelsDefaultViewSeesIt) {
+  const auto folder = temporaryFolder("render_flat");
+  scene::Scene s;
+  s.name = "mat";
+  scene::Material grey;
+  grey.name = "grey";
+  s.materials.push_back(grey);
+  s.meshes.push_back(scene::makeQuad("mat", 0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 0.6f)));
+  scene::writeGltf(folder / "mat.glb", s);
+  const RunResult result = runGlint(folder, "render mat.glb -o mat.exr --size 64x64 --env-intensity 0 --shadows off");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const ImageRgbF image = readImage(folder / "mat.exr");
+  int lit = 0;
+  for (const glm::vec3& pixel : image.pixels) lit += pixel.x + pixel.y + pixel.z > 0.0f ? 1 : 0;
+  // The 2 x 1.2 m mat fills about 0.45 of the view's height and width at the preset's distance.
+  EXPECT_GT(lit, 64 * 64 / 10) << lit << " pixels show the mat";
+}
+
 // A metal UV sphere of radius 1 without a glint layer, its uv (phi / 2 pi, theta / pi) times
 // `uvExtent` (1: 0.28 uv units per metre, about what a textured asset's atlas gives), a point light
 // beside the camera and the camera at 3.6 m, written as glTF by the repository's own writer.

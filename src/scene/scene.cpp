@@ -175,13 +175,22 @@ std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high) {
     camera.up = up;
     return camera;
   };
-  return {
-      {"default", at({0, 0, distance}, {0, 1, 0})},
+  std::map<std::string, Camera> cameras = {
       {"front", at({0, 0, distance}, {0, 1, 0})},
       {"side", at({distance, 0, 0}, {0, 1, 0})},
       {"top", at({0, distance, 0}, {0, 0, -1})},
       {"close", at({0, 0, 0.5f * distance}, {0, 1, 0})},
   };
+  // The default looks from the front (+z), unless the model is flat along y or x (a floor or a leaf
+  // lying in the xz plane, a panel in the yz plane: under a tenth of its largest extent and thinner
+  // than along z), which the front sees edge-on: then from above or from the side.
+  const glm::vec3 extent = high - low;
+  const float flat = 0.1f * std::max({extent.x, extent.y, extent.z});
+  const char* view = extent.y <= flat && extent.y < extent.z   ? "top"
+                     : extent.x <= flat && extent.x < extent.z ? "side"
+                                                               : "front";
+  cameras["default"] = cameras.at(view);
+  return cameras;
 }
 
 bool sameView(const Camera& a, const Camera& b) {
