@@ -138,6 +138,22 @@ TEST(RenderCli, AFlatModelsDefaultViewSeesIt) {
   EXPECT_GT(lit, 64 * 64 / 10) << lit << " pixels show the mat";
 }
 
+// The warning for what glint approximates names the file, as every other warning does.
+TEST(RenderCli, TheBlendWarningNamesTheFile) {
+  const auto folder = temporaryFolder("render_blend");
+  scene::Scene s;
+  s.name = "veil";
+  scene::Material veil;
+  veil.name = "veil";
+  veil.alphaMode = scene::Material::AlphaMode::Blend;
+  s.materials.push_back(veil);
+  s.meshes.push_back(scene::makeQuad("veil", 0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+  scene::writeGltf(folder / "veil.glb", s);
+  const RunResult result = runGlint(folder, "render veil.glb -o veil.png --size 32x32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("glint: warning: veil.glb: material 'veil' has alphaMode BLEND"), std::string::npos) << result.err;
+}
+
 // A metal UV sphere of radius 1 without a glint layer, its uv (phi / 2 pi, theta / pi) times
 // `uvExtent` (1: 0.28 uv units per metre, about what a textured asset's atlas gives), a point light
 // beside the camera and the camera at 3.6 m, written as glTF by the repository's own writer.

@@ -279,6 +279,10 @@ TEST(GltfLoader, FlattensTheHierarchyAndFillsInWhatIsMissing) {
   const Scene scene = loadGltf(folder / "tri.gltf");
   expectWellFormed(scene);
   ASSERT_EQ(scene.meshes.size(), 2u);  // the LINES primitive left out, two instances of the triangle
+  // ... and said: one line naming what is not drawn and where.
+  ASSERT_EQ(scene.unreadFeatures.size(), 1u);
+  EXPECT_NE(scene.unreadFeatures[0].find("points and lines are not drawn"), std::string::npos) << scene.unreadFeatures[0];
+  EXPECT_NE(scene.unreadFeatures[0].find("mesh 0"), std::string::npos) << scene.unreadFeatures[0];
   ASSERT_EQ(scene.materials.size(), 1u);
   EXPECT_EQ(scene.materials[0].name, "default");
 

@@ -205,8 +205,8 @@ scene::Scene SceneOptions::loadScene() const {
   for (const std::string& note : s.notes) std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), note.c_str());
   for (const scene::Material& m : s.materials) {
     if (m.alphaMode == scene::Material::AlphaMode::Blend) {
-      std::fprintf(stderr, "glint: warning: material '%s' has alphaMode BLEND; glint does not blend and draws it opaque\n",
-                   m.name.c_str());
+      std::fprintf(stderr, "glint: warning: %s: material '%s' has alphaMode BLEND; glint does not blend and draws it opaque\n",
+                   scene.c_str(), m.name.c_str());
     }
   }
   s.cameras[camera] = cameraOptions.applyTo(findCamera(s));

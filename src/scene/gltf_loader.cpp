@@ -387,6 +387,11 @@ class GltfReader {
       const std::string where = "mesh " + std::to_string(i) + (mesh.name.empty() ? "" : " '" + mesh.name + "'");
       for (const tinygltf::Primitive& primitive : mesh.primitives) {
         if (!primitive.targets.empty()) note("morph targets are not applied, the base shape is drawn", where);
+        const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+            mode == TINYGLTF_MODE_LINE_STRIP) {
+          note("points and lines are not drawn (glint shades surfaces)", where);
+        }
       }
     }
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
