@@ -118,17 +118,22 @@ TEST(RenderCli, RendersAnExportedFileWithAndWithoutAddedGlints) {
       << "a glint layer on the floor changed nothing";
 }
 
+// A file of one quad of `material`, 2 m along x and 2 |halfV| along halfV, without cameras or lights.
+void writeQuadFile(const std::filesystem::path& path, const scene::Material& material, glm::vec3 halfV) {
+  scene::Scene s;
+  s.name = path.stem().string();
+  s.materials.push_back(material);
+  s.meshes.push_back(scene::makeQuad(s.name, 0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), halfV));
+  scene::writeGltf(path, s);
+}
+
 // A model lying in the xz plane (a floor, a mat), a file without cameras or lights: the default view
 // sees it from above, not edge-on from the front, so the picture is not empty.
 TEST(RenderCli, AFlatModelsDefaultViewSeesIt) {
   const auto folder = temporaryFolder("render_flat");
-  scene::Scene s;
-  s.name = "mat";
   scene::Material grey;
   grey.name = "grey";
-  s.materials.push_back(grey);
-  s.meshes.push_back(scene::makeQuad("mat", 0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 0.6f)));
-  scene::writeGltf(folder / "mat.glb", s);
+  writeQuadFile(folder / "mat.glb", grey, glm::vec3(0.0f, 0.0f, 0.6f));
   const RunResult result = runGlint(folder, "render mat.glb -o mat.exr --size 64x64 --env-intensity 0 --shadows off");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const ImageRgbF image = readImage(folder / "mat.exr");
@@ -141,14 +146,10 @@ TEST(RenderCli, AFlatModelsDefaultViewSeesIt) {
 // The warning for what glint approximates names the file, as every other warning does.
 TEST(RenderCli, TheBlendWarningNamesTheFile) {
   const auto folder = temporaryFolder("render_blend");
-  scene::Scene s;
-  s.name = "veil";
   scene::Material veil;
   veil.name = "veil";
   veil.alphaMode = scene::Material::AlphaMode::Blend;
-  s.materials.push_back(veil);
-  s.meshes.push_back(scene::makeQuad("veil", 0, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-  scene::writeGltf(folder / "veil.glb", s);
+  writeQuadFile(folder / "veil.glb", veil, glm::vec3(0.0f, 1.0f, 0.0f));
   const RunResult result = runGlint(folder, "render veil.glb -o veil.png --size 32x32");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.err.find("glint: warning: veil.glb: material 'veil' has alphaMode BLEND"), std::string::npos) << result.err;
