@@ -143,6 +143,17 @@ TEST(RenderCli, AFlatModelsDefaultViewSeesIt) {
   EXPECT_GT(lit, 64 * 64 / 10) << lit << " pixels show the mat";
 }
 
+// A rectangle light's quad, added after the scene is built, moves its bounds: the presets glint made
+// before are still glint's, and export leaves them out (the sphere's own default camera stays).
+TEST(RenderCli, ExportWithARectangleLightWritesOnlyTheScenesCameras) {
+  const auto folder = temporaryFolder("export_rect");
+  const RunResult result = runGlint(folder, "export sphere --rect-light 2,3,2,1.5,1,20 -o lit.gltf");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const nlohmann::json document = nlohmann::json::parse(std::ifstream(folder / "lit.gltf"));
+  ASSERT_EQ(document["cameras"].size(), 1u) << document["cameras"].dump();
+  EXPECT_EQ(document["cameras"][0]["name"], "default");
+}
+
 // The warning for what glint approximates names the file, as every other warning does.
 TEST(RenderCli, TheBlendWarningNamesTheFile) {
   const auto folder = temporaryFolder("render_blend");

@@ -65,7 +65,7 @@ std::optional<bool> languageDefines(const std::string& language, const std::stri
 class LanguageCondition {
  public:
   LanguageCondition(const std::string& text, const std::string& language) : language_(language) {
-    static const std::regex token(R"(\s*(defined|[A-Za-z_]\w*|\d+|&&|\|\||!|\(|\)|\S))");
+    static const std::regex token(R"(\s*(defined\b|[A-Za-z_]\w*|\d+|&&|\|\||!|\(|\)|\S))");
     for (std::sregex_iterator it(text.begin(), text.end(), token), end; it != end; ++it) tokens_.push_back((*it)[1]);
   }
 
@@ -163,9 +163,17 @@ std::string withoutOtherLanguages(const std::string& text, const std::string& la
   };
   std::istringstream lines(text);
   std::string out;
-  for (std::string line; std::getline(lines, line);) {
+  for (std::string read; std::getline(lines, read);) {
+    // A directive continued with '\' is read as one line (`joined`) and written as it stands (`line`).
+    std::string line = read;
+    std::string joined = read;
+    while (!joined.empty() && joined.back() == '\\' && joined.find_first_not_of(" \t") != std::string::npos &&
+           joined[joined.find_first_not_of(" \t")] == '#' && std::getline(lines, read)) {
+      line += '\n' + read;
+      joined = joined.substr(0, joined.size() - 1) + ' ' + read;
+    }
     std::smatch match;
-    if (!std::regex_match(line, match, directive)) {
+    if (!std::regex_match(joined, match, directive)) {
       if (emitting()) out += line + '\n';
       continue;
     }

@@ -89,8 +89,9 @@ void checkPngForDecoder(std::span<const std::byte> bytes, std::uint64_t maxPixel
     // The decoder allocates what a chunk declares before it reads it: a length past the file's end
     // would have it ask for up to 2 GiB for a file of a few bytes.
     if (12 + static_cast<std::uint64_t>(length) > bytes.size() - at) {
-      throw Error("truncated or corrupt PNG (a chunk declares " + std::to_string(length) + " bytes of data, " +
-                  std::to_string(bytes.size() - at - 8) + " follow its header)");
+      throw Error("truncated or corrupt PNG (a chunk declares " + std::to_string(length) + " bytes of data, which with its CRC need " +
+                  std::to_string(static_cast<std::uint64_t>(length) + 4) + ", and " + std::to_string(bytes.size() - at - 8) +
+                  " follow its header)");
     }
     if (isType(bytes, at + 4, "IDAT")) {
       if (length == 0 && !seenData) throw Error("corrupt PNG (an empty IDAT chunk before the image data)");

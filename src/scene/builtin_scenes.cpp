@@ -762,7 +762,7 @@ Camera camera(glm::vec3 position, glm::vec3 target, float fovDegrees = 45.0f) {
 
 // The bounding-box presets (front, side, top, close) with the scene's own default.
 void setCameras(Scene& scene, const Camera& defaultCamera) {
-  scene.cameras = standardCameras(scene.boundsMin(), scene.boundsMax());
+  scene.cameras = scene.presetCameras = standardCameras(scene.boundsMin(), scene.boundsMax());
   scene.cameras["default"] = defaultCamera;
 }
 

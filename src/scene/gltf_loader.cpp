@@ -387,11 +387,12 @@ class GltfReader {
       const std::string where = "mesh " + std::to_string(i) + (mesh.name.empty() ? "" : " '" + mesh.name + "'");
       for (const tinygltf::Primitive& primitive : mesh.primitives) {
         if (!primitive.targets.empty()) note("morph targets are not applied, the base shape is drawn", where);
-        const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
-            mode == TINYGLTF_MODE_LINE_STRIP) {
-          note("points and lines are not drawn (glint shades surfaces)", where);
-        }
+      }
+      // Once a mesh, however many of its primitives are points or lines.
+      if (std::any_of(mesh.primitives.begin(), mesh.primitives.end(), [](const tinygltf::Primitive& primitive) {
+            return primitive.mode >= TINYGLTF_MODE_POINTS && primitive.mode <= TINYGLTF_MODE_LINE_STRIP;
+          })) {
+        note("points and lines are not drawn (glint shades surfaces)", where);
       }
     }
     for (std::size_t i = 0; i < model_.materials.size(); ++i) {
@@ -569,7 +570,7 @@ class GltfReader {
   // "cameraN"), a file camera winning over a preset of the same name; the first one in node order
   // is also "default" unless one is named so.
   void addCameras() {
-    scene_.cameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
+    scene_.cameras = scene_.presetCameras = standardCameras(scene_.boundsMin(), scene_.boundsMax());
     // The viewer orbits around a camera's target: put it on the view ray, as far as the scene's centre.
     const glm::vec3 centre = 0.5f * (scene_.boundsMin() + scene_.boundsMax());
     for (FileCamera& file : fileCameras_) {

@@ -424,9 +424,11 @@ std::vector<Light> writtenLights(const Scene& scene, bool withDefaults) {
 }
 
 std::vector<std::pair<std::string, Camera>> writtenCameras(const Scene& scene, bool withDefaults) {
-  // glint's presets are the cameras standardCameras makes for these bounds, under their names and
-  // unchanged; "default" is glint's name for another camera when it has that camera's view.
-  const std::map<std::string, Camera> presets = standardCameras(scene.boundsMin(), scene.boundsMax());
+  // glint's presets are the cameras it made when it loaded or built the scene (or, for a scene made
+  // otherwise, standardCameras of its bounds), under their names and unchanged; "default" is
+  // glint's name for another camera when it has that camera's view.
+  const std::map<std::string, Camera> presets =
+      scene.presetCameras.empty() ? standardCameras(scene.boundsMin(), scene.boundsMax()) : scene.presetCameras;
   const auto invented = [&](const std::string& name, const Camera& camera) {
     const auto preset = presets.find(name);
     return preset != presets.end() && sameView(preset->second, camera);

@@ -48,7 +48,7 @@ struct Texture {
 // specular lobe is the glint BRDF; with `--brdf cook-torrance` it is Cook-Torrance with the same
 // roughness. The block's ndf, masking and multipleScattering are the material's specular target
 // (Material::specular), and hasLogDensityTexture follows logDensityTexture: glintMaterial() writes
-// them when it packs the layer for a renderer.
+// them when it packs the layer for a renderer, so a renderer reads the block only through it.
 struct GlintLayer : kernel::GlintMaterial {
   GlintLayer() : kernel::GlintMaterial(glintDefaultMaterial()) {}
   // Optional textures (indices into Scene::textures, -1 for none); each multiplies or replaces
@@ -184,6 +184,10 @@ struct Scene {
   bool defaultLights = false;
   Environment environment;
   std::map<std::string, Camera> cameras;  // always holds "default"
+  // The bounding box's presets as glint made them when it loaded or built the scene
+  // (standardCameras), before anything added to it (a --rect-light's quad) moved the bounds: `glint
+  // export` leaves out a camera that is still one of them.
+  std::map<std::string, Camera> presetCameras;
   float exposure = 1.0f;
   // What the scene's file uses that glint does not render (vertex colours, a second uv set, an
   // extension it does not read, ...), one line each, for the commands to warn about.
@@ -246,9 +250,10 @@ VisibleGlintDensity visibleGlintDensity(const Scene& scene, int material);
 // layer. Returns the indices of the materials that got a new layer, in order.
 std::vector<std::size_t> applyGlint(Scene& scene, const std::vector<std::string>& materialNames);
 
-// Named views of the bounding box [low, high]: "default" and "front" look at its centre from +z,
-// far enough that the bounding sphere fits the 45 degree vertical field of view with a 10% margin;
-// "side" from +x, "top" from +y (up = -z), "close" at half the default distance.
+// Named views of the bounding box [low, high]: "front" looks at its centre from +z, far enough that
+// the bounding sphere fits the 45 degree vertical field of view with a 10% margin; "side" from +x,
+// "top" from +y (up = -z), "close" from +z at half that distance; "default" is "front", or "top" or
+// "side" for a model flat along y or x, which the front sees edge-on.
 std::map<std::string, Camera> standardCameras(glm::vec3 low, glm::vec3 high);
 // The same view (position, target, up, projection and its angle or height), whoever made it.
 bool sameView(const Camera& a, const Camera& b);

@@ -74,7 +74,7 @@ float glintAverageAlbedoTableValue(int index);  // GLINT_ALBEDO_TABLE_NODE(GLINT
 // Node `index` of a table: 16-bit unorm values, two a 32-bit word, the first in the low half (half
 // the text of the shortest float literals, within 7.7e-6 of them).
 #define GLINT_ALBEDO_TABLE_NODE(words, index) \
-  (float(((words)[(index) / 2] >> (16u * uint((index) % 2))) & 0xffffu) * (1.0f / 65535.0f))
+  (float(((words)[(index) / 2] >> (((index) % 2 == 1) ? 16u : 0u)) & 0xffffu) * (1.0f / 65535.0f))
 #define GLINT_ALBEDO_AT(index) GLINT_ALBEDO_TABLE_NODE(GLINT_ALBEDO_WORDS, index)
 #define GLINT_AVERAGE_ALBEDO_AT(index) GLINT_ALBEDO_TABLE_NODE(GLINT_AVERAGE_ALBEDO_WORDS, index)
 #endif
