@@ -566,8 +566,9 @@ ZirrKaplanyanParameters defaultZirrKaplanyanParameters() {
 }
 
 void validateZirrKaplanyanParameters(const ZirrKaplanyanParameters& p) {
-  requireRange("roughness_x", p.roughness.x, 0.005f, 2.0f);
-  requireRange("roughness_y", p.roughness.y, 0.005f, 2.0f);
+  // The glint layer's alpha range (glint_fields.h), whose roughness it takes.
+  requireRange("roughness_x", p.roughness.x, kMinRoughnessAlpha, kMaxRoughnessAlpha);
+  requireRange("roughness_y", p.roughness.y, kMinRoughnessAlpha, kMaxRoughnessAlpha);
   // The bin index q / (mu + c) stays below 1e4 in magnitude (an int), and rho = sqrt(r^2 - mu^2).
   requireRange("micro_roughness_x", p.microRoughness.x, 1e-4f, p.roughness.x);
   requireRange("micro_roughness_y", p.microRoughness.y, 1e-4f, p.roughness.y);

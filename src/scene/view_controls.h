@@ -14,11 +14,12 @@ namespace glint::scene {
 
 // The constants of a glint layer that the sliders edit, and the material's specular target; the
 // layer's textures (which multiply or replace them) and its other fields stay as the scene has them.
+// Before they are read from a material: a default layer's (glint_fields.h).
 struct MaterialControls {
-  glm::vec2 alpha{0.5f};  // Beckmann roughness alpha_x, alpha_y
-  float rho = 0.0f;
-  float logDensity = 27.0f;
-  float relativeArea = 1.0f;
+  glm::vec2 alpha = GlintLayer().alpha;  // roughness alpha_x, alpha_y
+  float rho = GlintLayer().rho;
+  float logDensity = GlintLayer().logDensity;
+  float relativeArea = GlintLayer().relativeArea;
   MicrofacetTarget specular;  // Material::specular
 };
 
