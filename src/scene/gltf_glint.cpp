@@ -161,8 +161,6 @@ int textureField(const json& value, GlintSpelling spelling, const std::string& f
   }
 }
 
-constexpr std::array kTargetFields = {GlintField::Ndf, GlintField::Masking, GlintField::MultipleScattering};
-
 MicrofacetTarget readTarget(const Reader& reader, MicrofacetTarget target) {
   if (reader.has(GlintField::Ndf)) {
     const json& ndf = reader.at(GlintField::Ndf);
@@ -226,8 +224,7 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
   // to `result.specular` above, alpha has its own rule, textures follow.
   for (const GlintFieldSpec& spec : kGlintFields) {
     const GlintField field = spec.field;
-    if (field == GlintField::Alpha || !reader.has(field) ||
-        std::find(kTargetFields.begin(), kTargetFields.end(), field) != kTargetFields.end()) {
+    if (field == GlintField::Alpha || !reader.has(field) || isSpecularTargetField(field)) {
       continue;
     }
     const json& value = reader.at(field);
@@ -275,7 +272,7 @@ GltfGlint readGlintLayer(const json& fields, GlintSpelling spelling, float rough
 MicrofacetTarget readGlintSpecularTarget(const json& fields, MicrofacetTarget specular) {
   if (!fields.is_object()) throw Error("must be an object, got " + describeJsonValue(fields));
   const Reader reader(fields, GlintSpelling::Extras);
-  reader.refuseUnknown(kTargetFields, false);
+  reader.refuseUnknown(kSpecularTargetFields, false);
   return readTarget(reader, specular);
 }
 

@@ -4,6 +4,7 @@
 // (gltf_loader.cpp) and the writer (gltf_writer.cpp) take the fields' names from here.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -24,6 +25,16 @@ enum class GlintSpelling { Extension, Extras };
 
 // The field's name in `spelling` ("relativeArea" or "relative_area"), from glint_fields.h.
 const char* glintFieldName(GlintField field, GlintSpelling spelling);
+
+// The fields of a material's specular target (Material::specular), not of its glint layer: ndf,
+// masking and multipleScattering, which extras.glint_specular holds alone.
+inline constexpr std::array kSpecularTargetFields = {GlintField::Ndf, GlintField::Masking, GlintField::MultipleScattering};
+constexpr bool isSpecularTargetField(GlintField field) {
+  for (GlintField target : kSpecularTargetFields) {
+    if (field == target) return true;
+  }
+  return false;
+}
 
 // What reading a layer needs of the loader: the file's textures and where to note what it does not
 // apply.

@@ -59,9 +59,7 @@ tinygltf::Value glintExtension(const GlintLayer& layer, const MicrofacetTarget& 
   // Every field of the block through its row's member, as its kind writes it; the specular target's
   // fields are the material's, written above.
   for (const GlintFieldSpec& spec : kGlintFields) {
-    if (spec.field == GlintField::Ndf || spec.field == GlintField::Masking || spec.field == GlintField::MultipleScattering) {
-      continue;
-    }
+    if (isSpecularTargetField(spec.field)) continue;
     tinygltf::Value value;
     if (const auto* member = std::get_if<float kernel::GlintMaterial::*>(&spec.member)) {
       value = number(layer.**member);
@@ -433,29 +431,30 @@ std::vector<std::pair<std::string, Camera>> writtenCameras(const Scene& scene, b
     const auto preset = presets.find(name);
     return preset != presets.end() && sameView(preset->second, camera);
   };
-  std::vector<std::pair<std::string, Camera>> cameras;
-  for (const auto& [name, camera] : scene.cameras) {
-    if (withDefaults || !invented(name, camera)) cameras.emplace_back(name, camera);
-  }
   const auto fallback = scene.cameras.find("default");
-  if (fallback == scene.cameras.end() || cameras.empty()) return cameras;
-  // A reader takes the first camera for its default view: the default view's camera goes first,
-  // once; where glint's own default view stands among the scene's cameras, it is written too.
-  const auto named = [&](const std::string& name) {
-    return std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return c.first == name; });
-  };
-  auto first = named("default");
-  if (!withDefaults) {
-    const auto same = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) {
-      return c.first != "default" && sameView(c.second, fallback->second);
-    });
-    if (same != cameras.end()) {
-      if (first != cameras.end()) cameras.erase(first);
-      first = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return sameView(c.second, fallback->second); });
+  // The scene's own camera whose view "default" has: written once, under its own name.
+  std::string aliased;
+  if (!withDefaults && fallback != scene.cameras.end()) {
+    for (const auto& [name, camera] : scene.cameras) {
+      if (name != "default" && !invented(name, camera) && sameView(camera, fallback->second)) {
+        aliased = name;
+        break;
+      }
     }
   }
-  if (first != cameras.end()) {
-    std::rotate(cameras.begin(), first, first + 1);
+  std::vector<std::pair<std::string, Camera>> cameras;
+  for (const auto& [name, camera] : scene.cameras) {
+    if ((withDefaults || !invented(name, camera)) && !(name == "default" && !aliased.empty())) {
+      cameras.emplace_back(name, camera);
+    }
+  }
+  if (fallback == scene.cameras.end() || cameras.empty()) return cameras;
+  // A reader takes the first camera for its default view: the default view's camera goes first;
+  // where glint's own default view stands among the scene's cameras, it is written too.
+  const std::string first = aliased.empty() ? "default" : aliased;
+  const auto at = std::find_if(cameras.begin(), cameras.end(), [&](const auto& named) { return named.first == first; });
+  if (at != cameras.end()) {
+    std::rotate(cameras.begin(), at, at + 1);
   } else {
     cameras.insert(cameras.begin(), *fallback);
   }
