@@ -12,8 +12,10 @@
 // (TEXTURE_TRANSFORMS = 1) and meshes with vertex colours (VERTEX_COLOURS = 1). The light count is
 // compiled in too (LIGHT_COUNT, at most 8): glint programs evaluate every light's P-SDF over one
 // walk of the footprint's cells (glintP22Set, GLINT_SLOPE_COUNT slopes). With SHADOWS = 1 the
-// lights cast shadows (shadows.glsl). The material's glint layer is one uniform block, a
-// GlintMaterial (glint_material_block.glsl, kernel/glint_material.h).
+// lights cast shadows (shadows.glsl). Materials with a KHR_materials_clearcoat coat get their own
+// program too (CLEARCOAT = 1, kernel/clearcoat.h): everything the base reflects and emits is dimmed
+// by the coat's Fresnel, and the coat's lobe added under every light. The material's glint layer is
+// one uniform block, a GlintMaterial (glint_material_block.glsl, kernel/glint_material.h).
 #define SPECULAR_GLINT 0
 #define SPECULAR_COOK_TORRANCE 1
 #define SPECULAR_ZIRR_KAPLANYAN 2
@@ -25,6 +27,10 @@
 // Beckmann with V-cavity unless the host defines them.
 #ifndef GLINT_NDF
 #define GLINT_NDF 0
+#endif
+#if CLEARCOAT
+// The coat's lobe reads the albedo tables for its compensation, whatever the base's target.
+#define GLINT_ALBEDO_TABLES 1
 #endif
 #ifndef GLINT_MASKING
 #define GLINT_MASKING 0
@@ -47,6 +53,9 @@
 #include "glint_material_block.glsl"
 #include "surface.h"
 #include "multiple_scattering.h"
+#if CLEARCOAT
+#include "clearcoat.h"
+#endif
 #include "normal_map_filtering.h"
 #include "lights.h"
 #include "glint_dictionary_gl.glsl"
@@ -82,6 +91,16 @@ layout(binding = 5) uniform sampler2D uOcclusionTexture;
 layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
 layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
 layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
+#if CLEARCOAT
+layout(binding = 16) uniform sampler2D uClearcoatTexture;
+layout(binding = 17) uniform sampler2D uClearcoatRoughnessTexture;
+layout(binding = 18) uniform sampler2D uClearcoatNormalTexture;
+uniform vec2 uClearcoat;  // clearcoatFactor, clearcoatRoughnessFactor
+uniform float uClearcoatNormalScale;
+uniform mat3x2 uClearcoatUv;
+uniform mat3x2 uClearcoatRoughnessUv;
+uniform mat3x2 uClearcoatNormalUv;
+#endif
 #if GLINT_LEAN
 // The normal map's slope moments (normal_map_filtering.h): (E[sx], E[sy], E[sx^2]), (E[sy^2], E[sx sy], 0).
 layout(binding = 11) uniform sampler2D uLeanFirstMoments;
@@ -178,6 +197,17 @@ GlintSurfaceSamples surfaceSamples() {
   return samples;
 }
 
+#if CLEARCOAT
+GlintCoatSamples coatSamples() {
+  GlintCoatSamples samples;
+  samples.factorRoughness = uClearcoat * vec2(texture(uClearcoatTexture, TEXTURE_UV(uClearcoatUv)).r,
+                                              texture(uClearcoatRoughnessTexture, TEXTURE_UV(uClearcoatRoughnessUv)).g);
+  samples.mappedNormal = texture(uClearcoatNormalTexture, TEXTURE_UV(uClearcoatNormalUv)).xyz * 2.0f - 1.0f;
+  samples.mappedNormal.xy *= uClearcoatNormalScale;
+  return samples;
+}
+#endif
+
 // The material's glint layer with what the program compiles in: coloured cells, the target and
 // its compensation, the LOD construction (one program per variant, forwardVariant in
 // src/gl/renderer.cpp). llvmpipe executes both sides of a branch, so read from the block they
@@ -270,12 +300,54 @@ uniform vec3 uAreaLightRadiance[AREA_LIGHT_COUNT];
 uniform int uAreaLightTwoSided[AREA_LIGHT_COUNT];
 #endif
 
+// Extended light r as seen from here: its four corners (unit world directions, in order around it)
+// and its radiance, 0 behind a one-sided light. An environment region is ambient light, which the
+// occlusion texture dims as it dims the prefiltered map's; an area light is direct light, which it
+// does not (glTF's occlusionTexture), and it is shadowed at its centre (SHADOWS).
+vec3 extendedLightAt(int r, GlintSurface surface, out vec3 wi[4]) {
+  vec3 radiance = vec3(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    wi[k] = vec3(0.0f, 0.0f, 1.0f);
+  }
+#if REGION_COUNT > 0
+  if (r < REGION_COUNT) {
+    for (int k = 0; k < 4; ++k) {
+      wi[k] = uRegionCorner[4 * r + k];
+    }
+    radiance = uRegionRadiance[r] * surface.occlusion;
+  }
+#endif
+#if AREA_LIGHT_COUNT > 0
+  if (r >= REGION_COUNT) {
+    int a = r - REGION_COUNT;
+    for (int k = 0; k < 4; ++k) {
+      wi[k] = normalize(uAreaLightCorner[4 * a + k] - vPosition);
+    }
+    // Its front faces the side its corners turn counter-clockwise on; a one-sided light is dark
+    // behind.
+    vec3 front = cross(uAreaLightCorner[4 * a + 1] - uAreaLightCorner[4 * a], uAreaLightCorner[4 * a + 3] - uAreaLightCorner[4 * a]);
+    bool lit = uAreaLightTwoSided[a] != 0 || dot(vPosition - uAreaLightCorner[4 * a], front) > 0.0f;
+    radiance = lit ? uAreaLightRadiance[a] : vec3(0.0f);
+#if SHADOWS
+    // The shadow of its centre (a cube map from there, caster LIGHT_COUNT + a): hard, where the
+    // tracer's penumbra spans the light's extent.
+    vec3 lightCentre = 0.25f * (uAreaLightCorner[4 * a] + uAreaLightCorner[4 * a + 1] + uAreaLightCorner[4 * a + 2] + uAreaLightCorner[4 * a + 3]);
+    vec3 toCentre = lightCentre - vPosition;
+    float centreDistance = length(toCentre);
+    radiance *= shadowVisibility(LIGHT_COUNT + a, vec4(lightCentre, 1.0f), vPosition, normalize(vNormal),
+                                 toCentre / max(centreDistance, 1e-20f), centreDistance);
+#endif
+  }
+#endif
+  return radiance;
+}
+
 // The light of the extended lights (docs/method.md, "Extended lights"): the environment's brightest
 // regions, which the prefiltered map and the irradiance lack, and the area lights. Each one's
 // diffuse by its cosine-weighted solid angle, and its specular: its radiance times Fresnel and
 // glintRegionReflectanceAt, times the mass of the lobe over the half vectors it sends the view
 // into: the glint layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's
-// (glintSmoothRegionMoments) in the others. An area light's shadow is its centre's (SHADOWS).
+// (glintSmoothRegionMoments) in the others.
 vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   GlintRegionSet regions;
   vec3 centre[EXTENDED_LIGHT_COUNT];
@@ -283,39 +355,7 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   vec3 diffuse = vec3(0.0f);
   for (int r = 0; r < EXTENDED_LIGHT_COUNT; ++r) {
     vec3 wi[4];
-    radiance[r] = vec3(0.0f);
-#if REGION_COUNT > 0
-    if (r < REGION_COUNT) {
-      for (int k = 0; k < 4; ++k) {
-        wi[k] = uRegionCorner[4 * r + k];
-      }
-      // Part of the environment: ambient light, which the occlusion texture dims as it dims the
-      // prefiltered map's; an area light is direct light, which it does not (glTF's occlusionTexture).
-      radiance[r] = uRegionRadiance[r] * surface.occlusion;
-    }
-#endif
-#if AREA_LIGHT_COUNT > 0
-    if (r >= REGION_COUNT) {
-      int a = r - REGION_COUNT;
-      for (int k = 0; k < 4; ++k) {
-        wi[k] = normalize(uAreaLightCorner[4 * a + k] - vPosition);
-      }
-      // Its front faces the side its corners turn counter-clockwise on; a one-sided light is dark
-      // behind.
-      vec3 front = cross(uAreaLightCorner[4 * a + 1] - uAreaLightCorner[4 * a], uAreaLightCorner[4 * a + 3] - uAreaLightCorner[4 * a]);
-      bool lit = uAreaLightTwoSided[a] != 0 || dot(vPosition - uAreaLightCorner[4 * a], front) > 0.0f;
-      radiance[r] = lit ? uAreaLightRadiance[a] : vec3(0.0f);
-#if SHADOWS
-      // The shadow of its centre (a cube map from there, caster LIGHT_COUNT + a): hard, where the
-      // tracer's penumbra spans the light's extent.
-      vec3 lightCentre = 0.25f * (uAreaLightCorner[4 * a] + uAreaLightCorner[4 * a + 1] + uAreaLightCorner[4 * a + 2] + uAreaLightCorner[4 * a + 3]);
-      vec3 toCentre = lightCentre - vPosition;
-      float centreDistance = length(toCentre);
-      radiance[r] *= shadowVisibility(LIGHT_COUNT + a, vec4(lightCentre, 1.0f), vPosition, normalize(vNormal),
-                                      toCentre / max(centreDistance, 1e-20f), centreDistance);
-#endif
-    }
-#endif
+    radiance[r] = extendedLightAt(r, surface, wi);
     for (int k = 0; k < 4; ++k) {
       wi[k] = vec3(dot(wi[k], surface.t), dot(wi[k], surface.b), dot(wi[k], surface.n));
     }
@@ -346,6 +386,28 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
   }
   return surface.diffuse * diffuse + specular;
 }
+
+#if CLEARCOAT
+// The coat's lobe under the extended lights: the smooth lobe's mass over each light's half vectors
+// in the coat's frame (glintSmoothRegionMoments, GGX), as Cook-Torrance programs draw their lobe.
+vec3 coatExtendedLight(GlintSurface surface, GlintCoat coat) {
+  vec3 wo = glintCoatLocal(coat, surface.wo);
+  vec2 alpha = vec2(coat.alpha);
+  vec3 specular = vec3(0.0f);
+  for (int r = 0; r < EXTENDED_LIGHT_COUNT; ++r) {
+    vec3 wi[4];
+    vec3 radiance = extendedLightAt(r, surface, wi);
+    for (int k = 0; k < 4; ++k) {
+      wi[k] = glintCoatLocal(coat, vec3(dot(wi[k], surface.t), dot(wi[k], surface.b), dot(wi[k], surface.n)));
+    }
+    GlintClippedLight light = glintClipLightToHorizon(wi[0], wi[1], wi[2], wi[3]);
+    vec3 moments = glintSmoothRegionMoments(GLINT_NDF_GGX, alpha, 0.0f, glintLightSlopeRegion(wo, light));
+    specular += radiance * coat.weight * moments.x *
+                glintRegionReflectanceAt(GLINT_MASKING_SMITH, GLINT_NDF_GGX, alpha, 0.0f, wo, moments.yz, glintClippedLightCentre(light));
+  }
+  return specular;
+}
+#endif
 #endif
 
 // The specular lobe for light direction wi (above the horizon), times Fresnel: the program's model
@@ -403,7 +465,15 @@ void main() {
       glintAverageAlbedo(GLINT_NDF, GLINT_MASKING, glintCompensationAlpha(surface.smoothAlpha)));
 #endif
 
+#if CLEARCOAT
+  // The emission has its own share through the coat, added last.
+  vec3 radiance = vec3(0.0f);
+  GlintCoatSamples coatInputs = coatSamples();
+  GlintCoat coat = glintSurfaceCoat(surface, samples, coatInputs);
+  vec3 coatRadiance = vec3(0.0f);
+#else
   vec3 radiance = surface.emission;
+#endif
   for (int i = 0; i < LIGHT_COUNT; ++i) {
     vec3 wi = lightDirection[i];
     if (wi.z <= 0.0f) {
@@ -419,6 +489,9 @@ void main() {
     specular += multipleFresnel * glintMultipleScatteringReflectance(GLINT_NDF, GLINT_MASKING, surface.smoothAlpha, surface.wo, wi);
 #endif
     radiance += (surface.diffuse + specular) * wi.z * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
+#if CLEARCOAT
+    coatRadiance += glintCoatReflectedCosine(coat, surface.wo, wi) * (uLightIntensity[i] * lightFalloff[i]) / lightDistance2[i];
+#endif
   }
 
   // Ambient light, without glints: irradiance by spherical harmonics, the pre-filtered environment
@@ -432,6 +505,17 @@ void main() {
   // The extended lights, both lobes; the map less the regions' means (prefiltered, and its
   // irradiance) can dip below zero around them.
   radiance = max(radiance + extendedLight(surface, glintUv, duvdx, duvdy), vec3(0.0f));
+#endif
+#if CLEARCOAT
+  // The coat (kernel/clearcoat.h): the base dimmed by the share it reflects, its own lobe under the
+  // lights, the prefiltered environment about its normal and the extended lights.
+  vec3 coatNormal = surface.t * coat.n.x + surface.b * coat.n.y + surface.n * coat.n.z;
+  coatRadiance += coat.weight * environmentRadiance(reflect(-samples.view, coatNormal), coat.alpha) * surface.occlusion;
+#if EXTENDED_LIGHT_COUNT > 0
+  coatRadiance = max(coatRadiance + coatExtendedLight(surface, coat), vec3(0.0f));
+#endif
+  radiance = radiance * (1.0f - coat.weight) + coatRadiance +
+             surface.emission * glintCoatedEmissionWeight(coatInputs.factorRoughness.x, samples.normal, samples.view);
 #endif
 #if ALPHA_MASK
   // glTF alphaMode MASK. The pre-pass left no depth here, so this fragment passes the equal-depth

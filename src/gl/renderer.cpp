@@ -199,6 +199,7 @@ struct ForwardVariant {
   // GLINT_LOD_CONSTRUCTION: the LOD construction of the material's glint layer (kernel/glint_lod.h,
   // glintLodCell), compiled in so that the paper's pays nothing for the others.
   int lodConstruction;
+  bool clearcoat;  // CLEARCOAT: the material has a KHR_materials_clearcoat coat (kernel/clearcoat.h)
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -228,7 +229,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"SHADOW_CASCADE_MARGIN", std::to_string(kCascadeMarginTexels)},
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
                         {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)},
-                        {"GLINT_LOD_CONSTRUCTION", std::to_string(variant.lodConstruction)}});
+                        {"GLINT_LOD_CONSTRUCTION", std::to_string(variant.lodConstruction)},
+                        {"CLEARCOAT", variant.clearcoat ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -259,7 +261,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
   const bool finest = normalMap && !lean && settings.normalMapFinestLevel;
   const bool transforms = !(material.baseColourUv.identity() && material.metallicRoughnessUv.identity() &&
                             material.normalUv.identity() && material.occlusionUv.identity() &&
-                            material.emissiveUv.identity());
+                            material.emissiveUv.identity() && material.clearcoat.uv.identity() &&
+                            material.clearcoat.roughnessUv.identity() && material.clearcoat.normalUv.identity());
   return ForwardVariant{model,
                         coloured,
                         filtered,
@@ -278,7 +281,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.shadows ? shadowCubes : 0,
                         settings.msaa > 1,
                         model == SpecularModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
-                        model == SpecularModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER};
+                        model == SpecularModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER,
+                        material.clearcoat.enabled()};
 }
 
 // The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),
@@ -803,6 +807,17 @@ void Renderer::bindMaterial(const ShaderProgram& p, int material, bool alphaMask
   glBindTextureUnit(6, textureOr(glint.roughnessTexture, g.white));
   glBindTextureUnit(7, textureOr(glint.logDensityTexture, g.white));
   glBindTextureUnit(8, textureOr(glint.relativeAreaTexture, g.white));
+  if (m.clearcoat.enabled()) {
+    const scene::Material::Clearcoat& coat = m.clearcoat;
+    glUniform2f(p.uniform("uClearcoat"), coat.factor, coat.roughness);
+    glUniform1f(p.uniform("uClearcoatNormalScale"), coat.normalScale);
+    setUvTransform(p, "uClearcoatUv", coat.uv);
+    setUvTransform(p, "uClearcoatRoughnessUv", coat.roughnessUv);
+    setUvTransform(p, "uClearcoatNormalUv", coat.normalUv);
+    glBindTextureUnit(16, textureOr(coat.texture, g.white));
+    glBindTextureUnit(17, textureOr(coat.roughnessTexture, g.white));
+    glBindTextureUnit(18, textureOr(coat.normalTexture, g.flatNormal));
+  }
   if (normalMapMoments) {
     auto moments = g.leanMoments.find(material);
     if (moments == g.leanMoments.end()) {

@@ -986,8 +986,43 @@ class GltfReader {
       throw error("alphaCutoff must be a finite number >= 0, got ", source.alphaCutoff);
     }
     m.alphaCutoff = static_cast<float>(source.alphaCutoff);
+    const auto clearcoat = source.extensions.find("KHR_materials_clearcoat");
+    if (clearcoat != source.extensions.end() && clearcoat->second.IsObject()) {
+      m.clearcoat = withContext("KHR_materials_clearcoat.", [&] { return readClearcoat(clearcoat->second); });
+    }
     readGlint(source, m, index);
     return m;
+  }
+
+  // KHR_materials_clearcoat (its members' types are checked with the file's JSON,
+  // gltf_field_types.cpp): factors in [0, 1], textures as the core's, a normal map's scale as
+  // normalTexture's.
+  Material::Clearcoat readClearcoat(const tinygltf::Value& extension) {
+    Material::Clearcoat coat;
+    auto factor = [&](const char* member, float fallback) {
+      return extension.Has(member) ? unitFactor(extension.Get(member).GetNumberAsDouble(), member) : fallback;
+    };
+    coat.factor = factor("clearcoatFactor", 0.0f);
+    coat.roughness = factor("clearcoatRoughnessFactor", 0.0f);
+    auto textureOf = [&](const char* member, bool srgb, UvTransform& transform) {
+      if (!extension.Has(member)) return -1;
+      const tinygltf::Value& info = extension.Get(member);
+      if (!info.Has("index")) throw error(member, ".index is missing");
+      if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+        const tinygltf::Value::Object& object = info.Get("extensions").Get<tinygltf::Value::Object>();
+        transform = uvTransform(tinygltf::ExtensionMap(object.begin(), object.end()), member);
+      }
+      return optionalTexture(info.Get("index").GetNumberAsInt(), srgb, member);
+    };
+    coat.texture = textureOf("clearcoatTexture", false, coat.uv);
+    coat.roughnessTexture = textureOf("clearcoatRoughnessTexture", false, coat.roughnessUv);
+    coat.normalTexture = textureOf("clearcoatNormalTexture", false, coat.normalUv);
+    if (extension.Has("clearcoatNormalTexture") && extension.Get("clearcoatNormalTexture").Has("scale")) {
+      const double scale = extension.Get("clearcoatNormalTexture").Get("scale").GetNumberAsDouble();
+      if (!(std::abs(scale) <= 1e4)) throw error("clearcoatNormalTexture.scale ", scale, " is not within +-1e4");
+      coat.normalScale = static_cast<float>(scale);
+    }
+    return coat;
   }
 
   // The material's glint layer and specular target: from EXT_materials_glint, else from

@@ -12,11 +12,11 @@ namespace glint::scene {
 namespace {
 
 // The extensions glint honours: its lights are read, quantised attributes are plain normalised or
-// integer accessors, which the loader reads, emissive strengths and texture transforms are read,
-// and so are glint layers (docs/scenes.md).
-constexpr std::array<std::string_view, 5> kReadExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization",
-                                                             "KHR_materials_emissive_strength", "KHR_texture_transform",
-                                                             kGlintExtensionName};
+// integer accessors, which the loader reads, emissive strengths, clear coats and texture transforms
+// are read, and so are glint layers (docs/scenes.md).
+constexpr std::array<std::string_view, 6> kReadExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization",
+                                                             "KHR_materials_emissive_strength", "KHR_materials_clearcoat",
+                                                             "KHR_texture_transform", kGlintExtensionName};
 
 // A non-negative integer member, or `fallback` when absent; the field-type check has already
 // refused members of the wrong type.

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <variant>
 
@@ -134,6 +135,7 @@ class GltfWriter {
     model_.defaultScene = 0;
     if (usesTextureTransforms_) model_.extensionsUsed.push_back("KHR_texture_transform");
     if (usesEmissiveStrength_) model_.extensionsUsed.push_back("KHR_materials_emissive_strength");
+    if (usesClearcoat_) model_.extensionsUsed.push_back("KHR_materials_clearcoat");
     // Used, not required: a viewer without it draws the core material, the layer's smooth average
     // (extensions/EXT_materials_glint/README.md, "Fallback").
     if (usesGlint_) model_.extensionsUsed.push_back(kGlintExtensionName);
@@ -220,6 +222,41 @@ class GltfWriter {
     usesTextureTransforms_ = true;
   }
 
+  // A texture reference inside an extension's object (setTexture's, as JSON), with a normal map's
+  // scale where given.
+  tinygltf::Value textureValue(int index, const UvTransform& transform, const char* what, const Material& material,
+                               std::optional<float> scale = std::nullopt) {
+    tinygltf::NormalTextureInfo info;
+    setTexture(info, index, transform, what, material);
+    tinygltf::Value::Object object;
+    object["index"] = tinygltf::Value(info.index);
+    if (!info.extensions.empty()) {
+      object["extensions"] = tinygltf::Value(tinygltf::Value::Object(info.extensions.begin(), info.extensions.end()));
+    }
+    if (scale) object["scale"] = number(*scale);
+    return tinygltf::Value(std::move(object));
+  }
+
+  // KHR_materials_clearcoat's object of a coated material.
+  tinygltf::Value clearcoatExtension(const Material& m) {
+    const Material::Clearcoat& coat = m.clearcoat;
+    checkUnit(coat.factor, "clearcoat factor", m);
+    checkUnit(coat.roughness, "clearcoat roughness", m);
+    tinygltf::Value::Object extension;
+    extension["clearcoatFactor"] = number(coat.factor);
+    extension["clearcoatRoughnessFactor"] = number(coat.roughness);
+    if (coat.texture >= 0) extension["clearcoatTexture"] = textureValue(coat.texture, coat.uv, "clearcoat texture", m);
+    if (coat.roughnessTexture >= 0) {
+      extension["clearcoatRoughnessTexture"] = textureValue(coat.roughnessTexture, coat.roughnessUv, "clearcoat roughness texture", m);
+    }
+    if (coat.normalTexture >= 0) {
+      extension["clearcoatNormalTexture"] =
+          textureValue(coat.normalTexture, coat.normalUv, "clearcoat normal texture", m, coat.normalScale);
+    }
+    usesClearcoat_ = true;
+    return tinygltf::Value(std::move(extension));
+  }
+
   static void checkUnit(float value, const std::string& what, const Material& material) {
     if (!(value >= 0.0f && value <= 1.0f)) {
       throw Error("material '" + material.name + "': " + what + " " + std::to_string(value) + " is outside [0, 1]");
@@ -262,6 +299,7 @@ class GltfWriter {
       out.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(std::move(extension));
       usesEmissiveStrength_ = true;
     }
+    if (m.clearcoat.enabled()) out.extensions["KHR_materials_clearcoat"] = clearcoatExtension(m);
     out.doubleSided = m.doubleSided;
     out.alphaMode = m.alphaMode == Material::AlphaMode::Mask    ? "MASK"
                     : m.alphaMode == Material::AlphaMode::Blend ? "BLEND"
@@ -411,6 +449,7 @@ class GltfWriter {
   bool withDefaults_;
   tinygltf::Model model_;
   bool usesTextureTransforms_ = false;
+  bool usesClearcoat_ = false;
   bool usesEmissiveStrength_ = false;
   bool usesGlint_ = false;
 };

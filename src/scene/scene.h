@@ -102,6 +102,19 @@ struct Material {
   enum class AlphaMode { Opaque, Mask, Blend };
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
+  // glTF's KHR_materials_clearcoat: a clear dielectric coat over everything else, the glint layer
+  // included (kernel/clearcoat.h). factor 0: none.
+  struct Clearcoat {
+    float factor = 0.0f;     // clearcoatFactor, times clearcoatTexture's R
+    float roughness = 0.0f;  // clearcoatRoughnessFactor, times clearcoatRoughnessTexture's G
+    int texture = -1;
+    int roughnessTexture = -1;
+    int normalTexture = -1;  // the coat's own normal map; without one the coat follows the interpolated normal
+    float normalScale = 1.0f;
+    UvTransform uv, roughnessUv, normalUv;  // each texture's KHR_texture_transform
+    bool enabled() const { return factor > 0.0f; }
+  };
+  Clearcoat clearcoat;
   GlintLayer glint;
   // The specular lobe's smooth target, masking and multiple-scattering compensation
   // (kernel/microfacet_targets.h, kernel/multiple_scattering.h), with or without a glint layer (the

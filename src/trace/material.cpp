@@ -10,13 +10,31 @@
 
 namespace glint::trace {
 
-SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo)
-    : diffuse_(diffuse), specular_(std::move(specular)) {
+kernel::GlintCoat SurfaceMaterial::noCoat() {
+  kernel::GlintCoat coat;
+  coat.weight = 0.0f;
+  coat.alpha = 1.0f;
+  coat.t = glm::vec3(1.0f, 0.0f, 0.0f);
+  coat.b = glm::vec3(0.0f, 1.0f, 0.0f);
+  coat.n = glm::vec3(0.0f, 0.0f, 1.0f);
+  return coat;
+}
+
+SurfaceMaterial::SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo, kernel::GlintCoat coat)
+    : diffuse_(diffuse), specular_(std::move(specular)), coat_(coat) {
   const float d = luminance(diffuse * kPi);
   const float s = luminance(specularAlbedo);
   // Each lobe keeps at least 10% of the samples when it reflects anything, so that neither is
   // left to rare samples where the estimate (Fresnel at normal view) undersells it.
   specularProbability_ = d <= 0.0f ? 1.0f : (s <= 0.0f ? 0.0f : std::clamp(s / (s + d), 0.1f, 0.9f));
+  if (coat_.weight > 0.0f) {
+    coatLobe_.emplace(glm::vec2(coat_.alpha), 0.0f, Fresnel::none(), Spectrum(1.0f),
+                      MicrofacetTarget{kernel::GLINT_NDF_GGX, kernel::GLINT_MASKING_SMITH, true});
+    // The coat reflects all of its weight (its lobe and compensation have albedo 1), the base at
+    // most the rest times its lobes' estimates; the same 10% floor.
+    const float base = (1.0f - coat_.weight) * (d + s);
+    coatProbability_ = base <= 0.0f ? 1.0f : std::clamp(coat_.weight / (coat_.weight + base), 0.1f, 0.9f);
+  }
 }
 
 Spectrum SurfaceMaterial::specularF(glm::vec3 wo, glm::vec3 wi) const {
@@ -27,20 +45,36 @@ float SurfaceMaterial::specularPdf(glm::vec3 wo, glm::vec3 wi) const {
   return std::visit([&](const auto& bsdf) { return bsdf.pdf(wo, wi); }, specular_);
 }
 
-Spectrum SurfaceMaterial::f(glm::vec3 wo, glm::vec3 wi) const {
-  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return Spectrum(0.0f);
-  return diffuse_ + specularF(wo, wi);
-}
+Spectrum SurfaceMaterial::baseF(glm::vec3 wo, glm::vec3 wi) const { return diffuse_ + specularF(wo, wi); }
 
-float SurfaceMaterial::pdf(glm::vec3 wo, glm::vec3 wi) const {
-  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return 0.0f;
+float SurfaceMaterial::basePdf(glm::vec3 wo, glm::vec3 wi) const {
   const float diffusePdf = specularProbability_ < 1.0f ? cosineHemispherePdf(wi.z) : 0.0f;
   const float specularPdfValue = specularProbability_ > 0.0f ? specularPdf(wo, wi) : 0.0f;
   return specularProbability_ * specularPdfValue + (1.0f - specularProbability_) * diffusePdf;
 }
 
-std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
-  if (!(wo.z > 0.0f)) return std::nullopt;
+// The kernel's coat times its cosine, over this frame's cosine (the integrators multiply by wi.z).
+float SurfaceMaterial::coatF(glm::vec3 wo, glm::vec3 wi) const {
+  return kernel::glintCoatReflectedCosine(coat_, wo, wi) / wi.z;
+}
+
+float SurfaceMaterial::coatPdf(glm::vec3 wo, glm::vec3 wi) const {
+  return coatLobe_->pdf(kernel::glintCoatLocal(coat_, wo), kernel::glintCoatLocal(coat_, wi));
+}
+
+Spectrum SurfaceMaterial::f(glm::vec3 wo, glm::vec3 wi) const {
+  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return Spectrum(0.0f);
+  if (!coatLobe_) return baseF(wo, wi);
+  return baseF(wo, wi) * (1.0f - coat_.weight) + coatF(wo, wi);
+}
+
+float SurfaceMaterial::pdf(glm::vec3 wo, glm::vec3 wi) const {
+  if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return 0.0f;
+  if (!coatLobe_) return basePdf(wo, wi);
+  return (1.0f - coatProbability_) * basePdf(wo, wi) + coatProbability_ * coatPdf(wo, wi);
+}
+
+std::optional<MaterialSample> SurfaceMaterial::sampleBase(glm::vec3 wo, float uChoice, glm::vec2 u) const {
   const float ps = specularProbability_;
   MaterialSample s;
   if (uChoice < ps) {
@@ -55,11 +89,35 @@ std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoic
   } else {
     s.wi = sampleCosineHemisphere(u);
     if (!(s.wi.z > 0.0f)) return std::nullopt;
-    s.f = f(wo, s.wi);
-    s.pdf = pdf(wo, s.wi);
+    s.f = baseF(wo, s.wi);
+    s.pdf = basePdf(wo, s.wi);
   }
-  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
-  s.weight = s.f * (s.wi.z / s.pdf);
+  return s;
+}
+
+std::optional<MaterialSample> SurfaceMaterial::sample(glm::vec3 wo, float uChoice, glm::vec2 u) const {
+  if (!(wo.z > 0.0f)) return std::nullopt;
+  std::optional<MaterialSample> s;
+  if (!coatLobe_) {
+    s = sampleBase(wo, uChoice, u);
+  } else if (uChoice < coatProbability_) {
+    // The coat's lobe, in its own frame, then the whole material at that direction.
+    const float uLobe = std::min(uChoice / coatProbability_, 0x1.fffffep-1f);
+    const auto lobe = coatLobe_->sample(kernel::glintCoatLocal(coat_, wo), uLobe, u);
+    if (!lobe || !(lobe->pdf > 0.0f)) return std::nullopt;
+    const glm::vec3 wi = coat_.t * lobe->wi.x + coat_.b * lobe->wi.y + coat_.n * lobe->wi.z;
+    if (!(wi.z > 0.0f)) return std::nullopt;  // below the base's horizon, where f is 0
+    s = MaterialSample{f(wo, wi), wi, pdf(wo, wi), Spectrum(0.0f)};
+  } else {
+    const float uBase = std::min((uChoice - coatProbability_) / (1.0f - coatProbability_), 0x1.fffffep-1f);
+    s = sampleBase(wo, uBase, u);
+    if (s) {
+      s->f = s->f * (1.0f - coat_.weight) + coatF(wo, s->wi);
+      s->pdf = (1.0f - coatProbability_) * s->pdf + coatProbability_ * coatPdf(wo, s->wi);
+    }
+  }
+  if (!s || !(s->pdf > 0.0f) || !std::isfinite(s->pdf)) return std::nullopt;
+  s->weight = s->f * (s->wi.z / s->pdf);
   return s;
 }
 
@@ -115,7 +173,11 @@ Spectrum SceneMaterials::emission(const SurfacePoint& point, const UvDerivatives
   const scene::Material& m = scene_.materials[static_cast<std::size_t>(point.material)];
   if (m.emissive == glm::vec3(0.0f)) return Spectrum(0.0f);
   if (!m.doubleSided && !(glm::dot(point.geometricNormal, towardsViewer) > 0.0f)) return Spectrum(0.0f);
-  return m.emissive * texture(m.emissiveTexture, m.emissiveUv, point.uv, footprint);
+  const Spectrum emitted = m.emissive * texture(m.emissiveTexture, m.emissiveUv, point.uv, footprint);
+  if (!m.clearcoat.enabled()) return emitted;
+  // Under a coat: the share it lets through (kernel/clearcoat.h).
+  const float coat = m.clearcoat.factor * texture(m.clearcoat.texture, m.clearcoat.uv, point.uv, footprint).r;
+  return emitted * kernel::glintCoatedEmissionWeight(coat, point.normal, towardsViewer);
 }
 
 ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives& footprint,
@@ -160,8 +222,25 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   const ShadingFrame frame{surface.t, surface.b, surface.n};
   const Fresnel fresnel = Fresnel::schlick(surface.f0);
   const Spectrum specularAlbedo = fresnel.evaluate(surface.wo.z);
+  kernel::GlintCoat coat = SurfaceMaterial::noCoat();
+  if (m.clearcoat.enabled()) {
+    // The coat's inputs as the rasteriser reads them; its lobe at least as rough as the CPU BSDFs accept.
+    const scene::Material::Clearcoat& c = m.clearcoat;
+    kernel::GlintCoatSamples coatSamples;
+    coatSamples.factorRoughness = {c.factor * texture(c.texture, c.uv, uv, footprint).r,
+                                   c.roughness * texture(c.roughnessTexture, c.roughnessUv, uv, footprint).g};
+    coatSamples.mappedNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+    if (c.normalTexture >= 0) {
+      coatSamples.mappedNormal = texture(c.normalTexture, c.normalUv, uv, footprint) * 2.0f - 1.0f;
+      coatSamples.mappedNormal.x *= c.normalScale;
+      coatSamples.mappedNormal.y *= c.normalScale;
+    }
+    coat = kernel::glintSurfaceCoat(surface, samples, coatSamples);
+    coat.alpha = std::max(coat.alpha, kMinRoughnessAlpha);
+  }
   auto shaded = [&](SurfaceMaterial::Specular specular) {
-    return ShadedPoint{frame, surface.wo, surface.emission, SurfaceMaterial(surface.diffuse, std::move(specular), specularAlbedo)};
+    return ShadedPoint{frame, surface.wo, surface.emission,
+                       SurfaceMaterial(surface.diffuse, std::move(specular), specularAlbedo, coat)};
   };
   if (!layer.enabled || model_ == SpecularModel::CookTorrance) {
     // The smooth lobe, at least as rough as the CPU BSDFs accept (a glTF roughness below 0.07).

@@ -4,7 +4,9 @@
 //   - plus a specular lobe times Schlick's Fresnel with F0 = mix(0.04, baseColour, metallic): the
 //     glint BRDF when the material has a glint layer and the glint model is selected (coloured
 //     cells tint it, inside GlintBsdf), Zirr & Kaplanyan 2016 when that model is, else Cook-Torrance
-//     with the layer's alpha, or alpha = roughness^2 without one.
+//     with the layer's alpha, or alpha = roughness^2 without one;
+//   - under a KHR_materials_clearcoat coat (kernel/clearcoat.h): both dimmed by the coat's share of
+//     the light, plus the coat's lobe.
 // SceneMaterials::shade looks the textures up and builds the BSDF once per hit; what the integrator
 // asks of a material (f, sample, pdf over its lobes) is in SurfaceMaterial.
 #pragma once
@@ -16,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "glint/bsdf.h"
+#include "glint/kernel/clearcoat.h"
 #include "glint/specular_model.h"
 #include "scene/scene.h"
 #include "trace/geometry.h"
@@ -43,14 +46,17 @@ struct MaterialSample {
 };
 
 // Lambertian diffuse plus one specular lobe, in the local shading frame (docs/conventions.md:
-// directions away from the surface, f without the cosine). Lobes are chosen for sampling in
-// proportion to estimates of their albedos, and pdf() is the mixture's (one-sample MIS over lobes).
+// directions away from the surface, f without the cosine), under an optional clear coat. Lobes are
+// chosen for sampling in proportion to estimates of their albedos, and pdf() is the mixture's
+// (one-sample MIS over lobes).
 class SurfaceMaterial {
  public:
   using Specular = std::variant<CookTorranceBsdf, GlintBsdf, ZirrKaplanyanBsdf>;
   // `specularAlbedo`: an estimate of the specular lobe's reflectance (Fresnel at wo), to split
-  // samples between the lobes.
-  SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo);
+  // samples between the lobes. `coat` (weight 0: none) in the local frame, for the view wo the
+  // material is made for: its weight is the extension's Fresnel at that view.
+  SurfaceMaterial(Spectrum diffuse, Specular specular, Spectrum specularAlbedo, kernel::GlintCoat coat = noCoat());
+  static kernel::GlintCoat noCoat();
 
   Spectrum f(glm::vec3 wo, glm::vec3 wi) const;
   float pdf(glm::vec3 wo, glm::vec3 wi) const;
@@ -60,14 +66,25 @@ class SurfaceMaterial {
   Spectrum diffuse() const { return diffuse_; }  // baseColour (1 - metallic) / pi
   float specularProbability() const { return specularProbability_; }
   const Specular& specular() const { return specular_; }
+  float coatWeight() const { return coat_.weight; }
 
  private:
   Spectrum specularF(glm::vec3 wo, glm::vec3 wi) const;
   float specularPdf(glm::vec3 wo, glm::vec3 wi) const;
+  // The base (diffuse and specular) and the coat's lobe, each without the other.
+  Spectrum baseF(glm::vec3 wo, glm::vec3 wi) const;
+  float basePdf(glm::vec3 wo, glm::vec3 wi) const;
+  float coatF(glm::vec3 wo, glm::vec3 wi) const;
+  float coatPdf(glm::vec3 wo, glm::vec3 wi) const;
+  std::optional<MaterialSample> sampleBase(glm::vec3 wo, float uChoice, glm::vec2 u) const;
 
   Spectrum diffuse_;
   Specular specular_;
   float specularProbability_;
+  kernel::GlintCoat coat_;
+  // The coat's lobe for sampling: GGX with Smith and its compensation, F = 1, in the coat's frame.
+  std::optional<CookTorranceBsdf> coatLobe_;
+  float coatProbability_ = 0.0f;
 };
 
 // What the shader knows at a fragment, for one path vertex.

@@ -9,7 +9,8 @@
 // albedo-tables`) per target and masking, for isotropic roughness; an anisotropic or correlated lobe
 // reads alpha = sqrt(alpha_x alpha_y). The glint BRDF adds its smooth target's lobe: its mean over
 // positions has the target's albedo. Shading languages include the tables only with
-// GLINT_MULTIPLE_SCATTERING 1.
+// GLINT_MULTIPLE_SCATTERING 1 or GLINT_ALBEDO_TABLES 1 (the tables without the base's lobe, for the
+// clear coat's, clearcoat.h).
 #ifndef GLINT_KERNEL_MULTIPLE_SCATTERING_H
 #define GLINT_KERNEL_MULTIPLE_SCATTERING_H
 
@@ -58,7 +59,7 @@ GLINT_FN vec3 glintMultipleScatteringFresnel(vec3 averageFresnel, float averageA
 
 GLINT_KERNEL_END
 
-#if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING
+#if defined(__cplusplus) || GLINT_MULTIPLE_SCATTERING || GLINT_ALBEDO_TABLES
 // The tables' values. A shading-language host may define GLINT_ALBEDO_TABLE_HOOK 1 and then define,
 // like the dictionary hook, the two functions below, reading GLINT_ALBEDO_WORDS and
 // GLINT_AVERAGE_ALBEDO_WORDS from a buffer it binds as R16_UNORM texels: glslang's SPIR-V copies a

@@ -106,6 +106,7 @@
 // Compile-time configuration a host may define before including the kernel:
 //   GLINT_FILTERED 1: the P-SDF's walk filters (glint_antialiasing.h; C++ decides per call);
 //   GLINT_MULTIPLE_SCATTERING 1: the albedo tables and compensation lobe (multiple_scattering.h);
+//   GLINT_ALBEDO_TABLES 1: the albedo tables alone (the clear coat's lobe, clearcoat.h);
 //   GLINT_SLOPE_COUNT: slopes a walk (glint_brdf.h, 1 by default);
 //   GLINT_FOOTPRINT_POLICY: the footprint policy's words the walk applies (glint_footprint.h, all).
 #ifndef GLINT_FILTERED
@@ -113,6 +114,9 @@
 #endif
 #ifndef GLINT_MULTIPLE_SCATTERING
 #define GLINT_MULTIPLE_SCATTERING 0
+#endif
+#ifndef GLINT_ALBEDO_TABLES
+#define GLINT_ALBEDO_TABLES 0
 #endif
 
 GLINT_KERNEL_BEGIN
