@@ -91,6 +91,13 @@ scene::Scene texturedTestScene() {
   textured.occlusionStrength = 0.7f;
   textured.emissive = glm::vec3(3.0f, 0.5f, 0.0f);  // past 1: KHR_materials_emissive_strength
   textured.emissiveTexture = 4;
+  textured.clearcoat.factor = 0.8f;
+  textured.clearcoat.roughness = 0.15f;
+  textured.clearcoat.texture = 3;
+  textured.clearcoat.uv.rotation = 0.5f;
+  textured.clearcoat.roughnessTexture = 1;
+  textured.clearcoat.normalTexture = 2;
+  textured.clearcoat.normalScale = 0.5f;
   textured.glint.enabled = true;
   textured.glint.alpha = glm::vec2(0.3f, 0.2f);
   textured.glint.rho = -0.35f;

@@ -94,6 +94,15 @@ void expectSameScene(const Scene& original, const Scene& loaded) {
     expectSameUv(a.normalUv, b.normalUv);
     expectSameUv(a.occlusionUv, b.occlusionUv);
     expectSameUv(a.emissiveUv, b.emissiveUv);
+    EXPECT_EQ(a.clearcoat.factor, b.clearcoat.factor);
+    EXPECT_EQ(a.clearcoat.roughness, b.clearcoat.roughness);
+    EXPECT_EQ(a.clearcoat.normalScale, b.clearcoat.normalScale);
+    expectSameTexture(original, a.clearcoat.texture, loaded, b.clearcoat.texture, "clearcoat");
+    expectSameTexture(original, a.clearcoat.roughnessTexture, loaded, b.clearcoat.roughnessTexture, "clearcoat roughness");
+    expectSameTexture(original, a.clearcoat.normalTexture, loaded, b.clearcoat.normalTexture, "clearcoat normal");
+    expectSameUv(a.clearcoat.uv, b.clearcoat.uv);
+    expectSameUv(a.clearcoat.roughnessUv, b.clearcoat.roughnessUv);
+    expectSameUv(a.clearcoat.normalUv, b.clearcoat.normalUv);
     EXPECT_EQ(a.specular.ndf, b.specular.ndf);
     EXPECT_EQ(a.specular.masking, b.specular.masking);
     EXPECT_EQ(a.specular.multipleScattering, b.specular.multipleScattering);
@@ -180,7 +189,13 @@ TEST(GltfWriter, EveryTextureSlotExtensionAndLightReadsBack) {
   // What the extensions and extras look like in the file.
   const json document = json::parse(std::ifstream(folder / "textured.gltf"));
   EXPECT_EQ(document["extensionsUsed"], json({"KHR_texture_transform", "KHR_materials_emissive_strength",
-                                              "EXT_materials_glint", "KHR_lights_punctual"}));
+                                              "KHR_materials_clearcoat", "EXT_materials_glint", "KHR_lights_punctual"}));
+  const json& coat = document["materials"][0]["extensions"]["KHR_materials_clearcoat"];
+  EXPECT_EQ(coat["clearcoatFactor"], 0.8);
+  EXPECT_EQ(coat["clearcoatRoughnessFactor"], 0.15);
+  EXPECT_EQ(coat["clearcoatNormalTexture"]["scale"], 0.5);
+  EXPECT_TRUE(coat["clearcoatTexture"]["extensions"].contains("KHR_texture_transform"));
+  EXPECT_FALSE(document["materials"][1].value("extensions", json::object()).contains("KHR_materials_clearcoat"));
   const json& glint = document["materials"][0]["extensions"]["EXT_materials_glint"];
   EXPECT_EQ(glint["alpha"], json({0.3, 0.2}));
   EXPECT_EQ(glint["logDensity"], 18.5);

@@ -632,6 +632,56 @@ TEST(GltfLoader, ReadsOcclusionAndEmissiveStrengths) {
   }
 }
 
+// KHR_materials_clearcoat: factors, textures with their transforms and the coat's normal scale. It
+// is read, so a file that requires it loads without a warning; out-of-range values and a texture
+// reference without an index are one line each.
+TEST(GltfLoader, ReadsTheClearCoat) {
+  const fs::path file = writeLitTriangle("gltf_clearcoat", [](json& d) {
+    d["extensionsUsed"].push_back("KHR_materials_clearcoat");
+    d["extensionsRequired"] = {"KHR_materials_clearcoat"};
+    d["images"] = {{{"uri", "grey.png"}}};
+    d["textures"] = {{{"source", 0}}};
+    d["materials"] = {{{"extensions",
+                        {{"KHR_materials_clearcoat",
+                          {{"clearcoatFactor", 0.75},
+                           {"clearcoatRoughnessFactor", 0.125},
+                           {"clearcoatTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}}}}},
+                           {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}},
+                      json::object()};
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+  });
+  writeImage(file.parent_path() / "grey.png", ImageRgbF::filled(1, 1, glm::vec3(0.5f)));
+  const Scene scene = loadGltf(file);
+  const Material::Clearcoat& coat = scene.materials[0].clearcoat;
+  EXPECT_EQ(coat.factor, 0.75f);
+  EXPECT_EQ(coat.roughness, 0.125f);
+  EXPECT_EQ(coat.texture, 0);
+  EXPECT_EQ(coat.uv.scale, glm::vec2(2.0f));
+  EXPECT_EQ(coat.roughnessTexture, -1);
+  EXPECT_EQ(coat.normalTexture, 0);
+  EXPECT_EQ(coat.normalScale, 0.5f);
+  EXPECT_TRUE(coat.enabled());
+  EXPECT_FALSE(scene.materials[1].clearcoat.enabled());
+  EXPECT_TRUE(scene.unreadFeatures.empty());
+
+  expectLoadError(writeLitTriangle("gltf_clearcoat_factor", [](json& d) {
+                    d["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.5}}}}}}};
+                  }),
+                  "KHR_materials_clearcoat.clearcoatFactor must be in [0, 1], got 1.5");
+  expectLoadError(writeLitTriangle("gltf_clearcoat_roughness", [](json& d) {
+                    d["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}}}}};
+                  }),
+                  "KHR_materials_clearcoat.clearcoatRoughnessFactor must be in [0, 1], got -0.5");
+  expectLoadError(writeLitTriangle("gltf_clearcoat_type", [](json& d) {
+                    d["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", "high"}}}}}}};
+                  }),
+                  "clearcoatFactor");
+  expectLoadError(writeLitTriangle("gltf_clearcoat_texture", [](json& d) {
+                    d["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatTexture", {{"index", 7}}}}}}}}};
+                  }),
+                  "KHR_materials_clearcoat.clearcoatTexture: ");
+}
+
 TEST(GltfLoader, ReadsAlphaModeAndCutoff) {
   const Scene scene = loadGltf(writeLitTriangle("gltf_alpha_mode", [](json& d) {
     d["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}}, {{"alphaMode", "BLEND"}}, json::object()};

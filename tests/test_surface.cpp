@@ -15,6 +15,7 @@
 #include "gl/renderer.h"
 #include "gl/shader.h"
 #include "gl_support.h"
+#include "glint/kernel/clearcoat.h"
 #include "glint/kernel/surface.h"
 #include "glint/pcg.h"
 #include "kernel_cases.h"
@@ -25,12 +26,18 @@ namespace {
 
 using namespace glint::test;
 
+// coat: clearcoat factor and roughness samples; coatNormal: its normal map's normal; light: a direction
+// in the surface's frame for the coat's lobe.
 struct SurfaceCase {
   glm::vec4 baseColour, metallicRoughnessOcclusion, emission, normal, tangent, mappedNormal, view, glintSamples,
-      normalMapCovariance, footprintPolicy;
+      normalMapCovariance, footprintPolicy, coat, coatNormal, light;
 };
+// coatN: the coat's normal and weight; coatT: its tangent and alpha; coatLight: its reflected share
+// times its cosine at the case's light, and the emission's share through it. The last is compared
+// relative to itself (the coat's lobe is as sharp as alpha^2 makes it).
 struct SurfaceOutput {
-  glm::vec4 t, b, n, wo, baseColour, metallicRoughnessOcclusionLayer, diffuse, f0, emission, smoothLobe, glint, glintMore;
+  glm::vec4 t, b, n, wo, baseColour, metallicRoughnessOcclusionLayer, diffuse, f0, emission, smoothLobe, glint, glintMore,
+      coatN, coatT, coatLight;
 };
 constexpr int kOutputVectors = sizeof(SurfaceOutput) / sizeof(glm::vec4);
 
@@ -54,7 +61,9 @@ FootprintPolicy policyOf(const SurfaceCase& c) {
 }
 
 SurfaceOutput surfaceOnCpu(const SurfaceCase& c, const kernel::GlintMaterial& material) {
-  const kernel::GlintSurface s = kernel::glintSurface(samplesOf(c), material, policyOf(c));
+  const kernel::GlintSurfaceSamples samples = samplesOf(c);
+  const kernel::GlintSurface s = kernel::glintSurface(samples, material, policyOf(c));
+  const kernel::GlintCoat coat = kernel::glintSurfaceCoat(s, samples, {glm::vec2(c.coat), glm::vec3(c.coatNormal)});
   return {glm::vec4(s.t, 0.0f),
           glm::vec4(s.b, 0.0f),
           glm::vec4(s.n, 0.0f),
@@ -66,7 +75,11 @@ SurfaceOutput surfaceOnCpu(const SurfaceCase& c, const kernel::GlintMaterial& ma
           glm::vec4(s.emission, 0.0f),
           glm::vec4(s.smoothAlpha, s.smoothRho, 0.0f),
           glm::vec4(s.glint.alpha, s.glint.rho, s.glint.logDensity),
-          glm::vec4(s.glint.relativeArea, s.glint.densityRandomisation, s.glint.maxAnisotropy, 0.0f)};
+          glm::vec4(s.glint.relativeArea, s.glint.densityRandomisation, s.glint.maxAnisotropy, 0.0f),
+          glm::vec4(coat.n, coat.weight),
+          glm::vec4(coat.t, coat.alpha),
+          glm::vec4(kernel::glintCoatReflectedCosine(coat, s.wo, glm::vec3(c.light)),
+                    kernel::glintCoatedEmissionWeight(c.coat.x, samples.normal, samples.view), 0.0f, 0.0f)};
 }
 
 glm::vec3 randomDirection(Pcg32& rng) {
@@ -119,6 +132,12 @@ SurfaceCase randomSurfaceCase(Pcg32& rng) {
   }
   const FootprintPolicy policy = randomFootprintPolicy(rng);
   c.footprintPolicy = {policy.maxAnisotropy, policy.maxCells, policy.minBlend, 0.0f};
+  // A coat in three cases of four, rough enough (roughness 0.2 to 1) that its lobe is not sharper than
+  // the two frames' rounding; its own normal map in half of them; a light from anywhere.
+  c.coat = rng.nextBelow(4) == 0 ? glm::vec4(0.0f) : glm::vec4(uniformIn(rng, 0, 1), uniformIn(rng, 0.2f, 1.0f), 0.0f, 0.0f);
+  c.coatNormal = rng.nextBelow(2) == 0 ? glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)
+                                       : glm::vec4(uniformIn(rng, -0.5f, 0.5f), uniformIn(rng, -0.5f, 0.5f), uniformIn(rng, 0.2f, 1.0f), 0.0f);
+  c.light = glm::vec4(randomDirection(rng), 0.0f);
   return c;
 }
 
@@ -143,6 +162,8 @@ TEST(KernelGl, SurfaceAgreesWithTheCpu) {
   int degenerate = 0;  // tangents along the normal
   int widened = 0;     // glint layers widened by a normal-map covariance
   float largest = 0.0f;
+  float largestCoat = 0.0f;  // of coatLight, relative to itself
+  int coatLit = 0;           // cases whose coat reflects the light
   for (int i = 0; i < kMaterials; ++i) {
     const kernel::GlintMaterial material = randomGlintMaterial(rng);
     GLuint buffer = 0;
@@ -158,7 +179,15 @@ TEST(KernelGl, SurfaceAgreesWithTheCpu) {
       const SurfaceOutput cpu = surfaceOnCpu(c, material);
       const glm::vec4* expected = &cpu.t;
       const glm::vec4* got = &gpu[static_cast<std::size_t>(k)].t;
-      for (int v = 0; v < kOutputVectors; ++v) {
+      const glm::vec4 coatLight = gpu[static_cast<std::size_t>(k)].coatLight;
+      for (int j = 0; j < 2; ++j) {
+        const float difference = std::abs(coatLight[j] - cpu.coatLight[j]) / std::max(std::abs(cpu.coatLight[j]), 1e-3f);
+        largestCoat = std::max(largestCoat, difference);
+        EXPECT_LE(difference, 1e-3f) << "material " << i << ", case " << k << ", coatLight[" << j << "]: GPU "
+                                     << coatLight[j] << ", CPU " << cpu.coatLight[j];
+      }
+      coatLit += cpu.coatLight.x > 0.0f;
+      for (int v = 0; v < kOutputVectors - 1; ++v) {
         const glm::vec4 e = expected[v];
         const float scale = std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z), std::abs(e.w), 1e-3f});
         for (int j = 0; j < 4; ++j) {
@@ -178,7 +207,9 @@ TEST(KernelGl, SurfaceAgreesWithTheCpu) {
   EXPECT_GT(flipped, 1000);   // both sides are seen
   EXPECT_GT(degenerate, 40);  // the tangent's fallback is exercised
   EXPECT_GT(widened, 500);
-  std::printf("surface: %d cases, largest difference %.2e of the vector's largest component\n", compared, largest);
+  EXPECT_GT(coatLit, 1000);
+  std::printf("surface: %d cases, largest difference %.2e of the vector's largest component; coat %.2e of itself\n",
+              compared, largest, largestCoat);
 }
 
 // The rules on the CPU, at hand-picked inputs whose answers are known without the kernel.

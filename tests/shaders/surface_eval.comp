@@ -1,8 +1,10 @@
 // The GPU half of the surface test (tests/test_surface.cpp): kernel::glintSurface (surface.h) at
 // each case's samples, with the renderer's material block (glint_material_block.glsl) bound by the
 // host to one material. The outputs are the surface's fields, in the C++ test's layout.
+#define GLINT_ALBEDO_TABLES 1
 #include "glint_material_block.glsl"
 #include "surface.h"
+#include "clearcoat.h"
 // The dictionary hook: never called here, but surface.h includes glint_brdf.h, whose functions call
 // it, and Mesa's linker resolves the calls of every function, called or not.
 #include "glint_dictionary_gl.glsl"
@@ -20,6 +22,9 @@ struct SurfaceCase {
   vec4 glintSamples;
   vec4 normalMapCovariance;
   vec4 footprintPolicy;  // aniso, cells, drop, unused
+  vec4 coat;             // clearcoat factor, roughness, unused
+  vec4 coatNormal;
+  vec4 light;
 };
 struct SurfaceOutput {
   vec4 t;
@@ -34,6 +39,9 @@ struct SurfaceOutput {
   vec4 smoothLobe;  // smoothAlpha.x, .y, smoothRho, unused
   vec4 glint;       // glint.alpha.x, .y, .rho, .logDensity
   vec4 glintMore;   // glint.relativeArea, .densityRandomisation, .maxAnisotropy, unused
+  vec4 coatN;       // coat.n, coat.weight
+  vec4 coatT;       // coat.t, coat.alpha
+  vec4 coatLight;   // glintCoatReflectedCosine at the light, glintCoatedEmissionWeight, unused
 };
 layout(std430, binding = 0) readonly buffer Inputs { SurfaceCase inputs[]; };
 layout(std430, binding = 1) writeonly buffer Outputs { SurfaceOutput outputs[]; };
@@ -75,4 +83,12 @@ void main() {
   outputs[i].smoothLobe = vec4(surface.smoothAlpha, surface.smoothRho, 0.0f);
   outputs[i].glint = vec4(surface.glint.alpha, surface.glint.rho, surface.glint.logDensity);
   outputs[i].glintMore = vec4(surface.glint.relativeArea, surface.glint.densityRandomisation, surface.glint.maxAnisotropy, 0.0f);
+  GlintCoatSamples coatSamples;
+  coatSamples.factorRoughness = c.coat.xy;
+  coatSamples.mappedNormal = c.coatNormal.xyz;
+  GlintCoat coat = glintSurfaceCoat(surface, s, coatSamples);
+  outputs[i].coatN = vec4(coat.n, coat.weight);
+  outputs[i].coatT = vec4(coat.t, coat.alpha);
+  outputs[i].coatLight = vec4(glintCoatReflectedCosine(coat, surface.wo, c.light.xyz),
+                              glintCoatedEmissionWeight(c.coat.x, s.normal, s.view), 0.0f, 0.0f);
 }
