@@ -240,6 +240,9 @@ Material carPaint() {
   m.roughness = roughnessFor(0.3f);
   m.glint = glintLayer(0.3f, 12.0f, 4.0f);
   m.glint.colouredCells = true;
+  // The clear coat over the flakes (KHR_materials_clearcoat): smooth, as a car's lacquer.
+  m.clearcoat.factor = 1.0f;
+  m.clearcoat.roughness = 0.1f;
   return m;
 }
 
