@@ -444,7 +444,9 @@ vec3 specularReflectance(GlintSurface surface, vec3 wi, vec4 p22, vec2 glintUv, 
 void main() {
   // The glint footprint: screen-space derivatives of the glint uv, taken first, in uniform
   // control flow, before any branch that pixels of a quad could take differently.
-  vec2 glintUv = glintMaterialUv(uGlintMaterial, vUv);
+  // The layer lies in the base colour texture's uv, its KHR_texture_transform applied (a quantized
+  // mesh's uv are brought to [0, 1] by it).
+  vec2 glintUv = glintMaterialUv(uGlintMaterial, TEXTURE_UV(uBaseColourUv));
   vec2 duvdx = dFdx(glintUv);
   vec2 duvdy = dFdy(glintUv);
 

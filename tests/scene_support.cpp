@@ -71,6 +71,9 @@ scene::Scene texturedTestScene() {
   s.textures.push_back(smallTexture("occlusion", false, [](int x, int y) {
     return glm::u8vec4(static_cast<std::uint8_t>(150 + 10 * ((x * y) % 10)), 0, 0, 255);
   }));
+  // A glTF sampler other than the default: clamped along u, mirrored along v, nearest texels.
+  s.textures.back().sampler = {.wrapS = TextureSampler::Wrap::ClampToEdge, .wrapT = TextureSampler::Wrap::MirroredRepeat,
+                               .magnifyNearest = true, .minifyNearest = true, .mipmap = TextureSampler::Mipmap::Nearest};
   s.textures.push_back(smallTexture("emissive", true, [](int x, int y) {
     return glm::u8vec4(x == y ? 255 : 0, x == 7 - y ? 200 : 0, 20, 255);
   }));

@@ -803,12 +803,17 @@ TEST(RenderGl, BackgroundIsTheEnvironmentTheTracerSees) {
 // ratios were 1.90x and 1.82x: beyond a silhouette the normal turns away from the camera. What
 // is left is the shading's own variation over an edge pixel (grazing Fresnel, the sky's
 // reflection), which the reference averages and one shading a surface cannot. Bound: the 2x asked.
+// The scenes' clear coats are taken off: a smooth coat turns a silhouette into a mirror of the
+// environment (its Fresnel tends to 1 at grazing views), which is shading that varies within the
+// pixel, not coverage; with the showroom car's coat, measured 2026-12-07, 0.806 against 0.644
+// (1.25x), where the same scene without it gives the ratios above.
 TEST(RenderGl, MultisampledEdgesHalveTheSilhouetteError) {
   useGlContext();
   constexpr int kSide = 128;
   constexpr int kReferenceFrames = 64;
   for (const char* name : {"sphere", "showroom"}) {
-    const scene::Scene scene = scene::makeBuiltinScene(name);
+    scene::Scene scene = scene::makeBuiltinScene(name);
+    for (scene::Material& m : scene.materials) m.clearcoat = {};
     scene::Scene indexScene = scene;
     indexScene.materials.clear();
     for (std::size_t k = 0; k < indexScene.meshes.size(); ++k) {

@@ -36,6 +36,7 @@ void expectSameTexture(const Scene& a, int ia, const Scene& b, int ib, const cha
   EXPECT_EQ(ta.height, tb.height);
   EXPECT_EQ(ta.srgb, tb.srgb);
   EXPECT_TRUE(ta.rgba == tb.rgba) << "texels differ";
+  EXPECT_TRUE(ta.sampler == tb.sampler) << "samplers differ";
 }
 
 void expectSameUv(const UvTransform& a, const UvTransform& b) {

@@ -554,12 +554,12 @@ TEST(RenderCli, WarnsAboutWhatTheFileUsesAndGlintDoesNotRead) {
   const auto folder = brokenScene("unread", [](const auto& f) {
     editGltfJson(f / "textured.gltf", [](nlohmann::json& d) {
       d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
-      d["extensionsUsed"].push_back("KHR_materials_clearcoat");
+      d["extensionsUsed"].push_back("KHR_materials_sheen");
     });
   });
   const RunResult result = runGlint(folder, "render scene/textured.gltf -o out.png --size 32x32");
   ASSERT_EQ(result.exitCode, 0) << result.err;
-  EXPECT_NE(result.err.find("glint: warning: scene/textured.gltf: extension KHR_materials_clearcoat is not read\n"),
+  EXPECT_NE(result.err.find("glint: warning: scene/textured.gltf: extension KHR_materials_sheen is not read\n"),
             std::string::npos)
       << result.err;
   EXPECT_NE(result.err.find("glint: warning: scene/textured.gltf: textures on a texCoord other than 0 are mapped with "

@@ -345,7 +345,7 @@ static fs::path writeLitTriangle(const std::string& folderName, const std::funct
 TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
   EXPECT_TRUE(loadGltf(writeLitTriangle("gltf_all_read", [](json&) {})).unreadFeatures.empty());
   const Scene scene = loadGltf(writeLitTriangle("gltf_unread", [](json& d) {
-    d["extensionsUsed"].push_back("KHR_materials_clearcoat");
+    d["extensionsUsed"].push_back("KHR_materials_sheen");
     json primitive = {{"attributes", {{"POSITION", 0}}}};
     primitive["targets"] = json::array({{{"POSITION", 0}}});
     d["meshes"].push_back({{"name", "blob"}, {"primitives", json::array({primitive, primitive})}});
@@ -353,7 +353,7 @@ TEST(GltfLoader, ListsWhatTheFileUsesAndGlintDoesNotRead) {
     d["scenes"][0]["nodes"].push_back(5);
   }));
   const std::vector<std::string> expected = {
-      "extension KHR_materials_clearcoat is not read",
+      "extension KHR_materials_sheen is not read",
       "morph targets are not applied, the base shape is drawn (mesh 1 'blob' and 1 more)",
   };
   EXPECT_EQ(scene.unreadFeatures, expected);
@@ -680,6 +680,42 @@ TEST(GltfLoader, ReadsTheClearCoat) {
                     d["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatTexture", {{"index", 7}}}}}}}}};
                   }),
                   "KHR_materials_clearcoat.clearcoatTexture: ");
+}
+
+// glTF samplers: wrap modes and filters read into the texture; an image used with two samplers is
+// two textures; values that are not OpenGL's enums are one line naming the sampler.
+TEST(GltfLoader, ReadsSamplers) {
+  const fs::path file = writeLitTriangle("gltf_samplers", [](json& d) {
+    d["images"] = {{{"uri", "grey.png"}}};
+    d["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9985}}, json::object()};
+    d["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 0}, {"sampler", 1}}};
+    d["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}, {"emissiveTexture", {{"index", 1}}}}};
+    d["meshes"][0]["primitives"][0]["material"] = 0;
+  });
+  writeImage(file.parent_path() / "grey.png", ImageRgbF::filled(1, 1, glm::vec3(0.5f)));
+  const Scene scene = loadGltf(file);
+  ASSERT_EQ(scene.textures.size(), 2u);
+  const TextureSampler& first = scene.textures[static_cast<std::size_t>(scene.materials[0].baseColourTexture)].sampler;
+  EXPECT_EQ(first.wrapS, TextureSampler::Wrap::ClampToEdge);
+  EXPECT_EQ(first.wrapT, TextureSampler::Wrap::MirroredRepeat);
+  EXPECT_TRUE(first.magnifyNearest);
+  EXPECT_FALSE(first.minifyNearest);
+  EXPECT_EQ(first.mipmap, TextureSampler::Mipmap::Nearest);
+  EXPECT_TRUE(scene.textures[static_cast<std::size_t>(scene.materials[0].emissiveTexture)].sampler == TextureSampler{});
+
+  auto withSampler = [](const char* name, json sampler) {
+    const fs::path path = writeLitTriangle(name, [&](json& d) {
+      d["images"] = {{{"uri", "grey.png"}}};
+      d["samplers"] = {sampler};
+      d["textures"] = {{{"source", 0}, {"sampler", 0}}};
+      d["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    });
+    writeImage(path.parent_path() / "grey.png", ImageRgbF::filled(1, 1, glm::vec3(0.5f)));
+    return path;
+  };
+  expectLoadError(withSampler("gltf_sampler_wrap", {{"wrapS", 1234}}), "texture 0: sampler 0 wrapS 1234 is not a wrap mode");
+  expectLoadError(withSampler("gltf_sampler_min", {{"minFilter", 9999}}), "sampler 0 minFilter 9999 is not one of OpenGL's");
+  expectLoadError(withSampler("gltf_sampler_mag", {{"magFilter", 9984}}), "sampler 0 magFilter 9984 is not 9728 (NEAREST) or 9729");
 }
 
 TEST(GltfLoader, ReadsAlphaModeAndCutoff) {

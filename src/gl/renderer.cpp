@@ -56,6 +56,24 @@ GLuint makeTexture(int width, int height, GLenum internalFormat, GLenum format, 
   return texture;
 }
 
+// A glTF sampler's wrap modes and filters on a texture made with its mip chain (makeTexture).
+void applySampler(GLuint texture, const scene::TextureSampler& sampler) {
+  auto wrap = [](scene::TextureSampler::Wrap mode) {
+    return mode == scene::TextureSampler::Wrap::ClampToEdge      ? GL_CLAMP_TO_EDGE
+           : mode == scene::TextureSampler::Wrap::MirroredRepeat ? GL_MIRRORED_REPEAT
+                                                                 : GL_REPEAT;
+  };
+  const bool nearest = sampler.minifyNearest;
+  const GLint minify = sampler.mipmap == scene::TextureSampler::Mipmap::None ? (nearest ? GL_NEAREST : GL_LINEAR)
+                       : sampler.mipmap == scene::TextureSampler::Mipmap::Nearest
+                           ? (nearest ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_NEAREST)
+                           : (nearest ? GL_NEAREST_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, minify);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, sampler.magnifyNearest ? GL_NEAREST : GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, wrap(sampler.wrapS));
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, wrap(sampler.wrapT));
+}
+
 // Half the texture along each side longer than `limit` (a 2-texel box; the last texel repeats for
 // odd sizes), colour textures averaged in linear light as OpenGL filters sRGB textures.
 scene::Texture halvedBeyond(const scene::Texture& t, int limit) {
@@ -458,6 +476,7 @@ Renderer::Renderer(const scene::Scene& scene, const Dictionary& dictionary)
     }
     g.textures.push_back(makeTexture(t->width, t->height, t->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_RGBA,
                                      GL_UNSIGNED_BYTE, t->rgba.data(), true, true));
+    applySampler(g.textures.back(), source.sampler);
   }
   const scene::Environment& env = scene.environment;
   // The map's brightest small regions become directional lights, so that glints see them; the

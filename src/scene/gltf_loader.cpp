@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -878,12 +879,53 @@ class GltfReader {
     if (static_cast<std::size_t>(source) >= model_.images.size()) {
       throw error("texture ", index, " has no image it can read (source ", source, ")");
     }
-    const auto key = std::make_pair(source, srgb);
+    const int sampler = model_.textures[static_cast<std::size_t>(index)].sampler;
+    const auto key = std::make_tuple(source, srgb, sampler);
     if (const auto found = textureOf_.find(key); found != textureOf_.end()) return found->second;
-    scene_.textures.push_back(toTexture(model_.images[static_cast<std::size_t>(source)], source, srgb));
+    const TextureSampler settings = withContext("texture " + std::to_string(index) + ": ", [&] { return textureSampler(sampler); });
+    Texture made = toTexture(model_.images[static_cast<std::size_t>(source)], source, srgb);
+    made.sampler = settings;
+    scene_.textures.push_back(std::move(made));
     const int result = static_cast<int>(scene_.textures.size()) - 1;
     textureOf_[key] = result;
     return result;
+  }
+
+  // glTF sampler `index` (-1: none, glTF's repeat and the viewer's filters): OpenGL's enums, which
+  // glTF uses, each checked.
+  TextureSampler textureSampler(int index) const {
+    TextureSampler sampler;
+    if (index < 0) return sampler;
+    if (static_cast<std::size_t>(index) >= model_.samplers.size()) {
+      throw error("sampler ", index, " does not exist (the file has ", model_.samplers.size(), ")");
+    }
+    const tinygltf::Sampler& source = model_.samplers[static_cast<std::size_t>(index)];
+    auto wrap = [&](int mode, const char* field) {
+      switch (mode) {
+        case 10497: return TextureSampler::Wrap::Repeat;
+        case 33071: return TextureSampler::Wrap::ClampToEdge;
+        case 33648: return TextureSampler::Wrap::MirroredRepeat;
+        default: throw error("sampler ", index, " ", field, " ", mode, " is not a wrap mode (10497, 33071 or 33648)");
+      }
+    };
+    sampler.wrapS = wrap(source.wrapS, "wrapS");
+    sampler.wrapT = wrap(source.wrapT, "wrapT");
+    if (source.magFilter == 9728) {
+      sampler.magnifyNearest = true;
+    } else if (source.magFilter != -1 && source.magFilter != 9729) {
+      throw error("sampler ", index, " magFilter ", source.magFilter, " is not 9728 (NEAREST) or 9729 (LINEAR)");
+    }
+    switch (source.minFilter) {
+      case -1: break;  // none given: trilinear
+      case 9728: sampler.minifyNearest = true; sampler.mipmap = TextureSampler::Mipmap::None; break;
+      case 9729: sampler.mipmap = TextureSampler::Mipmap::None; break;
+      case 9984: sampler.minifyNearest = true; sampler.mipmap = TextureSampler::Mipmap::Nearest; break;
+      case 9985: sampler.mipmap = TextureSampler::Mipmap::Nearest; break;
+      case 9986: sampler.minifyNearest = true; break;
+      case 9987: break;
+      default: throw error("sampler ", index, " minFilter ", source.minFilter, " is not one of OpenGL's (9728, 9729, 9984 to 9987)");
+    }
+    return sampler;
   }
 
   int optionalTexture(int index, bool srgb, const char* what) {
@@ -1072,7 +1114,7 @@ class GltfReader {
   const tinygltf::Model& model_;
   Scene scene_;
   std::vector<FileCamera> fileCameras_;
-  std::map<std::pair<int, bool>, int> textureOf_;  // (image, sRGB) -> scene texture
+  std::map<std::tuple<int, bool, int>, int> textureOf_;  // (image, sRGB, sampler) -> scene texture
   // What the file uses and glint does not render: each kind in the order first met, with its places.
   std::vector<std::pair<std::string, std::vector<std::string>>> unread_;
   std::vector<std::string> extrasGlintMaterials_;  // the materials whose layer came from extras.glint

@@ -199,7 +199,30 @@ class GltfWriter {
     tinygltf::Texture gltfTexture;
     gltfTexture.name = texture.name;
     gltfTexture.source = static_cast<int>(index);
+    if (!(texture.sampler == TextureSampler{})) {
+      gltfTexture.sampler = static_cast<int>(model_.samplers.size());
+      model_.samplers.push_back(gltfSampler(texture.sampler));
+    }
     model_.textures.push_back(std::move(gltfTexture));
+  }
+
+  // A texture's sampler as glTF writes it (OpenGL's enums); the filters glint uses when a file
+  // names none (trilinear) are left unnamed.
+  static tinygltf::Sampler gltfSampler(const TextureSampler& sampler) {
+    auto wrap = [](TextureSampler::Wrap mode) {
+      return mode == TextureSampler::Wrap::ClampToEdge ? 33071 : mode == TextureSampler::Wrap::MirroredRepeat ? 33648 : 10497;
+    };
+    tinygltf::Sampler out;
+    out.wrapS = wrap(sampler.wrapS);
+    out.wrapT = wrap(sampler.wrapT);
+    out.magFilter = sampler.magnifyNearest ? 9728 : -1;
+    const int nearest = sampler.minifyNearest ? 0 : 1;
+    switch (sampler.mipmap) {
+      case TextureSampler::Mipmap::None: out.minFilter = 9728 + nearest; break;
+      case TextureSampler::Mipmap::Nearest: out.minFilter = 9984 + nearest; break;
+      case TextureSampler::Mipmap::Linear: out.minFilter = sampler.minifyNearest ? 9986 : -1; break;
+    }
+    return out;
   }
 
   int textureIndex(int index, const char* what, const Material& material) const {

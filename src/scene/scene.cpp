@@ -115,7 +115,10 @@ VisibleGlintDensity visibleGlintDensity(const Scene& scene, int material) {
     density.pixelSide = 2.0 * distance * std::tan(0.5 * glm::radians(double(camera.verticalFovDegrees))) / frame;
   }
   density.hasUvArea = true;
-  density.uvAreaPerSquareMetre = uvArea / worldArea;
+  // In the base colour texture's uv, where the layer lies (its KHR_texture_transform scales areas by
+  // the determinant of its linear part).
+  const glm::mat2 linear = scene.materials[static_cast<std::size_t>(material)].baseColourUv.linear();
+  density.uvAreaPerSquareMetre = uvArea / worldArea * std::abs(double(glm::determinant(linear)));
   const double uvAreaPerPixel = density.uvAreaPerSquareMetre * density.pixelSide * density.pixelSide;
   // A camera at the material's centre sees no pixel there: the densest layer accepted.
   const double logDensity = uvAreaPerPixel > 0.0 ? std::log(kVisibleGlintMicrofacetsPerPixel / uvAreaPerPixel)

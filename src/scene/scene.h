@@ -34,12 +34,26 @@ struct Mesh {
 };
 
 // 8-bit RGBA texels, rows from the top of the image (as glTF images are stored).
+// How a texture is sampled: glTF's sampler (samplers[], OpenGL's wrap modes and filters). The
+// defaults are glTF's repeat and, where a file names no filter, the trilinear filtering viewers use.
+struct TextureSampler {
+  enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+  enum class Mipmap { None, Nearest, Linear };
+  Wrap wrapS = Wrap::Repeat;  // along u
+  Wrap wrapT = Wrap::Repeat;  // along v
+  bool magnifyNearest = false;     // magFilter NEAREST
+  bool minifyNearest = false;      // minFilter NEAREST or NEAREST_MIPMAP_*: the nearest texel of a level
+  Mipmap mipmap = Mipmap::Linear;  // minFilter NEAREST or LINEAR: none; *_MIPMAP_NEAREST; *_MIPMAP_LINEAR
+  bool operator==(const TextureSampler&) const = default;
+};
+
 struct Texture {
   std::string name;
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> rgba;
   bool srgb = false;  // colour textures (base colour, emissive) are sRGB; data textures linear
+  TextureSampler sampler;
 };
 
 // The glint layer of a material (docs/scenes.md, "Glint parameters in glTF"): the kernel's material

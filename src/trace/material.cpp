@@ -249,10 +249,13 @@ ShadedPoint SceneMaterials::shade(const SurfacePoint& point, const UvDerivatives
   }
   // The glint footprint: glint uv = mesh uv * uv_scale, and so are its derivatives. Coloured cells
   // (the layer's random colours) are the BSDF's own tint.
+  // The layer lies in the base colour texture's uv, its KHR_texture_transform applied, as in the
+  // rasteriser.
+  const TransformedLookup layerUv = transformedLookup(m.baseColourUv, uv, footprint);
   SurfaceFootprint glintFootprint;
-  glintFootprint.uv = kernel::glintMaterialUv(material, uv);
-  glintFootprint.duvdx = kernel::glintMaterialUv(material, footprint.duvdx);
-  glintFootprint.duvdy = kernel::glintMaterialUv(material, footprint.duvdy);
+  glintFootprint.uv = kernel::glintMaterialUv(material, layerUv.uv);
+  glintFootprint.duvdx = kernel::glintMaterialUv(material, layerUv.footprint.duvdx);
+  glintFootprint.duvdy = kernel::glintMaterialUv(material, layerUv.footprint.duvdy);
   if (model_ == SpecularModel::ZirrKaplanyan || model_ == SpecularModel::ZirrKaplanyanReference) {
     // The layer's parameters mapped (docs/zirr-kaplanyan.md); it has no relative area, so its mean
     // is scaled by it to match the glint BRDF's, as the rasteriser scales it.

@@ -29,6 +29,7 @@ MipTexture::MipTexture(const scene::Texture& texture) {
     base.texels[i] = {decode[texture.rgba[4 * i]], decode[texture.rgba[4 * i + 1]], decode[texture.rgba[4 * i + 2]]};
   }
   levels_.push_back(std::move(base));
+  sampler_ = texture.sampler;
   buildMipChain();
 }
 
@@ -59,9 +60,49 @@ void MipTexture::buildMipChain() {
   }
 }
 
-glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv) const {
+int wrapTexel(int i, int size, scene::TextureSampler::Wrap mode) {
+  switch (mode) {
+    case scene::TextureSampler::Wrap::ClampToEdge: return std::clamp(i, 0, size - 1);
+    case scene::TextureSampler::Wrap::MirroredRepeat: {
+      // mirror(i) = i mod 2 size, folded back past size.
+      const int period = 2 * size;
+      const int m = ((i % period) + period) % period;
+      return m < size ? m : period - 1 - m;
+    }
+    case scene::TextureSampler::Wrap::Repeat: break;
+  }
+  return ((i % size) + size) % size;
+}
+
+glm::vec3 filteredTexel(const std::vector<glm::vec3>& texels, int width, int height, glm::vec2 uv,
+                        const scene::TextureSampler& sampler, bool nearest) {
+  // Texel indices far beyond any texture wrap to the same texel as their float does; a uv whose
+  // texel index overflows an int reads the first texel, as bilinearRepeat does.
+  constexpr float kLargest = 1e9f;
+  const float x = uv.x * static_cast<float>(width) - (nearest ? 0.0f : 0.5f);
+  const float y = uv.y * static_cast<float>(height) - (nearest ? 0.0f : 0.5f);
+  if (!(std::abs(x) < kLargest && std::abs(y) < kLargest)) return texels.front();
+  const float fx = std::floor(x);
+  const float fy = std::floor(y);
+  auto at = [&](float i, float j) {
+    const int xx = wrapTexel(static_cast<int>(i), width, sampler.wrapS);
+    const int yy = wrapTexel(static_cast<int>(j), height, sampler.wrapT);
+    return texels[static_cast<std::size_t>(yy) * static_cast<std::size_t>(width) + static_cast<std::size_t>(xx)];
+  };
+  if (nearest) return at(fx, fy);
+  const float tx = x - fx;
+  const float ty = y - fy;
+  return (1.0f - ty) * ((1.0f - tx) * at(fx, fy) + tx * at(fx + 1.0f, fy)) +
+         ty * ((1.0f - tx) * at(fx, fy + 1.0f) + tx * at(fx + 1.0f, fy + 1.0f));
+}
+
+glm::vec3 MipTexture::bilinear(int levelIndex, glm::vec2 uv, bool nearest) const {
   const Level& level = levels_[static_cast<std::size_t>(levelIndex)];
-  return bilinearRepeat(level.texels, level.width, level.height, uv);
+  // glTF's default sampler takes the path every texture took before samplers were read.
+  if (!nearest && sampler_.wrapS == scene::TextureSampler::Wrap::Repeat && sampler_.wrapT == scene::TextureSampler::Wrap::Repeat) {
+    return bilinearRepeat(level.texels, level.width, level.height, uv);
+  }
+  return filteredTexel(level.texels, level.width, level.height, uv, sampler_, nearest);
 }
 
 float MipTexture::levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const {
@@ -71,12 +112,25 @@ float MipTexture::levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const {
 
 glm::vec3 MipTexture::sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const {
   const float lambda = levelOfDetail(duvdx, duvdy);
-  if (!(lambda > 0.0f)) return bilinear(0, uv);  // magnification, or no footprint
+  const bool nearest = sampler_.minifyNearest;
+  // Magnification below c (section 8.14: 0.5 where a linear magnification meets a nearest-mipmap
+  // minification, else 0), or no footprint.
+  const float c = !sampler_.magnifyNearest && nearest && sampler_.mipmap != scene::TextureSampler::Mipmap::None ? 0.5f : 0.0f;
+  if (!(lambda > c)) return bilinear(0, uv, sampler_.magnifyNearest);
   const int last = levelCount() - 1;
-  if (lambda >= static_cast<float>(last)) return bilinear(last, uv);
+  switch (sampler_.mipmap) {
+    case scene::TextureSampler::Mipmap::None: return bilinear(0, uv, nearest);
+    case scene::TextureSampler::Mipmap::Nearest: {
+      // The nearest level: ceil(lambda + 1/2) - 1 (section 8.14.3).
+      const int level = lambda <= 0.5f ? 0 : std::min(last, static_cast<int>(std::ceil(lambda + 0.5f)) - 1);
+      return bilinear(level, uv, nearest);
+    }
+    case scene::TextureSampler::Mipmap::Linear: break;
+  }
+  if (lambda >= static_cast<float>(last)) return bilinear(last, uv, nearest);
   const int level = static_cast<int>(std::floor(lambda));
   const float blend = lambda - static_cast<float>(level);
-  return (1.0f - blend) * bilinear(level, uv) + blend * bilinear(level + 1, uv);
+  return (1.0f - blend) * bilinear(level, uv, nearest) + blend * bilinear(level + 1, uv, nearest);
 }
 
 }  // namespace glint::trace

@@ -1,8 +1,10 @@
 // Scene textures as the real-time renderer samples them: decoded to linear floats (sRGB colour
 // textures decoded per texel, as a GL_SRGB8_ALPHA8 texture is before filtering), a box-filtered
-// mip chain (glGenerateTextureMipmap), repeat wrapping, and trilinear filtering
-// (GL_LINEAR_MIPMAP_LINEAR) at the level of detail of the footprint, which the path tracer takes
-// from its ray differentials where the rasteriser takes it from screen-space derivatives.
+// mip chain (glGenerateTextureMipmap), and the texture's glTF sampler (scene::TextureSampler: repeat
+// wrapping and trilinear filtering, GL_LINEAR_MIPMAP_LINEAR, unless the file says otherwise, as
+// OpenGL 4.5 core, section 8.14, defines each) at the level of detail of the footprint, which the
+// path tracer takes from its ray differentials where the rasteriser takes it from screen-space
+// derivatives.
 #pragma once
 
 #include <cmath>
@@ -37,6 +39,13 @@ Texel bilinearRepeat(const std::vector<Texel>& texels, int width, int height, gl
   return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1.0f - tx) * at(x0, y1) + tx * at(x1, y1));
 }
 
+// One texel coordinate of `size` under a wrap mode (OpenGL 4.5 core, section 8.14.2).
+int wrapTexel(int i, int size, scene::TextureSampler::Wrap mode);
+
+// GL_NEAREST or GL_LINEAR on one level under the sampler's wrap modes.
+glm::vec3 filteredTexel(const std::vector<glm::vec3>& texels, int width, int height, glm::vec2 uv,
+                        const scene::TextureSampler& sampler, bool nearest);
+
 // Throws Error naming the texture when its RGBA8 data does not hold width x height texels.
 void requireTexelData(const scene::Texture& texture);
 
@@ -50,8 +59,8 @@ class MipTexture {
   // longer of the two derivatives in texels, lambda = log2(rho); lambda <= 0 magnifies with
   // bilinear filtering of level 0).
   glm::vec3 sample(glm::vec2 uv, glm::vec2 duvdx, glm::vec2 duvdy) const;
-  // Bilinear filtering of one level.
-  glm::vec3 bilinear(int level, glm::vec2 uv) const;
+  // Bilinear filtering of one level (nearest: the texel the uv falls in), under the sampler's wrap.
+  glm::vec3 bilinear(int level, glm::vec2 uv, bool nearest = false) const;
   int levelCount() const { return static_cast<int>(levels_.size()); }
   // The level of detail sample() takes for these derivatives (log2 of the longer in texels).
   float levelOfDetail(glm::vec2 duvdx, glm::vec2 duvdy) const;
@@ -63,6 +72,7 @@ class MipTexture {
     std::vector<glm::vec3> texels;  // rows from the top, as scene::Texture
   };
   std::vector<Level> levels_;
+  scene::TextureSampler sampler_;
 
   void buildMipChain();
 };

@@ -332,6 +332,46 @@ GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
   return glintGaussianRegionMoments(unscaled, sigma).x;
 }
 
+// GGX's slope density in its unscaled frame, 1 / (pi (1 + x^2 + y^2)^2), integrated as
+// glintGaussianRegionMoments integrates the Gaussian: its marginal along x, 1 / (2 a^3) with
+// a^2 = 1 + x^2, has the cumulative integrals (x / (2 a), -1 / (2 a)) from 0 (its CDF minus 1/2, its
+// first moment), and across a strip, at the strip's centroid, the density along y given x,
+// (2 a^3 / pi) / (a^2 + y^2)^2, has (atan(y / a) + a y / (a^2 + y^2)) / pi and -a^3 / (pi (a^2 + y^2)).
+// Closed forms, so that a lobe far narrower than the light's region (a smooth clear coat under a
+// softbox) keeps its mass, where the midpoint rule's few samples miss or overcount its peak.
+GLINT_FN vec2 glintGgxCumulativeMarginal(float x) {
+  float a = sqrt(1.0f + x * x);
+  return vec2(0.5f * x / a, -0.5f / a);
+}
+
+GLINT_FN vec2 glintGgxCumulativeConditional(float y, float a) {
+  float q = a * a + y * y;
+  return vec2((atan(y / a) + a * y / q) * 0.31830989f, -a * a * a / q * 0.31830989f);
+}
+
+GLINT_FN vec3 glintGgxRegionMoments(GlintSlopeRegion unscaled) {
+  vec2 xRange = glintRegionXRange(unscaled);
+  vec3 moments = glintSplat3(0.0f);
+  if (!(xRange.x < xRange.y)) {
+    return moments;
+  }
+  vec2 start = glintGgxCumulativeMarginal(xRange.x);
+  for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
+    vec2 strip = glintRegionStrip(xRange, k);
+    vec2 end = glintGgxCumulativeMarginal(strip.y);
+    float xAt = glintStripCentroid(strip, start, end);
+    vec2 across = glintRegionYAt(unscaled, xAt);
+    if (across.y > across.x) {
+      float a = sqrt(1.0f + xAt * xAt);
+      vec2 low = glintGgxCumulativeConditional(across.x, a);
+      vec2 high = glintGgxCumulativeConditional(across.y, a);
+      moments += vec3((end.x - start.x) * (high.x - low.x), (end.y - start.y) * (high.x - low.x), (end.x - start.x) * (high.y - low.y));
+    }
+    start = end;
+  }
+  return moments;
+}
+
 // The midpoint rule over the strips of a region in the unscaled frame of roughness alpha,
 // correlation rho and dictionary roughness alphaD (glintCorrelatedUnscale) for a slope density that
 // is not separable: each strip's area times the density at its centre, mapped back to slope space
@@ -363,8 +403,8 @@ GLINT_FN float glintMidpointRegionMass(int ndf, vec2 alpha, float rho, float alp
 
 // A smooth lobe's mass over a region of slope space (GLINT_NDF_BECKMANN or GLINT_NDF_GGX of
 // roughness alpha and correlation rho) and the mean slope of that mass: (mass, mean slope). In its
-// unscaled frame (alpha_d = 1) Beckmann is the isotropic Gaussian of sigma 1 / sqrt 2, by the
-// strips; GGX by the midpoint rule. The smooth target of a glint layer, and the specular lobe of
+// unscaled frame (alpha_d = 1) Beckmann is the isotropic Gaussian of sigma 1 / sqrt 2, GGX
+// 1 / (pi (1 + |u|^2)^2), each by the strips and its closed-form integrals. The smooth target of a glint layer, and the specular lobe of
 // every material under extended lights; the mean slope is where the light's reflectance is taken
 // (glintRegionReflectanceAt).
 GLINT_FN vec3 glintSmoothRegionMoments(int ndf, vec2 alpha, float rho, GlintSlopeRegion region) {
@@ -372,8 +412,7 @@ GLINT_FN vec3 glintSmoothRegionMoments(int ndf, vec2 alpha, float rho, GlintSlop
   for (int k = 0; k < GLINT_REGION_VERTICES; ++k) {
     unscaled.vertex[k] = glintCorrelatedUnscale(region.vertex[k], alpha, rho, 1.0f);
   }
-  vec3 moments = ndf != GLINT_NDF_GGX ? glintGaussianRegionMoments(unscaled, 0.70710678f)
-                                      : glintMidpointRegionMoments(ndf, alpha, rho, 1.0f, unscaled, false);
+  vec3 moments = ndf != GLINT_NDF_GGX ? glintGaussianRegionMoments(unscaled, 0.70710678f) : glintGgxRegionMoments(unscaled);
   if (!(moments.x > 0.0f)) {
     return glintSplat3(0.0f);
   }

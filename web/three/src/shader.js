@@ -112,7 +112,13 @@ vec3 glintB;
 // At the top of main, in uniform control flow (before clipping or alpha-test discards): the screen
 // derivatives and the textures' implicit ones (docs/integration.md, "Forward shading", step 1).
 void glintBeginFragment() {
+  // The layer lies in the base colour map's uv, its KHR_texture_transform applied (three's
+  // mapTransform), as glint's renderers place it.
+#ifdef USE_MAP
+  glintUv = glintMaterialUv(glintMaterial, vMapUv);
+#else
   glintUv = glintMaterialUv(glintMaterial, vUv);
+#endif
   glintDuvdx = dFdx(glintUv);
   glintDuvdy = dFdy(glintUv);
   GlintMaterial material = glintMaterial;
