@@ -7,9 +7,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
@@ -225,6 +228,36 @@ std::string jpegTextureJson(std::size_t jpegBytes) {
          std::to_string(jpegBytes) + R"(}],"buffers":[{"byteLength":)" + std::to_string(36 + jpegBytes) + "}]}";
 }
 
+// A triangle whose positions and indices are a KHR_draco_mesh_compression stream (sequential, no
+// quantisation) in a GLB's BIN chunk: the fuzzed bytes reach Draco's decoder.
+std::string dracoTriangleGlb() {
+  draco::Mesh mesh;
+  mesh.set_num_points(3);
+  draco::GeometryAttribute position;
+  position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
+  const int id = mesh.AddAttribute(position, true, 3);
+  const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (std::uint32_t i = 0; i < 3; ++i) mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p + 3 * i);
+  draco::Mesh::Face face;
+  for (std::uint32_t k = 0; k < 3; ++k) face[k] = draco::PointIndex(k);
+  mesh.AddFace(face);
+  draco::Encoder encoder;
+  encoder.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+  draco::EncoderBuffer out;
+  if (!encoder.EncodeMeshToBuffer(mesh, &out).ok()) throw std::runtime_error("draco: the triangle does not encode");
+  const std::string stream(out.data(), out.size());
+  const std::string size = std::to_string(stream.size());
+  return glb(R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_draco_mesh_compression"],)"
+             R"("extensionsRequired":["KHR_draco_mesh_compression"],"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"extensions":{"KHR_draco_mesh_compression":)"
+             R"({"bufferView":0,"attributes":{"POSITION":)" +
+                 std::to_string(mesh.attribute(id)->unique_id()) +
+                 R"(}}}}]}],"accessors":[{"componentType":5126,"count":3,"type":"VEC3"},)"
+                 R"({"componentType":5125,"count":3,"type":"SCALAR"}],"bufferViews":[{"buffer":0,"byteLength":)" +
+                 size + R"(}],"buffers":[{"byteLength":)" + size + "}]}",
+             stream);
+}
+
 // A textured triangle in JSON with what the export does not write: a fan, a sparse accessor, a
 // node hierarchy with a matrix, TRS and a camera on a child.
 std::string handWrittenGltf() {
@@ -314,6 +347,7 @@ int main(int argc, char** argv) {
     const std::string jpeg = jpegOf(8, 8, 3);
     write("corpus/gltf/jpeg-texture.glb", glb(jpegTextureJson(jpeg.size()), trianglePositions() + jpeg));
   }
+  write("corpus/gltf/draco-triangle.glb", dracoTriangleGlb());
 
   // --- eval: lines of `glint eval` --------------------------------------------------------------
   write("corpus/eval_line/default.json", "{}");

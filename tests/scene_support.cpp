@@ -16,7 +16,7 @@ namespace {
 
 // An 8 x 8 RGBA texture whose texels follow `texel(x, y)`.
 scene::Texture smallTexture(const std::string& name, bool srgb, const std::function<glm::u8vec4(int, int)>& texel) {
-  scene::Texture texture{name, 8, 8, {}, srgb};
+  scene::Texture texture{name, 8, 8, {}, srgb, {}};
   for (int y = 0; y < texture.height; ++y) {
     for (int x = 0; x < texture.width; ++x) {
       const glm::u8vec4 t = texel(x, y);

@@ -490,7 +490,7 @@ TEST(GlintAntiAliasing, NoNanOrInfinityAtTheLimits) {
 
 // A normal map of size x size whose tangent-space normal at texel (x, y) is `normal(x, y)`.
 scene::Texture normalTexture(int size, const std::function<glm::vec3(int, int)>& normal) {
-  scene::Texture t{"test normals", size, size, std::vector<std::uint8_t>(static_cast<std::size_t>(size) * size * 4, 255), false};
+  scene::Texture t{"test normals", size, size, std::vector<std::uint8_t>(static_cast<std::size_t>(size) * size * 4, 255), false, {}};
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
       const glm::vec3 n = glm::normalize(normal(x, y));

@@ -656,7 +656,7 @@ TEST(RenderGl, TexturesBeyondTheSizeLimitAreDrawnDownscaledNotBlack) {
   const int width = limit + 4000;
   std::vector<std::string> warnings;
   const ImageRgbF image = renderSheets({{0.0f, glm::vec3(100.0f), false}}, 3.0f, [&](scene::Scene& scene) {
-    scene::Texture wide{"wide", width, 2, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * 2 * 4, 0), true};
+    scene::Texture wide{"wide", width, 2, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * 2 * 4, 0), true, {}};
     for (int y = 0; y < 2; ++y) {
       for (int x = 0; x < width; ++x) {
         std::uint8_t* texel = &wide.rgba[4 * (static_cast<std::size_t>(y) * width + x)];

@@ -98,7 +98,7 @@ Texture snowNormalMap() {
   auto heightAt = [&](int column, int row) {
     return height[static_cast<std::size_t>((row + size) % size) * size + static_cast<std::size_t>((column + size) % size)];
   };
-  Texture map{"snow normal", size, size, {}, false};
+  Texture map{"snow normal", size, size, {}, false, {}};
   map.rgba.resize(static_cast<std::size_t>(size) * size * 4);
   const double texelMetres = kSnowTileMetres / size;
   for (int row = 0; row < size; ++row) {
@@ -159,8 +159,8 @@ float grainAt(const PlankPoint& plank) {
 // the glint alpha, G the base roughness (glTF's metallicRoughness channels).
 std::pair<Texture, Texture> parquetTextures(float metres) {
   const int size = static_cast<int>(metres * kTexelsPerMetre);
-  Texture colour{"parquet colour", size, size, {}, true};
-  Texture roughness{"parquet roughness", size, size, {}, false};
+  Texture colour{"parquet colour", size, size, {}, true, {}};
+  Texture roughness{"parquet roughness", size, size, {}, false, {}};
   colour.rgba.resize(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * 4);
   roughness.rgba.resize(colour.rgba.size());
   for (int y = 0; y < size; ++y) {

@@ -1,6 +1,7 @@
 #include "scene/gltf_loader.h"
 
 #include "scene/area_lights.h"
+#include "scene/gltf_compression.h"
 
 #include <algorithm>
 #include <array>
@@ -1190,14 +1191,17 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
       if (version == 1) throw error("binary glTF 1.0 is not supported (glint reads glTF 2.0)");
       throw error("binary glTF container version ", version, " is not supported (glint reads glTF 2.0)");
     }
-    std::optional<std::string> rewritten;  // the file with its whole-number indices made integers
+    // The file with its whole-number indices made integers and its Draco primitives' indices set
+    // aside (gltf_compression.h).
+    std::optional<std::string> rewritten;
     if (std::optional<nlohmann::json> document = readGltfJson(bytes)) {
       checkGltfVersion(*document);
       const bool wholeNumbers = wholeNumberIndicesToIntegers(*document);
       checkGltfFieldTypes(*document);
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
-      if (wholeNumbers) rewritten = withJson(bytes, binary, *document);
+      const bool dracoIndices = setAsideDracoIndices(*document);
+      if (wholeNumbers || dracoIndices) rewritten = withJson(bytes, binary, *document);
     }
     if (rewritten) bytes = {reinterpret_cast<const std::byte*>(rewritten->data()), rewritten->size()};
     // tinygltf takes a 32-bit length.
@@ -1225,6 +1229,7 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
       const std::string reason = oneLine(errors.empty() ? warnings : errors);
       throw Error(reason.empty() ? "cannot parse the file" : reason);
     }
+    decodeCompressedMeshes(model);
     return GltfReader(model).read(name);
   } catch (const Error&) {
     throw;

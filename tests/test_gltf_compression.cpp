@@ -1,0 +1,184 @@
+// Compressed glTF meshes (scene/gltf_compression.h): a box written once with plain accessors and once
+// as a KHR_draco_mesh_compression stream (encoded here by Debian's libdraco, lossless: no
+// quantisation) loads as the same triangles, corner for corner; corrupt streams and mismatched
+// accessors are one line each.
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "glint/error.h"
+#include "scene/geometry.h"
+#include "scene/gltf_loader.h"
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using scene::Mesh;
+using scene::Scene;
+
+struct BoxData {
+  Mesh box = scene::makeBox("box", 0, glm::vec3(0.0f), glm::vec3(0.5f, 0.3f, 0.2f), 2.0f);
+  std::vector<float> positions, normals, uvs;
+  BoxData() {
+    for (const scene::Vertex& v : box.vertices) {
+      positions.insert(positions.end(), {v.position.x, v.position.y, v.position.z});
+      normals.insert(normals.end(), {v.normal.x, v.normal.y, v.normal.z});
+      uvs.insert(uvs.end(), {v.uv.x, v.uv.y});
+    }
+  }
+  std::size_t count() const { return box.vertices.size(); }
+};
+
+json accessor(int view, int componentType, std::size_t count, const char* type) {
+  json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
+  if (view >= 0) a["bufferView"] = view;
+  return a;
+}
+
+json document(const std::string& bin, std::size_t binBytes) {
+  return {{"asset", {{"version", "2.0"}}},
+          {"buffers", {{{"uri", bin}, {"byteLength", binBytes}}}},
+          {"nodes", {{{"mesh", 0}}}},
+          {"scenes", {{{"nodes", {0}}}}},
+          {"scene", 0}};
+}
+
+template <typename T>
+void append(std::vector<char>& bytes, const std::vector<T>& values) {
+  const char* first = reinterpret_cast<const char*>(values.data());
+  bytes.insert(bytes.end(), first, first + values.size() * sizeof(T));
+}
+
+fs::path writePlain(const fs::path& folder, const BoxData& data) {
+  std::vector<char> bin;
+  std::vector<json> views;
+  auto view = [&](const auto& values) {
+    const std::size_t offset = bin.size();
+    append(bin, values);
+    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}});
+  };
+  view(data.positions);
+  view(data.normals);
+  view(data.uvs);
+  view(data.box.indices);
+  std::ofstream(folder / "plain.bin", std::ios::binary).write(bin.data(), static_cast<std::streamsize>(bin.size()));
+  json d = document("plain.bin", bin.size());
+  d["bufferViews"] = views;
+  d["accessors"] = {accessor(0, 5126, data.count(), "VEC3"), accessor(1, 5126, data.count(), "VEC3"),
+                    accessor(2, 5126, data.count(), "VEC2"), accessor(3, 5125, data.box.indices.size(), "SCALAR")};
+  d["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}}}}}};
+  std::ofstream(folder / "plain.gltf") << d.dump();
+  return folder / "plain.gltf";
+}
+
+// The box as a Draco mesh in the file's point order, sequentially encoded (which keeps it), and the
+// attributes' unique ids.
+struct DracoBox {
+  std::vector<char> stream;
+  std::uint32_t position = 0, normal = 0, uv = 0;
+};
+
+DracoBox encodeDraco(const BoxData& data) {
+  draco::Mesh mesh;
+  mesh.set_num_points(static_cast<std::uint32_t>(data.count()));
+  auto add = [&](draco::GeometryAttribute::Type type, int components, const std::vector<float>& values) {
+    draco::GeometryAttribute attribute;
+    attribute.Init(type, nullptr, static_cast<std::uint8_t>(components), draco::DT_FLOAT32, false,
+                   static_cast<std::int64_t>(sizeof(float)) * components, 0);
+    const int id = mesh.AddAttribute(attribute, true, static_cast<std::uint32_t>(data.count()));
+    for (std::size_t i = 0; i < data.count(); ++i) {
+      mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)),
+                                            &values[i * static_cast<std::size_t>(components)]);
+    }
+    return mesh.attribute(id)->unique_id();
+  };
+  DracoBox result;
+  result.position = add(draco::GeometryAttribute::POSITION, 3, data.positions);
+  result.normal = add(draco::GeometryAttribute::NORMAL, 3, data.normals);
+  result.uv = add(draco::GeometryAttribute::TEX_COORD, 2, data.uvs);
+  for (std::size_t t = 0; t + 2 < data.box.indices.size(); t += 3) {
+    draco::Mesh::Face face;
+    for (int k = 0; k < 3; ++k) face[k] = draco::PointIndex(data.box.indices[t + static_cast<std::size_t>(k)]);
+    mesh.AddFace(face);
+  }
+  draco::Encoder encoder;
+  encoder.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+  draco::EncoderBuffer out;
+  const draco::Status status = encoder.EncodeMeshToBuffer(mesh, &out);
+  EXPECT_TRUE(status.ok()) << status.error_msg_string();
+  result.stream.assign(out.data(), out.data() + out.size());
+  return result;
+}
+
+fs::path writeDraco(const fs::path& folder, const BoxData& data, const DracoBox& draco, std::size_t streamBytes,
+                    std::uint32_t uvId) {
+  std::ofstream(folder / "draco.bin", std::ios::binary).write(draco.stream.data(), static_cast<std::streamsize>(streamBytes));
+  json d = document("draco.bin", streamBytes);
+  d["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  d["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  d["bufferViews"] = {{{"buffer", 0}, {"byteLength", streamBytes}}};
+  d["accessors"] = {accessor(-1, 5126, data.count(), "VEC3"), accessor(-1, 5126, data.count(), "VEC3"),
+                    accessor(-1, 5126, data.count(), "VEC2"), accessor(-1, 5125, data.box.indices.size(), "SCALAR")};
+  json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}};
+  primitive["extensions"]["KHR_draco_mesh_compression"] = {
+      {"bufferView", 0}, {"attributes", {{"POSITION", draco.position}, {"NORMAL", draco.normal}, {"TEXCOORD_0", uvId}}}};
+  d["meshes"] = {{{"primitives", {primitive}}}};
+  std::ofstream(folder / "draco.gltf") << d.dump();
+  return folder / "draco.gltf";
+}
+
+std::string loadError(const fs::path& path) {
+  try {
+    scene::loadGltf(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(GltfCompression, ADracoBoxLoadsAsItsUncompressedTwin) {
+  const fs::path folder = test::temporaryFolder("gltf_draco");
+  const BoxData data;
+  const DracoBox draco = encodeDraco(data);
+  ASSERT_GT(draco.stream.size(), 100u);
+  const Scene plain = scene::loadGltf(writePlain(folder, data));
+  const Scene decoded = scene::loadGltf(writeDraco(folder, data, draco, draco.stream.size(), draco.uv));
+  ASSERT_EQ(plain.meshes.size(), 1u);
+  ASSERT_EQ(decoded.meshes.size(), 1u);
+  const Mesh& a = plain.meshes[0];
+  const Mesh& b = decoded.meshes[0];
+  ASSERT_EQ(a.indices.size(), data.box.indices.size());
+  ASSERT_EQ(b.indices.size(), a.indices.size());
+  // Corner for corner: the same triangles, whatever order the vertices were stored in.
+  for (std::size_t i = 0; i < a.indices.size(); ++i) {
+    const scene::Vertex& va = a.vertices[a.indices[i]];
+    const scene::Vertex& vb = b.vertices[b.indices[i]];
+    ASSERT_EQ(va.position, vb.position) << "corner " << i;
+    ASSERT_EQ(va.normal, vb.normal) << "corner " << i;
+    ASSERT_EQ(va.uv, vb.uv) << "corner " << i;
+  }
+  EXPECT_TRUE(decoded.unreadFeatures.empty());
+
+  // A truncated stream, and an attribute id the stream does not have: one line each, naming the
+  // file, the mesh and the primitive.
+  const std::string truncated = loadError(writeDraco(folder, data, draco, draco.stream.size() / 2, draco.uv));
+  EXPECT_NE(truncated.find("draco.gltf: mesh 0 primitive 0: KHR_draco_mesh_compression: the stream does not decode"),
+            std::string::npos)
+      << truncated;
+  EXPECT_EQ(truncated.find('\n'), std::string::npos) << truncated;
+  const std::string missing = loadError(writeDraco(folder, data, draco, draco.stream.size(), 9));
+  EXPECT_NE(missing.find("KHR_draco_mesh_compression TEXCOORD_0: the stream has no attribute 9"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace glint
