@@ -940,6 +940,35 @@ TEST(TraceGl, DirectLightMatchesTheRealTimeRenderer) {
   }
 }
 
+// The rasteriser's image of `scene` seen by `camera`, one sample a pixel, without anti-aliasing.
+ImageRgbF rasterImage(const scene::Scene& scene, const scene::Camera& camera, int size, SpecularModel brdf) {
+  useGlContext();
+  gl::Renderer renderer(scene, defaultDictionary());
+  gl::FrameSettings frame;
+  frame.width = size;
+  frame.height = size;
+  frame.brdf = brdf;
+  frame.antiAliasing = gl::AntiAliasing::None;
+  frame.msaa = 1;
+  frame.camera = camera;
+  renderer.renderFrame(frame);
+  const std::vector<float> rgba = renderer.readRadiance();
+  return fromRgbaFloat(size, size, rgba.data(), true);
+}
+
+// The path tracer's direct light at pixel centres (no randomness left), as the rasteriser draws it.
+ImageRgbF directLightAtPixelCentres(const scene::Scene& scene, const scene::Camera& camera, int size, SpecularModel brdf) {
+  trace::TraceSettings settings;
+  settings.width = size;
+  settings.height = size;
+  settings.spp = 1;
+  settings.directOnly = true;
+  settings.pixelCentres = true;
+  settings.brdf = brdf;
+  settings.camera = camera;
+  return trace::PathTracer(scene, defaultDictionary(), settings).render();
+}
+
 // A quantized mesh's uv (KHR_mesh_quantization: integers, brought to [0, 1] by the base colour
 // texture's KHR_texture_transform, as in the quantized Duck): the glint layer lies in the
 // transformed uv, so the density glint estimates for it and both renderers' glints are the plain
@@ -968,30 +997,9 @@ TEST(TraceGl, AQuantizedMeshGlintsAsThePlainOne) {
     EXPECT_GT(expected, kMinLogDensity + 1.0f);
   }
   ASSERT_GT(layered, 0);
-  const int size = 128;
-  useGlContext();
-  auto raster = [&](const scene::Scene& scene) {
-    gl::Renderer renderer(scene, defaultDictionary());
-    gl::FrameSettings frame;
-    frame.width = size;
-    frame.height = size;
-    frame.antiAliasing = gl::AntiAliasing::None;
-    frame.msaa = 1;
-    frame.camera = scene.cameras.at("default");
-    renderer.renderFrame(frame);
-    const std::vector<float> rgba = renderer.readRadiance();
-    return fromRgbaFloat(size, size, rgba.data(), true);
-  };
-  auto traced = [&](const scene::Scene& scene) {
-    trace::TraceSettings settings;
-    settings.width = size;
-    settings.height = size;
-    settings.spp = 1;
-    settings.directOnly = true;
-    settings.pixelCentres = true;
-    settings.camera = scene.cameras.at("default");
-    return trace::PathTracer(scene, defaultDictionary(), settings).render();
-  };
+  const scene::Camera& camera = plain.cameras.at("default");
+  auto raster = [&](const scene::Scene& scene) { return rasterImage(scene, camera, 128, SpecularModel::Glint); };
+  auto traced = [&](const scene::Scene& scene) { return directLightAtPixelCentres(scene, camera, 128, SpecularModel::Glint); };
   const ImageError rasterError = compareImages(raster(quantized), raster(plain));
   const ImageError traceError = compareImages(traced(quantized), traced(plain));
   std::printf("quantized uv against plain: relMSE rasteriser %.2e, path tracer %.2e\n", rasterError.relmse, traceError.relmse);
@@ -1039,28 +1047,9 @@ TEST(TraceGl, SamplersWrapAndFilterAsTheFileSays) {
   camera.position = glm::vec3(0.0f, 0.0f, 2.6f);
   camera.target = glm::vec3(0.0f);
   base.cameras["default"] = camera;
-  const int size = 128;
-  useGlContext();
   auto render = [&](const scene::Scene& scene) {
-    gl::Renderer renderer(scene, defaultDictionary());
-    gl::FrameSettings frame;
-    frame.width = size;
-    frame.height = size;
-    frame.brdf = SpecularModel::CookTorrance;
-    frame.antiAliasing = gl::AntiAliasing::None;
-    frame.msaa = 1;
-    frame.camera = camera;
-    renderer.renderFrame(frame);
-    const std::vector<float> rgba = renderer.readRadiance();
-    trace::TraceSettings settings;
-    settings.width = size;
-    settings.height = size;
-    settings.spp = 1;
-    settings.directOnly = true;
-    settings.pixelCentres = true;
-    settings.brdf = SpecularModel::CookTorrance;
-    settings.camera = camera;
-    return std::pair{fromRgbaFloat(size, size, rgba.data(), true), trace::PathTracer(scene, defaultDictionary(), settings).render()};
+    return std::pair{rasterImage(scene, camera, 128, SpecularModel::CookTorrance),
+                     directLightAtPixelCentres(scene, camera, 128, SpecularModel::CookTorrance)};
   };
   const auto [defaultRaster, defaultTraced] = render(base);
   const ImageError defaultAgreement = compareImages(defaultTraced, defaultRaster);
