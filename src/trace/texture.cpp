@@ -76,8 +76,8 @@ int wrapTexel(int i, int size, scene::TextureSampler::Wrap mode) {
 
 glm::vec3 filteredTexel(const std::vector<glm::vec3>& texels, int width, int height, glm::vec2 uv,
                         const scene::TextureSampler& sampler, bool nearest) {
-  // Texel indices far beyond any texture wrap to the same texel as their float does; a uv whose
-  // texel index overflows an int reads the first texel, as bilinearRepeat does.
+  // A texel coordinate an int cannot hold (or not finite) reads the first texel, as bilinearRepeat
+  // reads for a uv that is not finite; the loader keeps uv within 1e6, far below.
   constexpr float kLargest = 1e9f;
   const float x = uv.x * static_cast<float>(width) - (nearest ? 0.0f : 0.5f);
   const float y = uv.y * static_cast<float>(height) - (nearest ? 0.0f : 0.5f);
