@@ -92,14 +92,18 @@ layout(binding = 6) uniform sampler2D uGlintRoughnessTexture;
 layout(binding = 7) uniform sampler2D uGlintLogDensityTexture;
 layout(binding = 8) uniform sampler2D uGlintRelativeAreaTexture;
 #if CLEARCOAT
+uniform vec2 uClearcoat;  // clearcoatFactor, clearcoatRoughnessFactor
+#if CLEARCOAT_TEXTURES
+// Only where the coat has textures (CLEARCOAT_TEXTURES = 1): OpenGL and WebGL2 promise 16 samplers
+// a stage, which units 0 to 15 already fill in the largest programs.
 layout(binding = 16) uniform sampler2D uClearcoatTexture;
 layout(binding = 17) uniform sampler2D uClearcoatRoughnessTexture;
 layout(binding = 18) uniform sampler2D uClearcoatNormalTexture;
-uniform vec2 uClearcoat;  // clearcoatFactor, clearcoatRoughnessFactor
 uniform float uClearcoatNormalScale;
 uniform mat3x2 uClearcoatUv;
 uniform mat3x2 uClearcoatRoughnessUv;
 uniform mat3x2 uClearcoatNormalUv;
+#endif
 #endif
 #if GLINT_LEAN
 // The normal map's slope moments (normal_map_filtering.h): (E[sx], E[sy], E[sx^2]), (E[sy^2], E[sx sy], 0).
@@ -200,10 +204,15 @@ GlintSurfaceSamples surfaceSamples() {
 #if CLEARCOAT
 GlintCoatSamples coatSamples() {
   GlintCoatSamples samples;
+#if CLEARCOAT_TEXTURES
   samples.factorRoughness = uClearcoat * vec2(texture(uClearcoatTexture, TEXTURE_UV(uClearcoatUv)).r,
                                               texture(uClearcoatRoughnessTexture, TEXTURE_UV(uClearcoatRoughnessUv)).g);
   samples.mappedNormal = texture(uClearcoatNormalTexture, TEXTURE_UV(uClearcoatNormalUv)).xyz * 2.0f - 1.0f;
   samples.mappedNormal.xy *= uClearcoatNormalScale;
+#else
+  samples.factorRoughness = uClearcoat;
+  samples.mappedNormal = vec3(0.0f, 0.0f, 1.0f);
+#endif
   return samples;
 }
 #endif

@@ -1,11 +1,12 @@
 // Compressed glTF meshes (scene/gltf_compression.h): a box written once with plain accessors and once
 // as a KHR_draco_mesh_compression stream (encoded here by Debian's libdraco, lossless: no
-// quantisation) loads as the same triangles, corner for corner; corrupt streams and mismatched
-// accessors are one line each.
+// quantisation) loads as the same triangles, corner for corner, its unsigned-byte colours normalised
+// as their accessor says; corrupt streams and mismatched accessors are one line each.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <draco/compression/encode.h>
@@ -29,11 +30,15 @@ using scene::Scene;
 struct BoxData {
   Mesh box = scene::makeBox("box", 0, glm::vec3(0.0f), glm::vec3(0.5f, 0.3f, 0.2f), 2.0f);
   std::vector<float> positions, normals, uvs;
+  std::vector<std::uint8_t> colours;  // COLOR_0 as normalised unsigned bytes, a colour a face
   BoxData() {
-    for (const scene::Vertex& v : box.vertices) {
+    for (std::size_t i = 0; i < box.vertices.size(); ++i) {
+      const scene::Vertex& v = box.vertices[i];
       positions.insert(positions.end(), {v.position.x, v.position.y, v.position.z});
       normals.insert(normals.end(), {v.normal.x, v.normal.y, v.normal.z});
       uvs.insert(uvs.end(), {v.uv.x, v.uv.y});
+      const auto face = static_cast<std::uint8_t>(i / 4);
+      colours.insert(colours.end(), {static_cast<std::uint8_t>(40 * face), static_cast<std::uint8_t>(255 - 30 * face), 128, 255});
     }
   }
   std::size_t count() const { return box.vertices.size(); }
@@ -71,12 +76,16 @@ fs::path writePlain(const fs::path& folder, const BoxData& data) {
   view(data.normals);
   view(data.uvs);
   view(data.box.indices);
+  view(data.colours);
   std::ofstream(folder / "plain.bin", std::ios::binary).write(bin.data(), static_cast<std::streamsize>(bin.size()));
   json d = document("plain.bin", bin.size());
   d["bufferViews"] = views;
   d["accessors"] = {accessor(0, 5126, data.count(), "VEC3"), accessor(1, 5126, data.count(), "VEC3"),
-                    accessor(2, 5126, data.count(), "VEC2"), accessor(3, 5125, data.box.indices.size(), "SCALAR")};
-  d["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}}}}}};
+                    accessor(2, 5126, data.count(), "VEC2"), accessor(3, 5125, data.box.indices.size(), "SCALAR"),
+                    accessor(4, 5121, data.count(), "VEC4")};
+  d["accessors"][4]["normalized"] = true;
+  d["meshes"] = {{{"primitives",
+                   {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"COLOR_0", 4}}}, {"indices", 3}}}}}};
   std::ofstream(folder / "plain.gltf") << d.dump();
   return folder / "plain.gltf";
 }
@@ -85,16 +94,18 @@ fs::path writePlain(const fs::path& folder, const BoxData& data) {
 // attributes' unique ids.
 struct DracoBox {
   std::vector<char> stream;
-  std::uint32_t position = 0, normal = 0, uv = 0;
+  std::uint32_t position = 0, normal = 0, uv = 0, colour = 0;
 };
 
 DracoBox encodeDraco(const BoxData& data) {
   draco::Mesh mesh;
   mesh.set_num_points(static_cast<std::uint32_t>(data.count()));
-  auto add = [&](draco::GeometryAttribute::Type type, int components, const std::vector<float>& values) {
+  auto add = [&]<typename T>(draco::GeometryAttribute::Type type, int components, const std::vector<T>& values) {
     draco::GeometryAttribute attribute;
-    attribute.Init(type, nullptr, static_cast<std::uint8_t>(components), draco::DT_FLOAT32, false,
-                   static_cast<std::int64_t>(sizeof(float)) * components, 0);
+    // Unsigned bytes as draco3d's encoder writes a colour: not flagged normalised in the stream.
+    attribute.Init(type, nullptr, static_cast<std::uint8_t>(components),
+                   std::is_same_v<T, float> ? draco::DT_FLOAT32 : draco::DT_UINT8, false,
+                   static_cast<std::int64_t>(sizeof(T)) * components, 0);
     const int id = mesh.AddAttribute(attribute, true, static_cast<std::uint32_t>(data.count()));
     for (std::size_t i = 0; i < data.count(); ++i) {
       mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)),
@@ -106,6 +117,7 @@ DracoBox encodeDraco(const BoxData& data) {
   result.position = add(draco::GeometryAttribute::POSITION, 3, data.positions);
   result.normal = add(draco::GeometryAttribute::NORMAL, 3, data.normals);
   result.uv = add(draco::GeometryAttribute::TEX_COORD, 2, data.uvs);
+  result.colour = add(draco::GeometryAttribute::COLOR, 4, data.colours);
   for (std::size_t t = 0; t + 2 < data.box.indices.size(); t += 3) {
     draco::Mesh::Face face;
     for (int k = 0; k < 3; ++k) face[k] = draco::PointIndex(data.box.indices[t + static_cast<std::size_t>(k)]);
@@ -128,10 +140,13 @@ fs::path writeDraco(const fs::path& folder, const BoxData& data, const DracoBox&
   d["extensionsRequired"] = {"KHR_draco_mesh_compression"};
   d["bufferViews"] = {{{"buffer", 0}, {"byteLength", streamBytes}}};
   d["accessors"] = {accessor(-1, 5126, data.count(), "VEC3"), accessor(-1, 5126, data.count(), "VEC3"),
-                    accessor(-1, 5126, data.count(), "VEC2"), accessor(-1, 5125, data.box.indices.size(), "SCALAR")};
-  json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}};
+                    accessor(-1, 5126, data.count(), "VEC2"), accessor(-1, 5125, data.box.indices.size(), "SCALAR"),
+                    accessor(-1, 5121, data.count(), "VEC4")};
+  d["accessors"][4]["normalized"] = true;
+  json primitive = {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"COLOR_0", 4}}}, {"indices", 3}};
   primitive["extensions"]["KHR_draco_mesh_compression"] = {
-      {"bufferView", 0}, {"attributes", {{"POSITION", draco.position}, {"NORMAL", draco.normal}, {"TEXCOORD_0", uvId}}}};
+      {"bufferView", 0},
+      {"attributes", {{"POSITION", draco.position}, {"NORMAL", draco.normal}, {"TEXCOORD_0", uvId}, {"COLOR_0", draco.colour}}}};
   d["meshes"] = {{{"primitives", {primitive}}}};
   std::ofstream(folder / "draco.gltf") << d.dump();
   return folder / "draco.gltf";
@@ -166,6 +181,7 @@ TEST(GltfCompression, ADracoBoxLoadsAsItsUncompressedTwin) {
     ASSERT_EQ(va.position, vb.position) << "corner " << i;
     ASSERT_EQ(va.normal, vb.normal) << "corner " << i;
     ASSERT_EQ(va.uv, vb.uv) << "corner " << i;
+    ASSERT_EQ(va.colour, vb.colour) << "corner " << i;  // normalised as the accessor says
   }
   EXPECT_TRUE(decoded.unreadFeatures.empty());
 

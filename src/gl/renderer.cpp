@@ -218,6 +218,7 @@ struct ForwardVariant {
   // glintLodCell), compiled in so that the paper's pays nothing for the others.
   int lodConstruction;
   bool clearcoat;  // CLEARCOAT: the material has a KHR_materials_clearcoat coat (kernel/clearcoat.h)
+  bool clearcoatTextures;  // CLEARCOAT_TEXTURES: and the coat has textures (their samplers only then)
   auto operator<=>(const ForwardVariant&) const = default;
 };
 
@@ -248,7 +249,8 @@ ShaderProgram forwardProgram(ForwardVariant variant) {
                         {"CENTROID_SHADING", variant.centroid ? "1" : "0"},
                         {"GLINT_FOOTPRINT_POLICY", std::to_string(variant.footprintWords)},
                         {"GLINT_LOD_CONSTRUCTION", std::to_string(variant.lodConstruction)},
-                        {"CLEARCOAT", variant.clearcoat ? "1" : "0"}});
+                        {"CLEARCOAT", variant.clearcoat ? "1" : "0"},
+                        {"CLEARCOAT_TEXTURES", variant.clearcoatTextures ? "1" : "0"}});
 }
 
 // The depth pre-pass's program; with alphaMask, it drops the fragments that alphaMode MASK cuts
@@ -300,7 +302,8 @@ ForwardVariant forwardVariant(const FrameSettings& settings, const scene::Materi
                         settings.msaa > 1,
                         model == SpecularModel::Glint ? footprintWords(settings.footprintPolicy) : 0,
                         model == SpecularModel::Glint ? material.glint.lod : kernel::GLINT_LOD_PAPER,
-                        material.clearcoat.enabled()};
+                        material.clearcoat.enabled(),
+                        material.clearcoat.enabled() && material.clearcoat.hasTextures()};
 }
 
 // The renderer's uniform buffer of every material's glint layer (kernel::GlintMaterial, std140),
@@ -829,13 +832,15 @@ void Renderer::bindMaterial(const ShaderProgram& p, int material, bool alphaMask
   if (m.clearcoat.enabled()) {
     const scene::Material::Clearcoat& coat = m.clearcoat;
     glUniform2f(p.uniform("uClearcoat"), coat.factor, coat.roughness);
-    glUniform1f(p.uniform("uClearcoatNormalScale"), coat.normalScale);
-    setUvTransform(p, "uClearcoatUv", coat.uv);
-    setUvTransform(p, "uClearcoatRoughnessUv", coat.roughnessUv);
-    setUvTransform(p, "uClearcoatNormalUv", coat.normalUv);
-    glBindTextureUnit(16, textureOr(coat.texture, g.white));
-    glBindTextureUnit(17, textureOr(coat.roughnessTexture, g.white));
-    glBindTextureUnit(18, textureOr(coat.normalTexture, g.flatNormal));
+    if (coat.hasTextures()) {
+      glUniform1f(p.uniform("uClearcoatNormalScale"), coat.normalScale);
+      setUvTransform(p, "uClearcoatUv", coat.uv);
+      setUvTransform(p, "uClearcoatRoughnessUv", coat.roughnessUv);
+      setUvTransform(p, "uClearcoatNormalUv", coat.normalUv);
+      glBindTextureUnit(16, textureOr(coat.texture, g.white));
+      glBindTextureUnit(17, textureOr(coat.roughnessTexture, g.white));
+      glBindTextureUnit(18, textureOr(coat.normalTexture, g.flatNormal));
+    }
   }
   if (normalMapMoments) {
     auto moments = g.leanMoments.find(material);

@@ -1,5 +1,6 @@
 #include "scene/gltf_compression.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -66,6 +67,18 @@ int addDecodedView(tinygltf::Model& model, const void* bytes, std::size_t size) 
   return static_cast<int>(model.bufferViews.size()) - 1;
 }
 
+// The largest value of a glTF integer component type, which a normalised one maps to 1; 0 for
+// the others.
+double normalisedMaximum(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return 127.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 255.0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return 32767.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 65535.0;
+    default: return 0.0;
+  }
+}
+
 // Accessor `index` pointed at decoded values (count elements of its type), after checking that
 // the stream decoded as many as the accessor declares (the extension requires it).
 tinygltf::Accessor& decodedAccessor(tinygltf::Model& model, int index, std::size_t count, const std::string& what) {
@@ -107,7 +120,11 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
   if (!mesh) throw Error(std::string(kDraco) + ": the stream decodes to no mesh");
   const std::size_t points = mesh->num_points();
 
-  // The triangles, as 32-bit indices.
+  // The triangles, as 32-bit indices: Draco's faces are a triangle list, and the primitive's only
+  // connectivity (the points may be reordered).
+  if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
+    throw Error(std::string(kDraco) + ": mode " + std::to_string(primitive.mode) + ", but Draco's faces are triangles (mode 4)");
+  }
   std::vector<std::uint32_t> indices;
   indices.reserve(static_cast<std::size_t>(mesh->num_faces()) * 3);
   for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f) {
@@ -116,7 +133,8 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
   if (extension.Has(kSetAsideIndices) && extension.Get(kSetAsideIndices).IsNumber()) {
     primitive.indices = extension.Get(kSetAsideIndices).GetNumberAsInt();
   }
-  if (primitive.indices >= 0) {
+  if (primitive.indices < 0) throw Error(std::string(kDraco) + ": the primitive has no indices accessor for its triangles");
+  {
     tinygltf::Accessor& accessor = decodedAccessor(model, primitive.indices, indices.size(), std::string(kDraco) + " indices");
     accessor.bufferView = addDecodedView(model, indices.data(), indices.size() * sizeof(std::uint32_t));
     accessor.byteOffset = 0;
@@ -125,8 +143,9 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
     accessor.sparse = {};
   }
 
-  // Each attribute the extension names, as floats (a normalised integer attribute converted to
-  // [0, 1] or [-1, 1], as its accessor says it is read).
+  // Each attribute the extension names, as floats: a normalised integer accessor's values mapped to
+  // [0, 1] or [-1, 1] as glTF reads them, whether or not the stream's attribute says it is
+  // normalised (encoders such as draco3d's leave that flag unset).
   if (!extension.Has("attributes") || !extension.Get("attributes").IsObject()) {
     throw Error(std::string(kDraco) + ": attributes are missing");
   }
@@ -151,6 +170,12 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
                                           &values[p.value() * static_cast<std::size_t>(components)])) {
         throw Error(what + ": its values do not convert to floats");
       }
+    }
+    const bool integers = attribute->data_type() != draco::DT_FLOAT32 && attribute->data_type() != draco::DT_FLOAT64;
+    if (accessor.normalized && integers && !attribute->normalized()) {
+      const double largest = normalisedMaximum(accessor.componentType);
+      if (largest <= 0.0) throw Error(what + ": normalized, but its accessor's component type is not an integer");
+      for (float& v : values) v = static_cast<float>(std::max(v / largest, -1.0));
     }
     accessor.bufferView = addDecodedView(model, values.data(), values.size() * sizeof(float));
     accessor.byteOffset = 0;

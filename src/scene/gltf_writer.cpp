@@ -216,10 +216,10 @@ class GltfWriter {
     out.wrapS = wrap(sampler.wrapS);
     out.wrapT = wrap(sampler.wrapT);
     out.magFilter = sampler.magnifyNearest ? 9728 : -1;
-    const int nearest = sampler.minifyNearest ? 0 : 1;
+    const int linear = sampler.minifyNearest ? 0 : 1;  // NEAREST and LINEAR are one apart, as are their mipmap forms
     switch (sampler.mipmap) {
-      case TextureSampler::Mipmap::None: out.minFilter = 9728 + nearest; break;
-      case TextureSampler::Mipmap::Nearest: out.minFilter = 9984 + nearest; break;
+      case TextureSampler::Mipmap::None: out.minFilter = 9728 + linear; break;
+      case TextureSampler::Mipmap::Nearest: out.minFilter = 9984 + linear; break;
       case TextureSampler::Mipmap::Linear: out.minFilter = sampler.minifyNearest ? 9986 : -1; break;
     }
     return out;

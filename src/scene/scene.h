@@ -33,7 +33,6 @@ struct Mesh {
   int material = 0;                    // index into Scene::materials
 };
 
-// 8-bit RGBA texels, rows from the top of the image (as glTF images are stored).
 // How a texture is sampled: glTF's sampler (samplers[], OpenGL's wrap modes and filters). The
 // defaults are glTF's repeat and, where a file names no filter, the trilinear filtering viewers use.
 struct TextureSampler {
@@ -47,6 +46,7 @@ struct TextureSampler {
   bool operator==(const TextureSampler&) const = default;
 };
 
+// 8-bit RGBA texels, rows from the top of the image (as glTF images are stored).
 struct Texture {
   std::string name;
   int width = 0;
@@ -127,6 +127,7 @@ struct Material {
     float normalScale = 1.0f;
     UvTransform uv, roughnessUv, normalUv;  // each texture's KHR_texture_transform
     bool enabled() const { return factor > 0.0f; }
+    bool hasTextures() const { return texture >= 0 || roughnessTexture >= 0 || normalTexture >= 0; }
   };
   Clearcoat clearcoat;
   GlintLayer glint;

@@ -22,6 +22,9 @@
 // glint's extension to extended lights, two regions a walk.
 #define GLINT_REGION_COUNT 2
 #include "glint_extended_lights.h"
+// glTF surfaces and the clear coat over them (glint's extension).
+#include "surface.h"
+#include "clearcoat.h"
 
 // Every entry point a renderer or a sampler calls, on inputs packed in three vec4s, summed so that
 // each result is used.
@@ -112,9 +115,25 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
                                             glintClippedLightCentre(area)) +
                    glintClippedLightProjectedSolidAngle(area) + smoothMoments.y;
 
+  // A clear coat over a surface's frame: its weight, frame and lobe, and the emission's share.
+  GlintSurfaceSamples coatInputs;
+  coatInputs.normal = vec3(0.0f, 0.0f, 1.0f);
+  coatInputs.tangent = vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  coatInputs.view = wo;
+  GlintSurface coated;
+  coated.t = vec3(1.0f, 0.0f, 0.0f);
+  coated.b = vec3(0.0f, 1.0f, 0.0f);
+  coated.n = vec3(0.0f, 0.0f, 1.0f);
+  coated.wo = wo;
+  GlintCoatSamples coatSamples;
+  coatSamples.factorRoughness = vec2(c.x, a.x);
+  coatSamples.mappedNormal = normalize(vec3(a.y, b.y, 1.0f));
+  GlintCoat coat = glintSurfaceCoat(coated, coatInputs, coatSamples);
+  float coatLight = glintCoatReflectedCosine(coat, wo, wi) + glintCoatedEmissionWeight(c.x, coatInputs.normal, wo);
+
   return vec4(f + ndf + filtered + p22.p22[0].w + p22.p22[1].x + (negligible ? 1.0f : 0.0f) + weights + extended,
               cookTorrance + smith + multiple + scaled.x + lod + light, fresnel.x + compensation.y + lean.z + display.x,
-              zirrKaplanyan);
+              zirrKaplanyan + coatLight);
 }
 
 #endif

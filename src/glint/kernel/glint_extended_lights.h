@@ -334,9 +334,10 @@ GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
 
 // GGX's slope density in its unscaled frame, 1 / (pi (1 + x^2 + y^2)^2), integrated as
 // glintGaussianRegionMoments integrates the Gaussian: its marginal along x, 1 / (2 a^3) with
-// a^2 = 1 + x^2, has the cumulative integrals (x / (2 a), -1 / (2 a)) from 0 (its CDF minus 1/2, its
-// first moment), and across a strip, at the strip's centroid, the density along y given x,
-// (2 a^3 / pi) / (a^2 + y^2)^2, has (atan(y / a) + a y / (a^2 + y^2)) / pi and -a^3 / (pi (a^2 + y^2)).
+// a^2 = 1 + x^2, has the antiderivatives x / (2 a) (its CDF minus 1/2) and -1 / (2 a) (of its first
+// moment), and across a strip, at the strip's centroid, the density along y given x,
+// (2 a^3 / pi) / (a^2 + y^2)^2, has (atan(y / a) + a y / (a^2 + y^2)) / pi and -a^3 / (pi (a^2 + y^2));
+// only their differences are used.
 // Closed forms, so that a lobe far narrower than the light's region (a smooth clear coat under a
 // softbox) keeps its mass, where the midpoint rule's few samples miss or overcount its peak.
 GLINT_FN vec2 glintGgxCumulativeMarginal(float x) {
