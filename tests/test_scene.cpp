@@ -706,7 +706,7 @@ TEST(GltfLoader, ReadsSamplers) {
   auto withSampler = [](const char* name, json sampler) {
     const fs::path path = writeLitTriangle(name, [&](json& d) {
       d["images"] = {{{"uri", "grey.png"}}};
-      d["samplers"] = {sampler};
+      d["samplers"] = json::array({sampler});  // not {sampler}: clang reads that as a copy of the object
       d["textures"] = {{{"source", 0}, {"sampler", 0}}};
       d["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
     });
