@@ -105,7 +105,7 @@ inline constexpr std::array<GlintFieldSpec, kGlintFieldCount> kGlintFields = {{
   {GlintField::Rho, "rho", "rho", GlintFieldKind::Number, true, 0.0, 0, -0.99, 0.99, false, {},
    "The correlation of the target distribution's slopes in the tangent frame: its highlights stretch along a diagonal of the frame.",
    &kernel::GlintMaterial::rho, &kernel::GlintParameters::rho},
-  {GlintField::LogDensity, "logDensity", "log_density", GlintFieldKind::Number, true, 27.0, 0, 0.0, 100.0, false, {},
+  {GlintField::LogDensity, "logDensity", "log_density", GlintFieldKind::Number, true, 17.0, 0, 0.0, 100.0, false, {},
    "The natural logarithm of the number of microfacets per unit area of glint uv (TEXCOORD_0 times uvScale). Replaced by "
    "logDensityTexture where that is given.",
    &kernel::GlintMaterial::logDensity, &kernel::GlintParameters::logDensity},

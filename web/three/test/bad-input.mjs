@@ -154,9 +154,9 @@ try {
   expectRefused('lod "fast"', layer({ lod: 'fast' }), 'EXT_materials_glint.lod must be "paper" or "consistent" or "tree", got "fast"');
   const defaults = glintLayerFromExtension({ randomColors: 1 }, 0.5, where);
   const defaultsOk = defaults.alpha.x === 0.25 && defaults.alpha.y === 0.25 && defaults.colouredCells === true &&
-                     defaults.logDensity === 27 && defaults.ndf === 'ggx' && defaults.masking === 'smith';
+                     defaults.logDensity === 17 && defaults.ndf === 'ggx' && defaults.masking === 'smith';
   if (!defaultsOk) ++failures;
-  console.log(`${defaultsOk ? 'ok' : 'FAILED'}: defaults (alpha = roughness^2, logDensity 27, GGX, Smith) and randomColors 1 as true`);
+  console.log(`${defaultsOk ? 'ok' : 'FAILED'}: defaults (alpha = roughness^2, logDensity 17, GGX, Smith) and randomColors 1 as true`);
 
   // The extension's textureInfo objects, checked as glint's own loader checks them, before
   // GLTFLoader sees them; GLTFLoader is given the index alone (no texCoord, no transform).
