@@ -356,8 +356,10 @@ vec3 extendedLightAt(int r, GlintSurface surface, out vec3 wi[4]) {
 // diffuse by its cosine-weighted solid angle, and its specular: its radiance times Fresnel and
 // glintRegionReflectanceAt, times the mass of the lobe over the half vectors it sends the view
 // into: the glint layer's P-SDF (glintRegionMassSet) in glint programs, the smooth lobe's
-// (glintSmoothRegionMoments) in the others.
-vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
+// (glintSmoothRegionMoments) in the others. environmentScale: what scales the prefiltered map's
+// specular, the glint layer's mass outside the environment's regions over the smooth lobe's
+// (glintResidualEnvironmentScale; 1 in the other programs).
+vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy, out vec3 environmentScale) {
   GlintRegionSet regions;
   vec3 centre[EXTENDED_LIGHT_COUNT];
   vec3 radiance[EXTENDED_LIGHT_COUNT];
@@ -374,21 +376,27 @@ vec3 extendedLight(GlintSurface surface, vec2 glintUv, vec2 duvdx, vec2 duvdy) {
     diffuse += radiance[r] * glintClippedLightProjectedSolidAngle(light);
   }
   float rho = GLINT_LAYER ? surface.glint.rho : 0.0f;
+  environmentScale = vec3(1.0f);
 #if SPECULAR_MODEL == SPECULAR_GLINT
   GlintRegionMassSet masses = glintRegionMassSet(glintDictionary(), surface.glint, glintUv, duvdx, duvdy, regions);
+#if REGION_COUNT > 0
+  if (GLINT_LAYER) {
+    environmentScale = glintResidualEnvironmentScale(masses, REGION_COUNT);
+  }
+#endif
 #endif
   vec3 specular = vec3(0.0f);
   for (int r = 0; r < EXTENDED_LIGHT_COUNT; ++r) {
 #if SPECULAR_MODEL == SPECULAR_GLINT
     vec3 mass = masses.mass[r].rgb;
-    vec2 meanSlope = masses.targetMeanSlope[r];
+    vec2 meanSlope = masses.meanSlope[r];
 #else
     vec3 moments = glintSmoothRegionMoments(GLINT_NDF, surface.smoothAlpha, rho, regions.region[r]);
     vec3 mass = vec3(moments.x);
     vec2 meanSlope = moments.yz;
 #endif
-    // The light's reflectance where the smooth lobe's mass over it lies (glintRegionReflectanceAt),
-    // the same for glint and Cook-Torrance programs.
+    // The light's reflectance where the lobe's mass over it lies (glintRegionReflectanceAt): the
+    // glint layer's own mean slope there in glint programs, the smooth lobe's in the others.
     vec3 wh = glintSlopeHalfVector(meanSlope);
     specular += radiance[r] * glintFresnelSchlick(surface.f0, max(dot(surface.wo, wh), 0.0f)) *
                 glintRegionReflectanceAt(GLINT_MASKING, GLINT_NDF, surface.smoothAlpha, rho, surface.wo, meanSlope, centre[r]) * mass;
@@ -505,17 +513,24 @@ void main() {
 #endif
   }
 
-  // Ambient light, without glints: irradiance by spherical harmonics, the pre-filtered environment
-  // in the reflected direction.
+#if EXTENDED_LIGHT_COUNT > 0
+  // The extended lights, both lobes.
+  vec3 environmentScale;
+  vec3 extended = extendedLight(surface, glintUv, duvdx, duvdy, environmentScale);
+#else
+  vec3 environmentScale = vec3(1.0f);
+#endif
+  // Ambient light: irradiance by spherical harmonics, the pre-filtered environment in the reflected
+  // direction, its specular scaled by the glints' share of the lobe outside the environment's
+  // regions (glintResidualEnvironmentScale).
   vec3 reflected = reflect(-samples.view, surface.n);
   vec3 ambient = surface.diffuse * irradiance(surface.n) +
-                 glintFresnelSchlick(surface.f0, surface.wo.z) *
+                 environmentScale * glintFresnelSchlick(surface.f0, surface.wo.z) *
                      environmentRadiance(reflected, max(surface.smoothAlpha.x, surface.smoothAlpha.y));
   radiance += ambient * surface.occlusion;
 #if EXTENDED_LIGHT_COUNT > 0
-  // The extended lights, both lobes; the map less the regions' means (prefiltered, and its
-  // irradiance) can dip below zero around them.
-  radiance = max(radiance + extendedLight(surface, glintUv, duvdx, duvdy), vec3(0.0f));
+  // The map less the regions' means (prefiltered, and its irradiance) can dip below zero around them.
+  radiance = max(radiance + extended, vec3(0.0f));
 #endif
 #if CLEARCOAT
   // The coat (kernel/clearcoat.h): the base dimmed by the share it reflects, its own lobe under the

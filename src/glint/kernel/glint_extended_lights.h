@@ -60,8 +60,11 @@ struct GlintRegionSet {
 
 struct GlintRegionMassSet {
   vec4 mass[GLINT_REGION_COUNT];        // the P-SDF's mass over each region; .rgb weighted by the cells' colours
+  vec2 meanSlope[GLINT_REGION_COUNT];   // where the P-SDF's mass over it lies on average (glintRegionReflectanceAt)
+  vec2 moment[GLINT_REGION_COUNT];      // the P-SDF's first moment over it, in the unscaled frame (glintUnscaledSlope)
   float targetMass[GLINT_REGION_COUNT];  // the smooth target's mass over the same region, by the same strips
-  vec2 targetMeanSlope[GLINT_REGION_COUNT];  // where that mass lies on average (glintRegionReflectanceAt)
+  vec2 targetMeanSlope[GLINT_REGION_COUNT];  // where that mass lies on average
+  vec4 totalMass;  // the P-SDF's mass over every slope, as .mass (1 for the smooth target)
 };
 
 // A light's corners seen from the shading point: unit directions in the shading frame, clipped to
@@ -265,35 +268,42 @@ GLINT_FN float glintStripCentroid(vec2 strip, vec2 startIntegrals, vec2 endInteg
   return clamp(mean, strip.x, strip.y);
 }
 
-// A dictionary cell's mass over a region in its own frame (glintCellRegion): per strip, the x
-// marginal's mass over the strip times the y marginal's over the region's y extent at the strip's
-// centroid (the centroid rule: exact where the y marginal's mass varies linearly across the strip).
-// A strip whose x marginal holds at most its share of `negligible` is counted as 0 without reading
-// the y marginal (the y marginal's mass is at most 1), so that a cell loses at most `negligible`.
-GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local, float negligible) {
+// A dictionary cell's mass over a region in its own frame (glintCellRegion), and its first moments
+// there: (mass, integral of x, integral of y). Per strip, the x marginal's mass (and first moment)
+// over the strip times the y marginal's mass (and first moment) over the region's y extent at the
+// strip's centroid (the centroid rule: exact where the y marginal's mass varies linearly across the
+// strip). A strip whose x marginal holds at most its share of `negligible` is counted as 0 without
+// reading the y marginal (the y marginal's mass is at most 1), so that a cell loses at most
+// `negligible`.
+GLINT_FN vec3 glintCellRegionMoments(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local, float negligible) {
   float fourSigma = glintDictionaryDomain(dict);
   vec4 bounds = glintRegionBounds(local);
   vec2 xRange = clamp(vec2(bounds.x, bounds.y), glintSplat2(-fourSigma), glintSplat2(fourSigma));
   if (!(xRange.x < xRange.y && bounds.z < fourSigma && bounds.w > -fourSigma)) {
-    return 0.0f;  // the region misses the cell's support (a NaN vertex misses it too)
+    return glintSplat3(0.0f);  // the region misses the cell's support (a NaN vertex misses it too)
   }
   vec2 start = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, xRange.x);
   float stripNegligible = negligible / float(GLINT_REGION_STRIPS);
-  float mass = 0.0f;
+  vec3 moments = glintSplat3(0.0f);
   for (int k = 0; k < GLINT_REGION_STRIPS; ++k) {
     vec2 strip = glintRegionStrip(xRange, k);
     vec2 end = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.x, cell.complement.x, strip.y);
     if (end.x - start.x > stripNegligible) {
       vec2 across = glintRegionYAt(local, glintStripCentroid(strip, start, end));
       if (across.y > across.x) {
-        float yMass = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.y).x -
-                      glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.x).x;
-        mass += (end.x - start.x) * yMass;
+        vec2 y = glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.y) -
+                 glintCumulativeBlockMarginal(dict, cell.dictionaryLevel, cell.distributions.y, cell.complement.y, across.x);
+        vec2 x = end - start;
+        moments += vec3(x.x * y.x, x.y * y.x, x.x * y.y);
       }
     }
     start = end;
   }
-  return mass;
+  return moments;
+}
+
+GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local, float negligible) {
+  return glintCellRegionMoments(dict, cell, local, negligible).x;
 }
 
 // The standard normal's cumulative integrals at x / sigma, scaled to a normal of std sigma: (CDF
@@ -430,6 +440,7 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
   GlintCellGrid grid = glintCellGrid(footprint, uv, dict.numLevels, level);
   float dictionarySum[GLINT_REGION_COUNT];
   vec2 chromaSum[GLINT_REGION_COUNT];
+  vec2 momentSum[GLINT_REGION_COUNT];  // the dictionary cells' first moments, in the unscaled frame
   // A region that misses the disc holding every rotated support reads no dictionary cell.
   float reach = glintDictionaryDomain(dict) * 1.41421356f * glintTargetWidestCell(params.ndf);
   bool inReach[GLINT_REGION_COUNT];
@@ -437,6 +448,7 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     dictionarySum[r] = 0.0f;
     chromaSum[r] = glintSplat2(0.0f);
+    momentSum[r] = glintSplat2(0.0f);
     vec4 bounds = glintRegionBounds(unscaled.region[r]);
     inReach[r] = bounds.x < reach && bounds.y > -reach && bounds.z < reach && bounds.w > -reach;
     anyInReach = anyInReach || inReach[r];
@@ -445,6 +457,9 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
   float weightSum = 0.0f;
   float smoothWeightSum = 0.0f;
   float tailWeightSum = 0.0f;
+  // The dictionary cells' own weights: each cell's distribution holds a mass of 1 over all slopes.
+  float dictionaryWeightSum = 0.0f;
+  vec2 dictionaryChromaSum = glintSplat2(0.0f);
   GlintCellWalk walk = glintWalkStart(grid);
   while (glintWalkGoing(grid, walk)) {
     float weight = glintWalkWeight(grid, walk);
@@ -456,14 +471,21 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
       float covered = weight * cell.coverage;
       smoothWeightSum += cell.smoothLimit ? covered : 0.0f;
       tailWeightSum += cell.ggxTail ? covered : 0.0f;
+      vec2 chroma = params.colouredCells && cell.readsDictionary ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
+      if (cell.readsDictionary) {
+        dictionaryWeightSum += covered;
+        dictionaryChromaSum += covered * chroma;
+      }
       if (cell.readsDictionary && anyInReach) {
         vec2 rotation = glintCellRotation(cell.hash);
-        vec2 chroma = params.colouredCells ? glintCellChroma(cell.hash) : glintSplat2(0.0f);
         for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
           if (inReach[r]) {
             float negligible = GLINT_CELL_NEGLIGIBLE_FRACTION * targets.targetMass[r];
-            float weighted = covered * glintCellRegionMass(dict, cell, glintCellRegion(rotation, cell.unscale, unscaled.region[r]), negligible);
+            vec3 moments = glintCellRegionMoments(dict, cell, glintCellRegion(rotation, cell.unscale, unscaled.region[r]), negligible);
+            float weighted = covered * moments.x;
             dictionarySum[r] += weighted;
+            // The cell's moment turned back by its rotation and unscaled by its GGX unscale.
+            momentSum[r] += (covered / cell.unscale) * glintDictionarySlope(vec2(rotation.x, -rotation.y), vec2(moments.y, moments.z));
             if (params.colouredCells) {
               chromaSum[r] += weighted * chroma;
             }
@@ -473,19 +495,25 @@ GLINT_FN GlintRegionMassSet glintLevelRegionMass(GlintDictionaryView dict, Glint
     }
   }
   GlintRegionMassSet masses;
+  masses.totalMass = weightSum > 0.0f ? glintLevelAverage(params, dictionaryWeightSum, dictionaryChromaSum, 1.0f, smoothWeightSum,
+                                                          tailWeightSum, weightSum)
+                                      : glintSplat4(0.0f);
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     masses.mass[r] = glintSplat4(0.0f);
+    masses.moment[r] = glintSplat2(0.0f);
+    masses.meanSlope[r] = glintSplat2(0.0f);
     masses.targetMass[r] = 0.0f;
     masses.targetMeanSlope[r] = glintSplat2(0.0f);
     if (weightSum > 0.0f) {
-      float smoothPart = smoothWeightSum > 0.0f
-                             ? smoothWeightSum * glintGaussianRegionMass(unscaled.region[r], 0.70710678f * dict.alpha)
-                             : 0.0f;
-      float tailPart = tailWeightSum > 0.0f ? tailWeightSum * glintMidpointRegionMass(params.ndf, params.alpha, params.rho,
-                                                                                       dict.alpha, unscaled.region[r], true)
-                                            : 0.0f;
+      vec3 smoothPart = smoothWeightSum > 0.0f
+                            ? smoothWeightSum * glintGaussianRegionMoments(unscaled.region[r], 0.70710678f * dict.alpha)
+                            : glintSplat3(0.0f);
+      vec3 tailPart = tailWeightSum > 0.0f ? tailWeightSum * glintMidpointRegionMoments(params.ndf, params.alpha, params.rho,
+                                                                                         dict.alpha, unscaled.region[r], true)
+                                           : glintSplat3(0.0f);
       // The dictionary cells' masses need no Jacobian (EL-3).
-      masses.mass[r] = glintLevelAverage(params, dictionarySum[r], chromaSum[r], 1.0f, smoothPart, tailPart, weightSum);
+      masses.mass[r] = glintLevelAverage(params, dictionarySum[r], chromaSum[r], 1.0f, smoothPart.x, tailPart.x, weightSum);
+      masses.moment[r] = (momentSum[r] + vec2(smoothPart.y + tailPart.y, smoothPart.z + tailPart.z)) / weightSum;
     }
   }
   return masses;
@@ -499,11 +527,14 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
   GlintRegionSet unscaled;
   GlintRegionMassSet targets;
   bool walked[GLINT_REGION_COUNT];
+  targets.totalMass = glintSplat4(1.0f);
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     vec3 target = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[r]);
     targets.targetMass[r] = target.x;
     targets.targetMeanSlope[r] = vec2(target.y, target.z);
     targets.mass[r] = glintSplat4(target.x);
+    targets.meanSlope[r] = targets.targetMeanSlope[r];
+    targets.moment[r] = glintSplat2(0.0f);
     // A region holding less than GLINT_REGION_NEGLIGIBLE_MASS of the smooth lobe is not walked: the
     // lobe's far tail, whose flakes reflect a ten-thousandth of the light; its mass is the target's.
     walked[r] = target.x >= GLINT_REGION_NEGLIGIBLE_MASS;
@@ -524,24 +555,56 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
   float blend = glintLodBlend(footprint);
   GlintLevelDraw draw = glintLevelDraw(dict, params, footprint.logDensity, level);
   masses = glintLevelRegionMass(dict, params, footprint, wrapped, level, draw, unscaled, targets);
+  masses.totalMass = (1.0f - blend) * masses.totalMass;
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     masses.mass[r] = (1.0f - blend) * masses.mass[r];
+    masses.moment[r] = (1.0f - blend) * masses.moment[r];
   }
   if (blend > 0.0f) {
     GlintLevelDraw next = glintNextLevelDraw(dict, params, footprint.logDensity, level, draw);
     GlintRegionMassSet coarser = glintLevelRegionMass(dict, params, footprint, wrapped, level + 1, next, unscaled, targets);
+    masses.totalMass += blend * coarser.totalMass;
     for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
       masses.mass[r] += blend * coarser.mass[r];
+      masses.moment[r] += blend * coarser.moment[r];
     }
   }
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     masses.targetMass[r] = targets.targetMass[r];
     masses.targetMeanSlope[r] = targets.targetMeanSlope[r];
+    // The mean slope of the P-SDF's mass, back in the target's slopes; the target's where the
+    // region holds next to none of it (its moment is then mostly rounding).
+    bool holdsMass = walked[r] && masses.mass[r].w > 1e-3f * targets.targetMass[r];
+    masses.meanSlope[r] = holdsMass ? glintScaledSlope(dict, params, masses.moment[r] / masses.mass[r].w) : targets.targetMeanSlope[r];
     if (!walked[r]) {
       masses.mass[r] = targets.mass[r];
     }
   }
   return masses;
+}
+
+// What scales the prefiltered environment's specular in a glint program whose first `regions`
+// regions are the environment's (docs/method.md, "Extended lights", Eq. EL-5): the P-SDF's mass
+// outside them (.rgb, tinted by the cells' colours) over the smooth target's. The regions take out
+// of the map their mean radiance; the map left over (the residual, prefiltered as the smooth lobe)
+// lights the half vectors outside them. A flake that moves mass out of a region moves it there,
+// where the residual lights it: without this factor that mass would be lost and a region's surplus
+// never paid for, which under light from everywhere alike (an overcast sky) is most of what the
+// flakes change. Where the regions hold nearly all of the lobe, the residual is only their texels'
+// spread about their means: the P-SDF's whole mass scales it.
+GLINT_FN vec3 glintResidualEnvironmentScale(GlintRegionMassSet masses, int regions) {
+  vec4 outside = masses.totalMass;
+  float targetOutside = 1.0f;
+  for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
+    if (r < regions) {
+      outside -= masses.mass[r];
+      targetOutside -= masses.targetMass[r];
+    }
+  }
+  if (!(targetOutside > 0.01f)) {
+    return vec3(masses.totalMass.x, masses.totalMass.y, masses.totalMass.z);
+  }
+  return max(vec3(outside.x, outside.y, outside.z) / targetOutside, glintSplat3(0.0f));
 }
 
 // The reflected radiance per unit radiance and per unit of slope-space mass for a light whose

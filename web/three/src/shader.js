@@ -200,7 +200,7 @@ vec3 glintDirectSpecular(vec3 l, vec3 v, vec3 n, vec3 f0, float f90) {
 // (src/environment.js, GLINT_ENV_REGION_COUNT): the kernel's second part (glint_extended_lights.h)
 // and the hook's third function over the cumulative tables (src/dictionary.js); then each light's
 // specular lobe (docs/method.md section 8): the P-SDF's mass over the half vectors that send the
-// view into the light, times the reflectance at the smooth lobe's mean slope there. A RectAreaLight
+// view into the light, times the reflectance at that mass's mean slope. A RectAreaLight
 // takes one walk of the footprint's cells, in place of three's LTC lobe; the regions share one.
 const EXTENDED_LIGHTS_HOST = /* glsl */ `
 uniform highp sampler2D glintCumulativeTexels;  // RGBA32F (C[k], M[k], p[k], p[k+1]) (src/dictionary.js)
@@ -219,11 +219,15 @@ GlintClippedLight glintShadingFrameLight(vec3 d0, vec3 d1, vec3 d2, vec3 d3, vec
 // The specular lobe of the lights of a region set per unit radiance each (light r's clipped
 // centre, for a reflection below the horizon, in centre[r]), with three's Schlick Fresnel at the half
 // vector of the lobe's mean slope, as glint's rasteriser (shaders/forward.frag, extendedLight).
+// environmentScale: what scales the prefiltered map's specular when the first
+// GLINT_ENV_REGION_COUNT regions are an environment's (glintResidualEnvironmentScale).
 void glintRegionSpecular(GlintRegionSet regions, vec3 centre[GLINT_REGION_COUNT], vec3 wo, vec3 f0, float f90,
-                         out vec3 specular[GLINT_REGION_COUNT]) {
+                         out vec3 specular[GLINT_REGION_COUNT], out vec3 environmentScale) {
   GlintParameters params = glintParameters;
+  environmentScale = vec3(1.0);
 #if !GLINT_LAYER_SMOOTH
   GlintRegionMassSet masses = glintRegionMassSet(glintDictionaryView(), params, glintUv, glintDuvdx, glintDuvdy, regions);
+  environmentScale = glintResidualEnvironmentScale(masses, GLINT_ENV_REGION_COUNT);
 #endif
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
 #if GLINT_LAYER_SMOOTH
@@ -232,7 +236,7 @@ void glintRegionSpecular(GlintRegionSet regions, vec3 centre[GLINT_REGION_COUNT]
     vec2 meanSlope = moments.yz;
 #else
     vec3 mass = masses.mass[r].rgb;
-    vec2 meanSlope = masses.targetMeanSlope[r];
+    vec2 meanSlope = masses.meanSlope[r];
 #endif
     vec3 fresnel = F_Schlick(f0, f90, max(dot(wo, glintSlopeHalfVector(meanSlope)), 0.0));
     specular[r] = fresnel * mass * glintRegionReflectanceAt(GLINT_LAYER_MASKING, GLINT_LAYER_NDF, params.alpha, params.rho, wo,
@@ -250,8 +254,9 @@ uniform vec3 glintRegionRadiance[GLINT_ENV_REGION_COUNT];
 
 // The environment's regions: both lobes, the diffuse by each region's projected solid angle. They
 // are part of the environment, so they go to the indirect terms, which three's ambient occlusion
-// (aoMap) dims, as glint's rasteriser dims them by the occlusion texture.
-void glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseColour, inout ReflectedLight reflectedLight) {
+// (aoMap) dims, as glint's rasteriser dims them by the occlusion texture. Returns what scales the
+// prefiltered residual map's specular (glintResidualEnvironmentScale).
+vec3 glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseColour, inout ReflectedLight reflectedLight) {
   vec3 wo = glintViewVector(v, n);
   GlintRegionSet regions;
   vec3 centre[GLINT_REGION_COUNT];
@@ -267,11 +272,13 @@ void glintEnvironmentRegions(vec3 n, vec3 v, vec3 f0, float f90, vec3 diffuseCol
     diffuse += glintRegionRadiance[r] * glintClippedLightProjectedSolidAngle(light);
   }
   vec3 specular[GLINT_REGION_COUNT];
-  glintRegionSpecular(regions, centre, wo, f0, f90, specular);
+  vec3 environmentScale;
+  glintRegionSpecular(regions, centre, wo, f0, f90, specular, environmentScale);
   for (int r = 0; r < GLINT_REGION_COUNT; ++r) {
     reflectedLight.indirectSpecular += glintRegionRadiance[r] * specular[r];
   }
   reflectedLight.indirectDiffuse += diffuse * BRDF_Lambert(diffuseColour);
+  return environmentScale;
 }
 #endif
 
@@ -297,7 +304,8 @@ vec3 glintAreaLightSpecular(vec3 corners[4], vec3 position, vec3 v, vec3 n, vec3
     centre[r] = vec3(0.0, 0.0, 1.0);
   }
   vec3 specular[GLINT_REGION_COUNT];
-  glintRegionSpecular(regions, centre, wo, f0, f90, specular);
+  vec3 unused;  // an area light's walk leaves the environment's scale to the regions' own walk
+  glintRegionSpecular(regions, centre, wo, f0, f90, specular, unused);
   return specular[0];
 }
 `;
@@ -354,8 +362,9 @@ export function addGlintLayerToShader(shader, variant) {
   fragment = replaceOnce(fragment, '#include <normal_fragment_maps>', '#include <normal_fragment_maps>\n  glintShadingFrame(normal);', 'meshphysical fragment shader');
   if (regions > 0) {
     fragment = replaceOnce(fragment, '#include <lights_fragment_end>',
-                           'glintEnvironmentRegions(geometryNormal, geometryViewDir, material.specularColorBlended, material.specularF90, ' +
-                           'material.diffuseContribution, reflectedLight);\n#include <lights_fragment_end>', 'meshphysical fragment shader');
+                           'radiance *= glintEnvironmentRegions(geometryNormal, geometryViewDir, material.specularColorBlended, ' +
+                           'material.specularF90, material.diffuseContribution, reflectedLight);\n#include <lights_fragment_end>',
+                           'meshphysical fragment shader');
   }
   shader.fragmentShader = fragment;
 }
