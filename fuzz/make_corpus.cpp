@@ -13,6 +13,7 @@
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
+#include <meshoptimizer.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
 
@@ -258,6 +259,37 @@ std::string dracoTriangleGlb() {
              stream);
 }
 
+// A triangle whose positions and indices are EXT_meshopt_compression streams (the vertex codec and
+// the triangle index codec) in a GLB's BIN chunk, their uncompressed placements in a fallback
+// buffer without data: the fuzzed bytes reach both of meshoptimizer's decoders.
+std::string meshoptTriangleGlb() {
+  const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t triangle[3] = {0, 1, 2};
+  std::vector<unsigned char> vertices(meshopt_encodeVertexBufferBound(3, 12));
+  vertices.resize(meshopt_encodeVertexBuffer(vertices.data(), vertices.size(), p, 3, 12));
+  std::vector<unsigned char> indices(meshopt_encodeIndexBufferBound(3, 3));
+  indices.resize(meshopt_encodeIndexBuffer(indices.data(), indices.size(), triangle, 3));
+  if (vertices.empty() || indices.empty()) throw std::runtime_error("meshopt: the triangle does not encode");
+  std::string bin(vertices.begin(), vertices.end());
+  while (bin.size() % 4) bin += '\0';
+  const std::size_t indexOffset = bin.size();
+  bin.append(indices.begin(), indices.end());
+  return glb(R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_meshopt_compression"],)"
+             R"("extensionsRequired":["EXT_meshopt_compression"],"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+             R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+             R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],)"
+             R"("bufferViews":[{"buffer":1,"byteLength":36,"byteStride":12,"extensions":{"EXT_meshopt_compression":)"
+             R"({"buffer":0,"byteLength":)" + std::to_string(vertices.size()) +
+                 R"(,"byteStride":12,"count":3,"mode":"ATTRIBUTES"}}},)"
+                 R"({"buffer":1,"byteOffset":36,"byteLength":6,"extensions":{"EXT_meshopt_compression":)"
+                 R"({"buffer":0,"byteOffset":)" + std::to_string(indexOffset) + R"(,"byteLength":)" +
+                 std::to_string(indices.size()) + R"(,"byteStride":2,"count":3,"mode":"TRIANGLES"}}}],)"
+                 R"("buffers":[{"byteLength":)" + std::to_string(bin.size()) +
+                 R"(},{"byteLength":44,"extensions":{"EXT_meshopt_compression":{"fallback":true}}}]})",
+             bin);
+}
+
 // A textured triangle in JSON with what the export does not write: a fan, a sparse accessor, a
 // node hierarchy with a matrix, TRS and a camera on a child.
 std::string handWrittenGltf() {
@@ -348,6 +380,7 @@ int main(int argc, char** argv) {
     write("corpus/gltf/jpeg-texture.glb", glb(jpegTextureJson(jpeg.size()), trianglePositions() + jpeg));
   }
   write("corpus/gltf/draco-triangle.glb", dracoTriangleGlb());
+  write("corpus/gltf/meshopt-triangle.glb", meshoptTriangleGlb());
 
   // --- eval: lines of `glint eval` --------------------------------------------------------------
   write("corpus/eval_line/default.json", "{}");

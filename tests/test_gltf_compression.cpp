@@ -1,10 +1,13 @@
 // Compressed glTF meshes (scene/gltf_compression.h): a box written once with plain accessors and once
 // as a KHR_draco_mesh_compression stream (encoded here by Debian's libdraco, lossless: no
 // quantisation) loads as the same triangles, corner for corner, its unsigned-byte colours normalised
-// as their accessor says; corrupt streams and mismatched accessors are one line each.
+// as their accessor says; the same box as EXT_meshopt_compression streams (encoded here by Debian's
+// libmeshoptimizer, its normals through the octahedral filter) loads as the file that holds the
+// same views uncompressed; corrupt streams and mismatched accessors are one line each.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -12,6 +15,7 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include "glint/error.h"
@@ -194,6 +198,164 @@ TEST(GltfCompression, ADracoBoxLoadsAsItsUncompressedTwin) {
   EXPECT_EQ(truncated.find('\n'), std::string::npos) << truncated;
   const std::string missing = loadError(writeDraco(folder, data, draco, draco.stream.size(), 9));
   EXPECT_NE(missing.find("KHR_draco_mesh_compression TEXCOORD_0: the stream has no attribute 9"), std::string::npos) << missing;
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// The box's data as a meshopt-compressed file would hold it uncompressed: positions and uvs as
+// floats, normals octahedrally encoded (EXT_meshopt_compression's OCTAHEDRAL filter: signed bytes,
+// read through KHR_mesh_quantization as a normalised BYTE VEC3 of stride 4), 32-bit indices and
+// unsigned-byte colours. Each view: its bytes, element size and count, and how it is compressed.
+struct MeshoptView {
+  std::vector<unsigned char> bytes;  // uncompressed: what the view holds
+  std::vector<unsigned char> compressed;
+  std::size_t stride = 0, count = 0;
+  const char* mode = "ATTRIBUTES";
+  const char* filter = "NONE";
+};
+
+std::vector<MeshoptView> meshoptBoxViews(const BoxData& data) {
+  auto bytesOf = [](const auto& values) {
+    const auto* first = reinterpret_cast<const unsigned char*>(values.data());
+    return std::vector<unsigned char>(first, first + values.size() * sizeof(values[0]));
+  };
+  auto attribute = [](std::vector<unsigned char> bytes, std::size_t stride) {
+    MeshoptView view;
+    view.bytes = std::move(bytes);
+    view.stride = stride;
+    view.count = view.bytes.size() / stride;
+    view.compressed.resize(meshopt_encodeVertexBufferBound(view.count, stride));
+    view.compressed.resize(meshopt_encodeVertexBuffer(view.compressed.data(), view.compressed.size(), view.bytes.data(),
+                                                      view.count, stride));
+    return view;
+  };
+  std::vector<MeshoptView> views;
+  views.push_back(attribute(bytesOf(data.positions), 12));
+  // The normals through the filter: encoded to 8-bit octahedral, then compressed; what a loader
+  // must read is the filter's decoding of those bytes.
+  std::vector<float> normals4;
+  for (std::size_t i = 0; i < data.count(); ++i) {
+    normals4.insert(normals4.end(), {data.normals[3 * i], data.normals[3 * i + 1], data.normals[3 * i + 2], 1.0f});
+  }
+  std::vector<unsigned char> octahedral(data.count() * 4);
+  meshopt_encodeFilterOct(octahedral.data(), data.count(), 4, 8, normals4.data());
+  MeshoptView normals = attribute(octahedral, 4);
+  meshopt_decodeFilterOct(normals.bytes.data(), normals.count, 4);
+  normals.filter = "OCTAHEDRAL";
+  views.push_back(std::move(normals));
+  views.push_back(attribute(bytesOf(data.uvs), 8));
+  MeshoptView indices;
+  indices.bytes = bytesOf(data.box.indices);
+  indices.stride = 4;
+  indices.count = data.box.indices.size();
+  indices.mode = "TRIANGLES";
+  indices.compressed.resize(meshopt_encodeIndexBufferBound(indices.count, data.count()));
+  indices.compressed.resize(
+      meshopt_encodeIndexBuffer(indices.compressed.data(), indices.compressed.size(), data.box.indices.data(), indices.count));
+  views.push_back(std::move(indices));
+  views.push_back(attribute(bytesOf(data.colours), 4));
+  return views;
+}
+
+// The box written plain (every view in one buffer) or meshopt-compressed (the compressed streams in
+// buffer 0, the views' placements in a fallback buffer without data). `edit` changes the file's
+// JSON before it is written.
+fs::path writeMeshopt(const fs::path& folder, const std::string& stem, const BoxData& data, const std::vector<MeshoptView>& views,
+                      bool compress, const std::function<void(json&)>& edit = {}) {
+  std::vector<char> bin, fallback;
+  json bufferViews = json::array();
+  for (const MeshoptView& view : views) {
+    json v = {{"buffer", compress ? 1 : 0}, {"byteOffset", compress ? fallback.size() : bin.size()}, {"byteLength", view.bytes.size()}};
+    if (std::string(view.mode) == "ATTRIBUTES") v["byteStride"] = view.stride;
+    if (compress) {
+      v["extensions"]["EXT_meshopt_compression"] = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", view.compressed.size()},
+                                                    {"byteStride", view.stride}, {"count", view.count}, {"mode", view.mode},
+                                                    {"filter", view.filter}};
+      append(bin, view.compressed);
+      fallback.resize(fallback.size() + view.bytes.size());
+    } else {
+      append(bin, view.bytes);
+    }
+    bufferViews.push_back(v);
+    while (bin.size() % 4 != 0) bin.push_back(0);
+    while (fallback.size() % 4 != 0) fallback.push_back(0);
+  }
+  std::ofstream(folder / (stem + ".bin"), std::ios::binary).write(bin.data(), static_cast<std::streamsize>(bin.size()));
+  json d = document(stem + ".bin", bin.size());
+  if (compress) {
+    d["buffers"].push_back({{"byteLength", fallback.size()}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+    d["extensionsUsed"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+    d["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+  } else {
+    d["extensionsUsed"] = {"KHR_mesh_quantization"};
+    d["extensionsRequired"] = {"KHR_mesh_quantization"};
+  }
+  d["bufferViews"] = bufferViews;
+  d["accessors"] = {accessor(0, 5126, data.count(), "VEC3"), accessor(1, 5120, data.count(), "VEC3"),
+                    accessor(2, 5126, data.count(), "VEC2"), accessor(3, 5125, data.box.indices.size(), "SCALAR"),
+                    accessor(4, 5121, data.count(), "VEC4")};
+  d["accessors"][1]["normalized"] = true;
+  d["accessors"][4]["normalized"] = true;
+  d["meshes"] = {{{"primitives",
+                   {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"COLOR_0", 4}}}, {"indices", 3}}}}}};
+  if (edit) edit(d);
+  std::ofstream(folder / (stem + ".gltf")) << d.dump();
+  return folder / (stem + ".gltf");
+}
+
+TEST(GltfCompression, AMeshoptBoxLoadsAsItsUncompressedTwin) {
+  const fs::path folder = test::temporaryFolder("gltf_meshopt");
+  const BoxData data;
+  const std::vector<MeshoptView> views = meshoptBoxViews(data);
+  const Scene plain = scene::loadGltf(writeMeshopt(folder, "plain", data, views, false));
+  const Scene decoded = scene::loadGltf(writeMeshopt(folder, "meshopt", data, views, true));
+  ASSERT_EQ(plain.meshes.size(), 1u);
+  ASSERT_EQ(decoded.meshes.size(), 1u);
+  const Mesh& a = plain.meshes[0];
+  const Mesh& b = decoded.meshes[0];
+  ASSERT_EQ(a.indices.size(), data.box.indices.size());
+  ASSERT_EQ(b.indices.size(), a.indices.size());
+  // The same triangles with the same winding: the index codec may start a triangle at another of
+  // its corners (EXT_meshopt_compression allows it).
+  for (std::size_t t = 0; t < a.indices.size(); t += 3) {
+    std::size_t turn = 0;
+    while (turn < 3 && b.indices[t + turn] != a.indices[t]) ++turn;
+    ASSERT_LT(turn, 3u) << "triangle " << t / 3;
+    for (std::size_t k = 0; k < 3; ++k) ASSERT_EQ(b.indices[t + (turn + k) % 3], a.indices[t + k]) << "triangle " << t / 3;
+  }
+  ASSERT_EQ(b.vertices.size(), a.vertices.size());
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+    ASSERT_EQ(a.vertices[i].position, b.vertices[i].position) << "vertex " << i;
+    ASSERT_EQ(a.vertices[i].normal, b.vertices[i].normal) << "vertex " << i;
+    ASSERT_EQ(a.vertices[i].uv, b.vertices[i].uv) << "vertex " << i;
+    ASSERT_EQ(a.vertices[i].colour, b.vertices[i].colour) << "vertex " << i;
+    // The 8-bit octahedral normal is the box's within its quantisation.
+    EXPECT_LT(glm::length(b.vertices[i].normal - data.box.vertices[i].normal), 0.02f) << "vertex " << i;
+  }
+  EXPECT_TRUE(decoded.unreadFeatures.empty());
+
+  // A truncated stream, a mode glint does not know and a count that does not fill the view: one
+  // line each, naming the file and the buffer view.
+  const std::string truncated = loadError(writeMeshopt(folder, "truncated", data, views, true, [&](json& d) {
+    d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"] = views[0].compressed.size() / 2;
+  }));
+  EXPECT_NE(truncated.find("truncated.gltf: buffer view 0: EXT_meshopt_compression: the stream does not decode"), std::string::npos)
+      << truncated;
+  EXPECT_EQ(truncated.find('\n'), std::string::npos) << truncated;
+  const std::string mode = loadError(writeMeshopt(folder, "mode", data, views, true, [](json& d) {
+    d["bufferViews"][3]["extensions"]["EXT_meshopt_compression"]["mode"] = "STRIPS";
+  }));
+  EXPECT_NE(mode.find("buffer view 3: EXT_meshopt_compression: mode must be"), std::string::npos) << mode;
+  const std::string count = loadError(writeMeshopt(folder, "count", data, views, true, [](json& d) {
+    d["bufferViews"][2]["extensions"]["EXT_meshopt_compression"]["count"] = 3;
+  }));
+  EXPECT_NE(count.find("buffer view 2: EXT_meshopt_compression: count 3 x byteStride 8 is not the buffer view's byteLength"),
+            std::string::npos)
+      << count;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,19 +17,86 @@
 #if GLINT_DRACO
 #include <draco/compression/decode.h>
 #endif
+// Likewise GLINT_MESHOPT.
+#ifndef GLINT_MESHOPT
+#define GLINT_MESHOPT 0
+#endif
+#if GLINT_MESHOPT
+#include <meshoptimizer.h>
+#endif
 
 #include "glint/error.h"
 
 namespace glint::scene {
 
 bool decodesDraco() { return GLINT_DRACO != 0; }
+bool decodesMeshopt() { return GLINT_MESHOPT != 0; }
 
 namespace {
 
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 constexpr const char* kSetAsideIndices = "glintIndices";
+constexpr const char* kMeshopt = "EXT_meshopt_compression";
+constexpr const char* kSetAsideFallback = "glintFallback";
+
+// A non-negative integer field of a JSON object (`fallback` when absent and `fallback` >= 0).
+std::uint64_t countField(const nlohmann::json& object, const char* name, std::int64_t fallback, const std::string& what) {
+  const auto found = object.find(name);
+  if (found == object.end() && fallback >= 0) return static_cast<std::uint64_t>(fallback);
+  if (found == object.end() || !found->is_number_integer() || found->get<std::int64_t>() < 0) {
+    throw Error(what + ": " + name + " must be a non-negative integer");
+  }
+  return found->get<std::uint64_t>();
+}
 
 }  // namespace
+
+bool setAsideMeshoptViews(nlohmann::json& document) {
+  if (!decodesMeshopt()) return false;
+  bool changed = false;
+  const auto buffers = document.find("buffers");
+  const std::size_t bufferCount = buffers != document.end() && buffers->is_array() ? buffers->size() : 0;
+  const auto views = document.find("bufferViews");
+  if (views != document.end() && views->is_array()) {
+    for (std::size_t v = 0; v < views->size(); ++v) {
+      nlohmann::json& view = (*views)[v];
+      if (!view.is_object() || !view.contains("extensions") || !view["extensions"].is_object()) continue;
+      const auto found = view["extensions"].find(kMeshopt);
+      if (found == view["extensions"].end()) continue;
+      const std::string what = "buffer view " + std::to_string(v) + ": " + kMeshopt;
+      nlohmann::json& extension = *found;
+      if (!extension.is_object()) throw Error(what + " must be an object");
+      const std::uint64_t buffer = countField(extension, "buffer", -1, what);
+      if (buffer >= bufferCount) throw Error(what + ": buffer " + std::to_string(buffer) + " does not exist");
+      const std::uint64_t length = countField(extension, "byteLength", -1, what);
+      const std::uint64_t offset = countField(extension, "byteOffset", 0, what);
+      const nlohmann::json& source = (*buffers)[buffer];
+      const std::uint64_t available = source.is_object() ? countField(source, "byteLength", -1, "buffer " + std::to_string(buffer)) : 0;
+      if (offset > available || length > available - offset) {
+        throw Error(what + ": bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + " run past buffer " +
+                    std::to_string(buffer) + " (" + std::to_string(available) + " bytes)");
+      }
+      extension[kSetAsideFallback] = {{"buffer", view.value("buffer", nlohmann::json())},
+                                      {"byteOffset", view.value("byteOffset", nlohmann::json(0))},
+                                      {"byteLength", view.value("byteLength", nlohmann::json())}};
+      view["buffer"] = buffer;
+      view["byteOffset"] = offset;
+      view["byteLength"] = length;
+      changed = true;
+    }
+  }
+  // A fallback buffer without data (no uri): one byte of its own, which no view reads.
+  for (std::size_t b = 0; b < bufferCount; ++b) {
+    nlohmann::json& buffer = (*buffers)[b];
+    if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
+    const auto found = buffer["extensions"].find(kMeshopt);
+    if (found == buffer["extensions"].end() || !found->is_object() || found->value("fallback", false) != true) continue;
+    buffer["uri"] = "data:application/octet-stream;base64,AA==";
+    buffer["byteLength"] = 1;
+    changed = true;
+  }
+  return changed;
+}
 
 bool setAsideDracoIndices(nlohmann::json& document) {
   bool moved = false;
@@ -48,19 +116,125 @@ bool setAsideDracoIndices(nlohmann::json& document) {
   return moved;
 }
 
+#if GLINT_DRACO || GLINT_MESHOPT
+
+namespace {
+
+// A buffer of its own holding `bytes`; its index.
+int addDecodedBuffer(tinygltf::Model& model, std::vector<unsigned char> bytes) {
+  tinygltf::Buffer buffer;
+  buffer.name = "decoded";
+  buffer.data = std::move(bytes);
+  model.buffers.push_back(std::move(buffer));
+  return static_cast<int>(model.buffers.size()) - 1;
+}
+
+}  // namespace
+
+#endif
+
+#if GLINT_MESHOPT
+
+namespace {
+
+std::string stringField(const tinygltf::Value& object, const char* name, const char* fallback) {
+  if (!object.Has(name)) return fallback != nullptr ? fallback : "";
+  return object.Get(name).IsString() ? object.Get(name).Get<std::string>() : "";
+}
+
+std::uint64_t countField(const tinygltf::Value& object, const char* name) {
+  const tinygltf::Value& field = object.Get(name);
+  if (!field.IsNumber() || field.GetNumberAsDouble() < 0.0) return std::numeric_limits<std::uint64_t>::max();
+  return static_cast<std::uint64_t>(field.GetNumberAsDouble());
+}
+
+// The bytes that buffer view `view` (pointed by setAsideMeshoptViews at its compressed data) would
+// hold uncompressed: the extension's codec (mode) and then its filter, over count elements of
+// byteStride bytes, which must fill the view's own byteLength.
+void decodeMeshoptView(tinygltf::Model& model, tinygltf::BufferView& view, const tinygltf::Value& extension) {
+  const std::string mode = stringField(extension, "mode", nullptr);
+  const std::string filter = stringField(extension, "filter", "NONE");
+  const std::uint64_t count = countField(extension, "count");
+  const std::uint64_t stride = countField(extension, "byteStride");
+  const tinygltf::Value& fallback = extension.Get(kSetAsideFallback);
+  const std::uint64_t declared = countField(fallback, "byteLength");
+  if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES") {
+    throw Error("mode must be \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\", got \"" + mode + "\"");
+  }
+  if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL") {
+    throw Error("filter must be \"NONE\", \"OCTAHEDRAL\", \"QUATERNION\" or \"EXPONENTIAL\", got \"" + filter + "\"");
+  }
+  if (count == std::numeric_limits<std::uint64_t>::max()) throw Error("count must be a non-negative integer");
+  // The codecs' own limits: vertex elements are a multiple of 4 bytes up to 256, indices 2 or 4 bytes.
+  const bool attributes = mode == "ATTRIBUTES";
+  if (attributes ? (stride == 0 || stride % 4 != 0 || stride > 256) : (stride != 2 && stride != 4)) {
+    throw Error("byteStride " + (stride == std::numeric_limits<std::uint64_t>::max() ? std::string("missing") : std::to_string(stride)) +
+                (attributes ? " is not a multiple of 4 up to 256" : " is not 2 or 4") + " for mode " + mode);
+  }
+  if (mode == "TRIANGLES" && count % 3 != 0) throw Error("count " + std::to_string(count) + " is not a whole number of triangles");
+  if (filter != "NONE" && !attributes) throw Error("filter " + filter + " applies to mode ATTRIBUTES only");
+  if ((filter == "OCTAHEDRAL" && stride != 4 && stride != 8) || (filter == "QUATERNION" && stride != 8)) {
+    throw Error("filter " + filter + " cannot have byteStride " + std::to_string(stride));
+  }
+  if (declared == std::numeric_limits<std::uint64_t>::max() || declared / stride < count || count * stride != declared) {
+    throw Error("count " + std::to_string(count) + " x byteStride " + std::to_string(stride) + " is not the buffer view's byteLength");
+  }
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) throw Error("its buffer does not exist");
+  const std::vector<unsigned char>& source = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+  if (view.byteOffset > source.size() || view.byteLength > source.size() - view.byteOffset) {
+    throw Error("its compressed bytes run past their buffer");
+  }
+  const unsigned char* compressed = source.data() + view.byteOffset;
+  // meshoptimizer's codecs shrink data by far less than this (a vertex stream's 16-byte group
+  // takes at least 2 bits); a count beyond it is not the stream's, and is not allocated.
+  if (declared / 256 > view.byteLength + 4096) throw Error("count " + std::to_string(count) + " is more than its stream can hold");
+  std::vector<unsigned char> decoded(declared);
+  const int status =
+      attributes ? meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
+      : mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
+                            : meshopt_decodeIndexSequence(decoded.data(), count, stride, compressed, view.byteLength);
+  if (status != 0) throw Error("the stream does not decode (meshoptimizer's code " + std::to_string(status) + ")");
+  if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(decoded.data(), count, stride);
+  if (filter == "QUATERNION") meshopt_decodeFilterQuat(decoded.data(), count, stride);
+  if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
+  view.buffer = addDecodedBuffer(model, std::move(decoded));
+  view.byteOffset = 0;
+  view.byteLength = declared;
+}
+
+void decodeMeshoptViews(tinygltf::Model& model) {
+  for (std::size_t v = 0; v < model.bufferViews.size(); ++v) {
+    tinygltf::BufferView& view = model.bufferViews[v];
+    const auto meshopt = view.extensions.find(kMeshopt);
+    if (meshopt == view.extensions.end() || !meshopt->second.Has(kSetAsideFallback)) continue;
+    try {
+      decodeMeshoptView(model, view, meshopt->second);
+    } catch (const Error& e) {
+      throw Error("buffer view " + std::to_string(v) + ": " + kMeshopt + ": " + e.what());
+    }
+  }
+}
+
+}  // namespace
+
+#else
+
+namespace {
+void decodeMeshoptViews(tinygltf::Model&) {}
+}  // namespace
+
+#endif
+
 #if GLINT_DRACO
 
 namespace {
 
 // A buffer of its own for `bytes`, and a buffer view over all of it; the view's index.
 int addDecodedView(tinygltf::Model& model, const void* bytes, std::size_t size) {
-  tinygltf::Buffer buffer;
-  buffer.name = "decoded";
-  buffer.data.resize(size);
-  if (size > 0) std::memcpy(buffer.data.data(), bytes, size);
-  model.buffers.push_back(std::move(buffer));
+  std::vector<unsigned char> data(size);
+  if (size > 0) std::memcpy(data.data(), bytes, size);
   tinygltf::BufferView view;
-  view.buffer = static_cast<int>(model.buffers.size()) - 1;
+  view.buffer = addDecodedBuffer(model, std::move(data));
   view.byteOffset = 0;
   view.byteLength = size;
   model.bufferViews.push_back(std::move(view));
@@ -188,6 +362,7 @@ void decodeDracoPrimitive(tinygltf::Model& model, tinygltf::Primitive& primitive
 }  // namespace
 
 void decodeCompressedMeshes(tinygltf::Model& model) {
+  decodeMeshoptViews(model);
   for (std::size_t m = 0; m < model.meshes.size(); ++m) {
     tinygltf::Mesh& mesh = model.meshes[m];
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -206,7 +381,7 @@ void decodeCompressedMeshes(tinygltf::Model& model) {
 
 #else
 
-void decodeCompressedMeshes(tinygltf::Model&) {}
+void decodeCompressedMeshes(tinygltf::Model& model) { decodeMeshoptViews(model); }
 
 #endif
 

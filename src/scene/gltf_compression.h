@@ -1,9 +1,13 @@
-// Compressed glTF meshes, decoded before the loader reads them: KHR_draco_mesh_compression (Google's
-// Draco, through Debian's libdraco). Each compressed primitive's stream is decoded, and its accessors
-// (the attributes the extension names, and the indices) are pointed at the decoded values, floats and
-// 32-bit indices in a buffer of their own, so that the loader reads them as any other accessor.
-// The page's WebAssembly build has no Draco (GLINT_DRACO 0): there a file that requires it is refused
-// by name, as any extension glint does not read.
+// Compressed glTF data, decoded before the loader reads it:
+// - KHR_draco_mesh_compression (Google's Draco, through Debian's libdraco): each compressed
+//   primitive's stream is decoded, and its accessors (the attributes the extension names, and the
+//   indices) are pointed at the decoded values, floats and 32-bit indices in a buffer of their own;
+// - EXT_meshopt_compression (meshoptimizer's codecs, through Debian's libmeshoptimizer): each
+//   compressed buffer view is decoded (its vertex or index codec, then its filter) into a buffer of
+//   its own, byte for byte what the view would hold uncompressed;
+// so that the loader reads them as any other accessor. The page's WebAssembly build decodes
+// neither (GLINT_DRACO and GLINT_MESHOPT 0): there a file that requires one is refused by name, as
+// any extension glint does not read.
 #pragma once
 
 #include <string>
@@ -16,8 +20,9 @@ class Model;
 
 namespace glint::scene {
 
-// Whether this build decodes KHR_draco_mesh_compression.
+// Whether this build decodes KHR_draco_mesh_compression, and EXT_meshopt_compression.
 bool decodesDraco();
+bool decodesMeshopt();
 
 // On the file's JSON, before tinygltf reads it: a Draco primitive's indices accessor has no buffer
 // view (the extension's data is the stream), which tinygltf refuses. Each such primitive's
@@ -25,9 +30,17 @@ bool decodesDraco();
 // puts it back with the decoded indices. Returns whether anything moved.
 bool setAsideDracoIndices(nlohmann::json& document);
 
-// Decodes every compressed primitive of `model` in place. Throws Error naming the mesh, the
-// primitive and the problem (a corrupt stream, an attribute the stream lacks, a count that is not
-// the accessor's).
+// On the file's JSON, before tinygltf reads it: a meshopt-compressed buffer view lies in a fallback
+// buffer that usually has no data (no uri), which tinygltf refuses. Each compressed view is pointed
+// at its compressed bytes (the extension's buffer, offset and length), its own placement set aside
+// in its extension object (as "glintFallback"), and each fallback buffer becomes an empty one-byte
+// buffer. decodeCompressedMeshes decodes the views. Returns whether anything changed. Throws Error
+// naming the buffer view and the field for an extension object it cannot use.
+bool setAsideMeshoptViews(nlohmann::json& document);
+
+// Decodes every meshopt-compressed buffer view, then every Draco primitive, of `model` in place.
+// Throws Error naming the buffer view, or the mesh and the primitive, and the problem (a corrupt
+// stream, an attribute the stream lacks, a count that is not the accessor's).
 void decodeCompressedMeshes(tinygltf::Model& model);
 
 }  // namespace glint::scene

@@ -1191,8 +1191,8 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
       if (version == 1) throw error("binary glTF 1.0 is not supported (glint reads glTF 2.0)");
       throw error("binary glTF container version ", version, " is not supported (glint reads glTF 2.0)");
     }
-    // The file with its whole-number indices made integers and its Draco primitives' indices set
-    // aside (gltf_compression.h).
+    // The file with its whole-number indices made integers, its Draco primitives' indices and its
+    // meshopt-compressed views' placements set aside (gltf_compression.h).
     std::optional<std::string> rewritten;
     if (std::optional<nlohmann::json> document = readGltfJson(bytes)) {
       checkGltfVersion(*document);
@@ -1201,7 +1201,8 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
       const bool dracoIndices = setAsideDracoIndices(*document);
-      if (wholeNumbers || dracoIndices) rewritten = withJson(bytes, binary, *document);
+      const bool meshoptViews = setAsideMeshoptViews(*document);
+      if (wholeNumbers || dracoIndices || meshoptViews) rewritten = withJson(bytes, binary, *document);
     }
     if (rewritten) bytes = {reinterpret_cast<const std::byte*>(rewritten->data()), rewritten->size()};
     // tinygltf takes a 32-bit length.

@@ -14,8 +14,8 @@ namespace {
 
 // The extensions glint honours: its lights are read, quantised attributes are plain normalised or
 // integer accessors, which the loader reads, emissive strengths, clear coats and texture transforms
-// are read, and so are glint layers (docs/scenes.md); Draco-compressed meshes are decoded where this
-// build has Draco (gltf_compression.h).
+// are read, and so are glint layers (docs/scenes.md); Draco- and meshopt-compressed data are decoded
+// where this build has their decoders (gltf_compression.h).
 constexpr std::array<std::string_view, 6> kReadExtensions = {"KHR_lights_punctual", "KHR_mesh_quantization",
                                                              "KHR_materials_emissive_strength", "KHR_materials_clearcoat",
                                                              "KHR_texture_transform", kGlintExtensionName};
@@ -50,7 +50,7 @@ bool glintReadsExtension(const std::string& name) {
   for (std::string_view known : kReadExtensions) {
     if (name == known) return true;
   }
-  return name == "KHR_draco_mesh_compression" && decodesDraco();
+  return (name == "KHR_draco_mesh_compression" && decodesDraco()) || (name == "EXT_meshopt_compression" && decodesMeshopt());
 }
 
 void checkRequiredExtensions(const nlohmann::json& document) {
