@@ -356,6 +356,23 @@ TEST(GltfCompression, AMeshoptBoxLoadsAsItsUncompressedTwin) {
   EXPECT_NE(count.find("buffer view 2: EXT_meshopt_compression: count 3 x byteStride 8 is not the buffer view's byteLength"),
             std::string::npos)
       << count;
+  // A count that is not a whole number, or beyond int32 (tinygltf would wrap it), and a view that is
+  // not compressed but lies in the fallback buffer, which holds no data (an image's view there
+  // would have been read past the one byte that stands in for it).
+  for (const json& bad : {json(1e300), json(3.5), json(std::int64_t{1} << 33)}) {
+    const std::string message = loadError(writeMeshopt(folder, "huge", data, views, true, [&](json& d) {
+      d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = bad;
+    }));
+    EXPECT_NE(message.find("buffer view 0: EXT_meshopt_compression: count must be a whole number in [0, 2147483647]"),
+              std::string::npos)
+        << message;
+  }
+  const std::string uncompressed = loadError(writeMeshopt(folder, "uncompressed", data, views, true, [](json& d) {
+    d["bufferViews"][4].erase("extensions");
+  }));
+  EXPECT_NE(uncompressed.find("buffer view 4: its buffer 1 is a EXT_meshopt_compression fallback, which holds no data"),
+            std::string::npos)
+      << uncompressed;
 }
 
 }  // namespace

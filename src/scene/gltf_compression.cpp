@@ -39,60 +39,134 @@ constexpr const char* kSetAsideIndices = "glintIndices";
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
 constexpr const char* kSetAsideFallback = "glintFallback";
 
-// A non-negative integer field of a JSON object (`fallback` when absent and `fallback` >= 0).
-std::uint64_t countField(const nlohmann::json& object, const char* name, std::int64_t fallback, const std::string& what) {
+// A whole-number field of a JSON object within [least, int32's largest] (`fallback` when absent and
+// `fallback` >= 0): what tinygltf stores as an int, so that the decoding pass reads it unchanged.
+std::int64_t integerField(const nlohmann::json& object, const char* name, std::int64_t fallback, std::int64_t least,
+                          const std::string& what) {
   const auto found = object.find(name);
-  if (found == object.end() && fallback >= 0) return static_cast<std::uint64_t>(fallback);
-  if (found == object.end() || !found->is_number_integer() || found->get<std::int64_t>() < 0) {
-    throw Error(what + ": " + name + " must be a non-negative integer");
+  if (found == object.end() && fallback >= 0) return fallback;
+  const std::int64_t largest = std::numeric_limits<std::int32_t>::max();
+  if (found == object.end() || !found->is_number_integer() || found->get<std::int64_t>() < least ||
+      found->get<std::int64_t>() > largest) {
+    throw Error(what + ": " + name + " must be a whole number in [" + std::to_string(least) + ", " + std::to_string(largest) + "]");
   }
-  return found->get<std::uint64_t>();
+  return found->get<std::int64_t>();
+}
+
+bool isMeshoptFallback(const nlohmann::json& buffer) {
+  if (!buffer.is_object() || !buffer.contains("extensions") || !buffer["extensions"].is_object()) return false;
+  const auto found = buffer["extensions"].find(kMeshopt);
+  return found != buffer["extensions"].end() && found->is_object() && found->contains("fallback") && (*found)["fallback"] == true;
+}
+
+// An EXT_meshopt_compression object checked as the extension and its codecs require: the mode and
+// filter by name, the stride each takes, count x byteStride filling the view (of `viewLength`
+// bytes, element stride `viewStride`, 0 where it has none).
+void checkMeshoptExtension(const nlohmann::json& extension, std::int64_t viewLength, std::int64_t viewStride,
+                           const std::string& what) {
+  const std::string mode = extension.contains("mode") && extension["mode"].is_string() ? extension["mode"].get<std::string>() : "";
+  const std::string filter =
+      !extension.contains("filter") ? "NONE" : extension["filter"].is_string() ? extension["filter"].get<std::string>() : "";
+  if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES") {
+    throw Error(what + ": mode must be \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\", got " + extension.value("mode", nlohmann::json()).dump());
+  }
+  if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL") {
+    throw Error(what + ": filter must be \"NONE\", \"OCTAHEDRAL\", \"QUATERNION\" or \"EXPONENTIAL\", got " + extension["filter"].dump());
+  }
+  const std::int64_t count = integerField(extension, "count", -1, 0, what);
+  const std::int64_t stride = integerField(extension, "byteStride", -1, 1, what);
+  // The codecs' own limits: vertex elements are a multiple of 4 bytes up to 256, indices 2 or 4 bytes.
+  const bool attributes = mode == "ATTRIBUTES";
+  if (attributes ? (stride % 4 != 0 || stride > 256) : (stride != 2 && stride != 4)) {
+    throw Error(what + ": byteStride " + std::to_string(stride) + (attributes ? " is not a multiple of 4 up to 256" : " is not 2 or 4") +
+                " for mode " + mode);
+  }
+  if (attributes && viewStride != 0 && viewStride != stride) {
+    throw Error(what + ": byteStride " + std::to_string(stride) + " is not the buffer view's, " + std::to_string(viewStride));
+  }
+  if (mode == "TRIANGLES" && count % 3 != 0) throw Error(what + ": count " + std::to_string(count) + " is not a whole number of triangles");
+  if (filter != "NONE" && !attributes) throw Error(what + ": filter " + filter + " applies to mode ATTRIBUTES only");
+  if ((filter == "OCTAHEDRAL" && stride != 4 && stride != 8) || (filter == "QUATERNION" && stride != 8)) {
+    throw Error(what + ": filter " + filter + " cannot have byteStride " + std::to_string(stride));
+  }
+  if (count * stride != viewLength) {
+    throw Error(what + ": count " + std::to_string(count) + " x byteStride " + std::to_string(stride) + " is not the buffer view's byteLength, " +
+                std::to_string(viewLength));
+  }
 }
 
 }  // namespace
 
-bool setAsideMeshoptViews(nlohmann::json& document) {
+bool setAsideMeshoptViews(nlohmann::json& document, bool binary) {
   if (!decodesMeshopt()) return false;
-  bool changed = false;
   const auto buffers = document.find("buffers");
-  const std::size_t bufferCount = buffers != document.end() && buffers->is_array() ? buffers->size() : 0;
   const auto views = document.find("bufferViews");
-  if (views != document.end() && views->is_array()) {
-    for (std::size_t v = 0; v < views->size(); ++v) {
-      nlohmann::json& view = (*views)[v];
-      if (!view.is_object() || !view.contains("extensions") || !view["extensions"].is_object()) continue;
-      const auto found = view["extensions"].find(kMeshopt);
-      if (found == view["extensions"].end()) continue;
-      const std::string what = "buffer view " + std::to_string(v) + ": " + kMeshopt;
-      nlohmann::json& extension = *found;
-      if (!extension.is_object()) throw Error(what + " must be an object");
-      const std::uint64_t buffer = countField(extension, "buffer", -1, what);
-      if (buffer >= bufferCount) throw Error(what + ": buffer " + std::to_string(buffer) + " does not exist");
-      const std::uint64_t length = countField(extension, "byteLength", -1, what);
-      const std::uint64_t offset = countField(extension, "byteOffset", 0, what);
-      const nlohmann::json& source = (*buffers)[buffer];
-      const std::uint64_t available = source.is_object() ? countField(source, "byteLength", -1, "buffer " + std::to_string(buffer)) : 0;
-      if (offset > available || length > available - offset) {
-        throw Error(what + ": bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + " run past buffer " +
-                    std::to_string(buffer) + " (" + std::to_string(available) + " bytes)");
-      }
-      extension[kSetAsideFallback] = {{"buffer", view.value("buffer", nlohmann::json())},
-                                      {"byteOffset", view.value("byteOffset", nlohmann::json(0))},
-                                      {"byteLength", view.value("byteLength", nlohmann::json())}};
-      view["buffer"] = buffer;
-      view["byteOffset"] = offset;
-      view["byteLength"] = length;
-      changed = true;
-    }
+  if (buffers == document.end() || !buffers->is_array() || views == document.end() || !views->is_array()) return false;
+  const std::size_t bufferCount = buffers->size();
+  auto compressed = [](const nlohmann::json& view) -> const nlohmann::json* {
+    if (!view.is_object() || !view.contains("extensions") || !view["extensions"].is_object()) return nullptr;
+    const auto found = view["extensions"].find(kMeshopt);
+    return found == view["extensions"].end() ? nullptr : &*found;
+  };
+  // The buffers without data that only compressed views lie in, and those flagged as fallbacks (a
+  // GLB's first buffer without a uri is its BIN chunk, which holds data, unless it is flagged).
+  std::vector<int> uses(bufferCount, 0);  // 1: compressed views only, 2: some other view too
+  for (const nlohmann::json& view : *views) {
+    if (!view.is_object() || !view.contains("buffer") || !view["buffer"].is_number_integer()) continue;
+    const std::int64_t b = view["buffer"].get<std::int64_t>();
+    if (b < 0 || static_cast<std::uint64_t>(b) >= bufferCount) continue;
+    uses[static_cast<std::size_t>(b)] = std::max(uses[static_cast<std::size_t>(b)], compressed(view) != nullptr ? 1 : 2);
   }
-  // A fallback buffer without data (no uri): one byte of its own, which no view reads.
+  std::vector<bool> placeholder(bufferCount, false);
   for (std::size_t b = 0; b < bufferCount; ++b) {
-    nlohmann::json& buffer = (*buffers)[b];
-    if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("extensions") || !buffer["extensions"].is_object()) continue;
-    const auto found = buffer["extensions"].find(kMeshopt);
-    if (found == buffer["extensions"].end() || !found->is_object() || found->value("fallback", false) != true) continue;
-    buffer["uri"] = "data:application/octet-stream;base64,AA==";
-    buffer["byteLength"] = 1;
+    const nlohmann::json& buffer = (*buffers)[b];
+    if (!buffer.is_object() || buffer.contains("uri")) continue;
+    placeholder[b] = isMeshoptFallback(buffer) || (uses[b] == 1 && !(binary && b == 0));
+  }
+  bool changed = false;
+  for (std::size_t v = 0; v < views->size(); ++v) {
+    nlohmann::json& view = (*views)[v];
+    const std::string what = "buffer view " + std::to_string(v) + ": " + kMeshopt;
+    const nlohmann::json* found = compressed(view);
+    const std::int64_t viewBuffer = view.is_object() && view.contains("buffer") && view["buffer"].is_number_integer()
+                                        ? view["buffer"].get<std::int64_t>() : -1;
+    const bool inPlaceholder = viewBuffer >= 0 && static_cast<std::uint64_t>(viewBuffer) < bufferCount &&
+                               placeholder[static_cast<std::size_t>(viewBuffer)];
+    if (found == nullptr) {
+      if (inPlaceholder) {
+        throw Error("buffer view " + std::to_string(v) + ": its buffer " + std::to_string(viewBuffer) + " is a " + kMeshopt +
+                    " fallback, which holds no data, and the view is not compressed");
+      }
+      continue;
+    }
+    nlohmann::json& extension = view["extensions"][kMeshopt];
+    if (!extension.is_object()) throw Error(what + " must be an object");
+    checkMeshoptExtension(extension, integerField(view, "byteLength", -1, 1, "buffer view " + std::to_string(v)),
+                          integerField(view, "byteStride", 0, 0, "buffer view " + std::to_string(v)), what);
+    const std::int64_t buffer = integerField(extension, "buffer", -1, 0, what);
+    if (static_cast<std::uint64_t>(buffer) >= bufferCount) throw Error(what + ": buffer " + std::to_string(buffer) + " does not exist");
+    if (placeholder[static_cast<std::size_t>(buffer)]) {
+      throw Error(what + ": its stream's buffer " + std::to_string(buffer) + " is a fallback, which holds no data");
+    }
+    const std::int64_t length = integerField(extension, "byteLength", -1, 1, what);
+    const std::int64_t offset = integerField(extension, "byteOffset", 0, 0, what);
+    const std::int64_t available = integerField((*buffers)[static_cast<std::size_t>(buffer)], "byteLength", -1, 1,
+                                                "buffer " + std::to_string(buffer));
+    if (offset > available || length > available - offset) {
+      throw Error(what + ": bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + " run past buffer " +
+                  std::to_string(buffer) + " (" + std::to_string(available) + " bytes)");
+    }
+    extension[kSetAsideFallback] = {{"byteLength", view["byteLength"]}};
+    view["buffer"] = buffer;
+    view["byteOffset"] = offset;
+    view["byteLength"] = length;
+    changed = true;
+  }
+  // A placeholder buffer: one byte of its own, which no view reads any more.
+  for (std::size_t b = 0; b < bufferCount; ++b) {
+    if (!placeholder[b]) continue;
+    (*buffers)[b]["uri"] = "data:application/octet-stream;base64,AA==";
+    (*buffers)[b]["byteLength"] = 1;
     changed = true;
   }
   return changed;
@@ -138,68 +212,40 @@ int addDecodedBuffer(tinygltf::Model& model, std::vector<unsigned char> bytes) {
 namespace {
 
 std::string stringField(const tinygltf::Value& object, const char* name, const char* fallback) {
-  if (!object.Has(name)) return fallback != nullptr ? fallback : "";
-  return object.Get(name).IsString() ? object.Get(name).Get<std::string>() : "";
+  return object.Has(name) && object.Get(name).IsString() ? object.Get(name).Get<std::string>() : fallback;
 }
 
-std::uint64_t countField(const tinygltf::Value& object, const char* name) {
-  const tinygltf::Value& field = object.Get(name);
-  if (!field.IsNumber() || field.GetNumberAsDouble() < 0.0) return std::numeric_limits<std::uint64_t>::max();
-  return static_cast<std::uint64_t>(field.GetNumberAsDouble());
-}
-
-// The bytes that buffer view `view` (pointed by setAsideMeshoptViews at its compressed data) would
-// hold uncompressed: the extension's codec (mode) and then its filter, over count elements of
-// byteStride bytes, which must fill the view's own byteLength.
+// The bytes that buffer view `view` (pointed by setAsideMeshoptViews at its compressed data, its
+// extension checked there) would hold uncompressed: the extension's codec (mode) and then its
+// filter, over count elements of byteStride bytes, which fill the view's own byteLength.
 void decodeMeshoptView(tinygltf::Model& model, tinygltf::BufferView& view, const tinygltf::Value& extension) {
-  const std::string mode = stringField(extension, "mode", nullptr);
+  const std::string mode = stringField(extension, "mode", "");
   const std::string filter = stringField(extension, "filter", "NONE");
-  const std::uint64_t count = countField(extension, "count");
-  const std::uint64_t stride = countField(extension, "byteStride");
-  const tinygltf::Value& fallback = extension.Get(kSetAsideFallback);
-  const std::uint64_t declared = countField(fallback, "byteLength");
-  if (mode != "ATTRIBUTES" && mode != "TRIANGLES" && mode != "INDICES") {
-    throw Error("mode must be \"ATTRIBUTES\", \"TRIANGLES\" or \"INDICES\", got \"" + mode + "\"");
-  }
-  if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL") {
-    throw Error("filter must be \"NONE\", \"OCTAHEDRAL\", \"QUATERNION\" or \"EXPONENTIAL\", got \"" + filter + "\"");
-  }
-  if (count == std::numeric_limits<std::uint64_t>::max()) throw Error("count must be a non-negative integer");
-  // The codecs' own limits: vertex elements are a multiple of 4 bytes up to 256, indices 2 or 4 bytes.
-  const bool attributes = mode == "ATTRIBUTES";
-  if (attributes ? (stride == 0 || stride % 4 != 0 || stride > 256) : (stride != 2 && stride != 4)) {
-    throw Error("byteStride " + (stride == std::numeric_limits<std::uint64_t>::max() ? std::string("missing") : std::to_string(stride)) +
-                (attributes ? " is not a multiple of 4 up to 256" : " is not 2 or 4") + " for mode " + mode);
-  }
-  if (mode == "TRIANGLES" && count % 3 != 0) throw Error("count " + std::to_string(count) + " is not a whole number of triangles");
-  if (filter != "NONE" && !attributes) throw Error("filter " + filter + " applies to mode ATTRIBUTES only");
-  if ((filter == "OCTAHEDRAL" && stride != 4 && stride != 8) || (filter == "QUATERNION" && stride != 8)) {
-    throw Error("filter " + filter + " cannot have byteStride " + std::to_string(stride));
-  }
-  if (declared == std::numeric_limits<std::uint64_t>::max() || declared / stride < count || count * stride != declared) {
-    throw Error("count " + std::to_string(count) + " x byteStride " + std::to_string(stride) + " is not the buffer view's byteLength");
-  }
+  const auto count = static_cast<std::size_t>(extension.Get("count").GetNumberAsInt());
+  const auto stride = static_cast<std::size_t>(extension.Get("byteStride").GetNumberAsInt());
+  const std::size_t size = count * stride;  // both below 2^31: checked on the JSON
   if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) throw Error("its buffer does not exist");
   const std::vector<unsigned char>& source = model.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (view.byteOffset > source.size() || view.byteLength > source.size() - view.byteOffset) {
     throw Error("its compressed bytes run past their buffer");
   }
-  const unsigned char* compressed = source.data() + view.byteOffset;
-  // meshoptimizer's codecs shrink data by far less than this (a vertex stream's 16-byte group
-  // takes at least 2 bits); a count beyond it is not the stream's, and is not allocated.
-  if (declared / 256 > view.byteLength + 4096) throw Error("count " + std::to_string(count) + " is more than its stream can hold");
-  std::vector<unsigned char> decoded(declared);
-  const int status =
-      attributes ? meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
-      : mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
-                            : meshopt_decodeIndexSequence(decoded.data(), count, stride, compressed, view.byteLength);
+  // A stream expands by less than this (the vertex codec: 2 bits at least for a group of 16 bytes;
+  // the triangle codec: a byte at least a triangle; an index sequence: a byte at least an index):
+  // a count beyond it is not the stream's, and is not allocated.
+  const std::size_t expansion = mode == "ATTRIBUTES" ? 64 : mode == "TRIANGLES" ? 12 : 4;
+  if (size > expansion * view.byteLength + 256) throw Error("count " + std::to_string(count) + " is more than its stream can hold");
+  const unsigned char* compressed = model.buffers[static_cast<std::size_t>(view.buffer)].data.data() + view.byteOffset;
+  std::vector<unsigned char> decoded(size);
+  const int status = mode == "ATTRIBUTES" ? meshopt_decodeVertexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
+                     : mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, compressed, view.byteLength)
+                                           : meshopt_decodeIndexSequence(decoded.data(), count, stride, compressed, view.byteLength);
   if (status != 0) throw Error("the stream does not decode (meshoptimizer's code " + std::to_string(status) + ")");
   if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(decoded.data(), count, stride);
   if (filter == "QUATERNION") meshopt_decodeFilterQuat(decoded.data(), count, stride);
   if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(decoded.data(), count, stride);
   view.buffer = addDecodedBuffer(model, std::move(decoded));
   view.byteOffset = 0;
-  view.byteLength = declared;
+  view.byteLength = size;
 }
 
 void decodeMeshoptViews(tinygltf::Model& model) {

@@ -30,13 +30,16 @@ bool decodesMeshopt();
 // puts it back with the decoded indices. Returns whether anything moved.
 bool setAsideDracoIndices(nlohmann::json& document);
 
-// On the file's JSON, before tinygltf reads it: a meshopt-compressed buffer view lies in a fallback
-// buffer that usually has no data (no uri), which tinygltf refuses. Each compressed view is pointed
-// at its compressed bytes (the extension's buffer, offset and length), its own placement set aside
-// in its extension object (as "glintFallback"), and each fallback buffer becomes an empty one-byte
-// buffer. decodeCompressedMeshes decodes the views. Returns whether anything changed. Throws Error
-// naming the buffer view and the field for an extension object it cannot use.
-bool setAsideMeshoptViews(nlohmann::json& document);
+// On the file's JSON (`binary`: of a GLB), before tinygltf reads it: a meshopt-compressed buffer
+// view lies in a fallback buffer that usually has no data (no uri), which tinygltf refuses. Each
+// compressed view's extension is checked (mode, filter, the stride each takes, count x byteStride
+// filling the view, its stream within its buffer), the view pointed at its compressed bytes and its
+// own length set aside in the extension object (as "glintFallback"); each buffer without data that
+// is flagged as a fallback, or that only compressed views lie in, becomes a one-byte buffer that no
+// view reads. decodeCompressedMeshes decodes the views. Returns whether anything changed. Throws
+// Error naming the buffer view and the problem, also for a view that is not compressed but lies in
+// a fallback buffer (it has no data to read).
+bool setAsideMeshoptViews(nlohmann::json& document, bool binary);
 
 // Decodes every meshopt-compressed buffer view, then every Draco primitive, of `model` in place.
 // Throws Error naming the buffer view, or the mesh and the primitive, and the problem (a corrupt

@@ -1201,7 +1201,7 @@ Scene loadGltf(std::span<const std::byte> bytes, const std::string& name, const 
       checkRequiredExtensions(*document);
       checkBufferViewRanges(*document);
       const bool dracoIndices = setAsideDracoIndices(*document);
-      const bool meshoptViews = setAsideMeshoptViews(*document);
+      const bool meshoptViews = setAsideMeshoptViews(*document, binary);
       if (wholeNumbers || dracoIndices || meshoptViews) rewritten = withJson(bytes, binary, *document);
     }
     if (rewritten) bytes = {reinterpret_cast<const std::byte*>(rewritten->data()), rewritten->size()};

@@ -111,9 +111,10 @@ vec4 kernelEntryPoints(GlintDictionaryView dict, vec4 a, vec4 b, vec4 c) {
   GlintRegionMassSet masses = glintRegionMassSet(dict, params, uv, duvdx, duvdy, regions);
   vec3 smoothMoments = glintSmoothRegionMoments(params.ndf, params.alpha, params.rho, regions.region[0]);
   float extended = masses.mass[0].w + masses.mass[1].x + masses.targetMass[1] +
-                   glintRegionReflectanceAt(params.masking, params.ndf, params.alpha, params.rho, wo, masses.targetMeanSlope[0],
+                   glintRegionReflectanceAt(params.masking, params.ndf, params.alpha, params.rho, wo, masses.meanSlope[0],
                                             glintClippedLightCentre(area)) +
-                   glintClippedLightProjectedSolidAngle(area) + smoothMoments.y;
+                   glintClippedLightProjectedSolidAngle(area) + smoothMoments.y + masses.targetMeanSlope[1].x +
+                   glintResidualEnvironmentScale(masses, 1).y;
 
   // A clear coat over a surface's frame: its weight, frame and lobe, and the emission's share.
   GlintSurfaceSamples coatInputs;

@@ -591,7 +591,11 @@ GLINT_FN GlintRegionMassSet glintRegionMassSet(GlintDictionaryView dict, GlintPa
 // where the residual lights it: without this factor that mass would be lost and a region's surplus
 // never paid for, which under light from everywhere alike (an overcast sky) is most of what the
 // flakes change. Where the regions hold nearly all of the lobe, the residual is only their texels'
-// spread about their means: the P-SDF's whole mass scales it.
+// spread about their means: the P-SDF's whole mass scales it. Both ends meet continuously: the
+// masses outside are taken with GLINT_RESIDUAL_BLEND of the whole lobe added, at the P-SDF's
+// average, so that a sliver of lobe outside the regions (where the quotient of two small, noisy
+// masses would swing) tends to the whole mass's scale.
+#define GLINT_RESIDUAL_BLEND 0.02f
 GLINT_FN vec3 glintResidualEnvironmentScale(GlintRegionMassSet masses, int regions) {
   vec4 outside = masses.totalMass;
   float targetOutside = 1.0f;
@@ -601,10 +605,9 @@ GLINT_FN vec3 glintResidualEnvironmentScale(GlintRegionMassSet masses, int regio
       targetOutside -= masses.targetMass[r];
     }
   }
-  if (!(targetOutside > 0.01f)) {
-    return vec3(masses.totalMass.x, masses.totalMass.y, masses.totalMass.z);
-  }
-  return max(vec3(outside.x, outside.y, outside.z) / targetOutside, glintSplat3(0.0f));
+  vec3 total = vec3(masses.totalMass.x, masses.totalMass.y, masses.totalMass.z);
+  vec3 scale = (vec3(outside.x, outside.y, outside.z) + GLINT_RESIDUAL_BLEND * total) / (max(targetOutside, 0.0f) + GLINT_RESIDUAL_BLEND);
+  return max(scale, glintSplat3(0.0f));
 }
 
 // The reflected radiance per unit radiance and per unit of slope-space mass for a light whose
