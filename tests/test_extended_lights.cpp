@@ -113,7 +113,7 @@ TEST(ExtendedLights, CumulativeTablesIntegrateTheMarginals) {
 TEST(ExtendedLightsStat, RegionMassIsTheIntegralOfThePSdfOverTheRegion) {
   // Random glint layers, footprints and quadrilateral regions within the lobe, the mass against the
   // midpoint rule of glintP22 over the quadrilateral (300 x 300 cells of its bounding box). The
-  // strips take the region's y extent at each strip's centroid (glintCellRegionMass); measured on
+  // strips take the region's y extent at each strip's centroid (glintCellRegionMoments); measured on
   // these 40 cases, the worst error is 6.8% of the region's mass with 8 strips (GLINT_REGION_STRIPS,
   // the default), 7.7% with 6 and 4.4% with 12. Tolerance: 12% plus 1e-3 of the footprint's whole
   // mass; the target's mass, by the same strips, within 5%. And the mean slope of the mass (below).

@@ -42,7 +42,7 @@ GLINT_KERNEL_BEGIN
 #define GLINT_REGION_NEGLIGIBLE_MASS 1e-4f
 #define GLINT_REGION_VERTICES 10
 // The share of the smooth target's mass over a region that a cell may leave uncounted: its strips
-// whose x mass falls below their part of it skip the y marginal (glintCellRegionMass). The cells
+// whose x mass falls below their part of it skip the y marginal (glintCellRegionMoments). The cells
 // average, so the P-SDF's mass over the region loses at most this fraction.
 #ifndef GLINT_CELL_NEGLIGIBLE_FRACTION
 #define GLINT_CELL_NEGLIGIBLE_FRACTION 1e-3f
@@ -302,10 +302,6 @@ GLINT_FN vec3 glintCellRegionMoments(GlintDictionaryView dict, GlintCell cell, G
   return moments;
 }
 
-GLINT_FN float glintCellRegionMass(GlintDictionaryView dict, GlintCell cell, GlintSlopeRegion local, float negligible) {
-  return glintCellRegionMoments(dict, cell, local, negligible).x;
-}
-
 // The standard normal's cumulative integrals at x / sigma, scaled to a normal of std sigma: (CDF
 // minus 1/2, the first moment from 0), as glintCumulativeMarginal's.
 GLINT_FN vec2 glintCumulativeNormal(float x, float sigma) {
@@ -315,7 +311,7 @@ GLINT_FN vec2 glintCumulativeNormal(float x, float sigma) {
 
 // The mass over an unscaled region of the isotropic Gaussian of standard deviation sigma per axis
 // (the Beckmann target, and the smooth cells, in the unscaled frame, where their sigma is
-// sigma_d), by glintCellRegionMass's strips and centroid rule, and its first moments:
+// sigma_d), by glintCellRegionMoments' strips and centroid rule, and its first moments:
 // (mass, integral of x, integral of y).
 GLINT_FN vec3 glintGaussianRegionMoments(GlintSlopeRegion unscaled, float sigma) {
   vec2 xRange = clamp(glintRegionXRange(unscaled), glintSplat2(-4.0f * sigma), glintSplat2(4.0f * sigma));
@@ -336,10 +332,6 @@ GLINT_FN vec3 glintGaussianRegionMoments(GlintSlopeRegion unscaled, float sigma)
     start = end;
   }
   return moments;
-}
-
-GLINT_FN float glintGaussianRegionMass(GlintSlopeRegion unscaled, float sigma) {
-  return glintGaussianRegionMoments(unscaled, sigma).x;
 }
 
 // GGX's slope density in its unscaled frame, 1 / (pi (1 + x^2 + y^2)^2), integrated as
@@ -406,10 +398,6 @@ GLINT_FN vec3 glintMidpointRegionMoments(int ndf, vec2 alpha, float rho, float a
     }
   }
   return moments / glintCorrelatedJacobian(alpha, rho, alphaD);
-}
-
-GLINT_FN float glintMidpointRegionMass(int ndf, vec2 alpha, float rho, float alphaD, GlintSlopeRegion unscaled, bool tail) {
-  return glintMidpointRegionMoments(ndf, alpha, rho, alphaD, unscaled, tail).x;
 }
 
 // A smooth lobe's mass over a region of slope space (GLINT_NDF_BECKMANN or GLINT_NDF_GGX of
